@@ -53,9 +53,9 @@ struct Stock {
 //! Polygon checks use CGAL's exact predicates. `field` prefixes every problem ("stock").
 std::vector<InputProblem> validate(const Stock& stock, const std::string& field = "stock");
 
-//! The stock after `path` has been cut with a tool of `tool_radius_mm`: every non-rapid move is
-//! appended to `removed`. Rapids are positioning moves and are not recorded (a rapid through
-//! material is a collision, which the engagement reports, not a cut).
+//! The stock after `path` has been cut with a tool of `tool_radius_mm`: every move of the path is
+//! appended to `removed` (a move above the stock removes nothing; a rapid through material is a
+//! collision, which compute_engagement reports, and the material is gone afterwards either way).
 Stock after_cutting(const Stock& stock, const ToolPath& path, double tool_radius_mm);
 
 }  // namespace feedplan::geometry

@@ -1,0 +1,232 @@
+#include "feedplan/geometry/engagement.hpp"
+
+#include <algorithm>
+#include <cassert>
+#include <cmath>
+#include <sstream>
+
+#include "angle_set.hpp"
+#include "candidate_index.hpp"
+#include "feedplan/core/angle.hpp"
+#include "stock_section.hpp"
+#include "swept_piece.hpp"
+#include "vec2.hpp"
+
+namespace feedplan::geometry {
+
+namespace {
+
+using detail::AngleInterval;
+using detail::AngleIntervals;
+using detail::SweptPiece;
+using detail::Vec2;
+
+// Engaged pieces shorter than this are tangencies, not engagement.
+constexpr double kMinEngagedRad = 1e-9;
+// Subtract the accumulated exclusions after this many contributing pieces (keeps the remaining
+// set small so later, older pieces can be culled by its bounding box).
+constexpr int kCompactEvery = 4;
+// Air samples with more engagement than this are reported as meeting material.
+constexpr double kAirContactRad = 1e-6;
+
+struct Box {
+  Vec2 lo{1e300, 1e300};
+  Vec2 hi{-1e300, -1e300};
+  void add(Vec2 q) {
+    lo = {std::min(lo.x, q.x), std::min(lo.y, q.y)};
+    hi = {std::max(hi.x, q.x), std::max(hi.y, q.y)};
+  }
+};
+
+// Bounding box of the tool-circle arcs p + r e(θ), θ in the intervals.
+Box arcs_box(const AngleIntervals& arcs, Vec2 p, double r) {
+  Box box;
+  for (const auto& arc : arcs) {
+    box.add(p + r * detail::unit_at(arc.lo));
+    box.add(p + r * detail::unit_at(arc.hi));
+    for (int k = 0; k <= 4; ++k) {
+      const double axis = k * 0.5 * kPi;
+      if (axis > arc.lo && axis < arc.hi) box.add(p + r * detail::unit_at(axis));
+    }
+  }
+  return box;
+}
+
+bool boxes_overlap(const Box& box, const SweptPiece& piece) {
+  const double g = piece.sweep_radius_mm;
+  return !(piece.box_min.x - g > box.hi.x || piece.box_max.x + g < box.lo.x || piece.box_min.y - g > box.hi.y ||
+           piece.box_max.y + g < box.lo.y);
+}
+
+// Converts engaged world angles θ (counter-clockwise from +X) to immersion angles φ = ψ + π/2 − θ
+// in [−π/2, 3π/2), sorted and merged.
+void to_immersion(const AngleIntervals& world, double feed_direction_rad, std::vector<EngagedInterval>& out) {
+  boost::container::small_vector<EngagedInterval, 6> pieces;
+  for (const auto& w : world) {
+    const double length = w.hi - w.lo;
+    const double lo = detail::wrap_two_pi(feed_direction_rad + 0.5 * kPi - w.hi + 0.5 * kPi) - 0.5 * kPi;
+    const double hi = lo + length;
+    if (hi <= 1.5 * kPi) {
+      pieces.push_back({lo, hi});
+    } else {
+      pieces.push_back({lo, 1.5 * kPi});
+      pieces.push_back({-0.5 * kPi, hi - 2.0 * kPi});
+    }
+  }
+  std::sort(pieces.begin(), pieces.end(),
+            [](const EngagedInterval& a, const EngagedInterval& b) { return a.entry_rad < b.entry_rad; });
+  const std::size_t first = out.size();
+  for (const auto& piece : pieces) {
+    if (out.size() > first && piece.entry_rad <= out.back().exit_rad + 1e-12) {
+      out.back().exit_rad = std::max(out.back().exit_rad, piece.exit_rad);
+    } else {
+      out.push_back(piece);
+    }
+  }
+}
+
+// Largest sin φ over the engaged intervals (the chip thickness h = f_z sin φ), clamped at 0.
+double chip_factor_of(const EngagedInterval* begin, const EngagedInterval* end) {
+  double best = 0.0;
+  for (const auto* i = begin; i != end; ++i) {
+    if (i->entry_rad <= 0.5 * kPi && i->exit_rad >= 0.5 * kPi) return 1.0;
+    best = std::max({best, std::sin(i->entry_rad), std::sin(i->exit_rad)});
+  }
+  return best;
+}
+
+std::string describe(const Move& move, std::size_t index, const std::vector<std::string>& part_names) {
+  std::ostringstream out;
+  out << "move " << index << " (" << (move.kind == MoveKind::kRapid ? "rapid" : "air feed");
+  if (move.part >= 0 && static_cast<std::size_t>(move.part) < part_names.size()) {
+    out << ", part '" << part_names[move.part] << "'";
+  }
+  out << ")";
+  return out.str();
+}
+
+}  // namespace
+
+EngagementProfile compute_engagement(const ToolPath& path, const Stock& stock, double tool_radius_mm,
+                                     const EngagementOptions& options) {
+  assert(tool_radius_mm > 0.0 && options.ds_mm > 0.0);
+  const double r = tool_radius_mm;
+  EngagementProfile profile;
+  profile.tool_radius_mm = r;
+  profile.ds_mm = options.ds_mm;
+  profile.part_names = path.part_names;
+
+  // 1. Earlier sweeps as short pieces, in the order they were cut: the stock's, then the path's.
+  const double max_piece_mm = 2.0 * r;
+  std::vector<SweptPiece> pieces;
+  for (const auto& swept : stock.removed) {
+    detail::split_move(swept.move, swept.tool_radius_mm, max_piece_mm, pieces, nullptr);
+  }
+  const std::size_t first_path_piece = pieces.size();
+  std::vector<std::size_t> move_first_piece(path.moves.size());
+  std::vector<std::vector<double>> move_fractions(path.moves.size());
+  for (std::size_t i = 0; i < path.moves.size(); ++i) {
+    move_first_piece[i] = pieces.size();
+    detail::split_move(path.moves[i], r, max_piece_mm, pieces, &move_fractions[i]);
+  }
+
+  // 2. Candidate earlier pieces for every piece of the path.
+  const auto candidates = detail::earlier_candidates(pieces, r, first_path_piece);
+
+  // 3. Samples.
+  AngleIntervals cuts;
+  double s_start_mm = 0.0;
+  double last_direction_rad = 0.0;
+  std::vector<bool> warned(path.moves.size(), false);
+  for (std::size_t i = 0; i < path.moves.size(); ++i) {
+    const Move& move = path.moves[i];
+    const double move_length = length_mm(move);
+    const double move_xy_length = xy_length_mm(move);
+    const int steps = std::max(1, static_cast<int>(std::ceil(move_length / options.ds_mm - 1e-9)));
+    const int last_step = i + 1 == path.moves.size() ? steps : steps - 1;
+    const auto& fractions = move_fractions[i];
+    const bool is_cutting = move.cutting && move.kind != MoveKind::kRapid;
+    for (int k = 0; k <= last_step; ++k) {
+      const double f = static_cast<double>(k) / steps;
+      EngagementSample sample;
+      sample.s_mm = s_start_mm + f * move_length;
+      sample.position = point_at(move, f);
+      sample.move_index = static_cast<int>(i);
+      sample.part = move.part;
+      sample.cutting = is_cutting;
+      sample.axial_depth_mm = move.axial_depth_mm;
+      sample.xy_speed_ratio = move_length > 0.0 ? move_xy_length / move_length : 0.0;
+      const double direction = tangent_angle_rad(move, f);
+      if (std::isnan(direction) || move_xy_length <= 0.0) {
+        sample.feed_direction_rad = last_direction_rad;
+        sample.xy_speed_ratio = 0.0;
+      } else {
+        sample.feed_direction_rad = direction;
+        last_direction_rad = direction;
+      }
+      sample.interval_begin = static_cast<int>(profile.intervals.size());
+
+      const Vec2 p = detail::to_vec(sample.position);
+      const double height = sample.position.z_mm + std::max(0.5 * move.axial_depth_mm, 1e-6);
+      AngleIntervals remaining = detail::initial_material(stock, p, r, height);
+      if (!remaining.empty()) {
+        // The piece being travelled, from its start up to the tool.
+        std::size_t piece_in_move = 0;
+        while (piece_in_move + 2 < fractions.size() && f >= fractions[piece_in_move + 1]) ++piece_in_move;
+        const std::size_t current = move_first_piece[i] + piece_in_move;
+        const double g = (f - fractions[piece_in_move]) / (fractions[piece_in_move + 1] - fractions[piece_in_move]);
+        cuts.clear();
+        if (g > 0.0) {
+          const SweptPiece& piece = pieces[current];
+          const bool reversed = piece.is_arc && !move.ccw;  // clockwise arcs are stored counter-clockwise
+          if (reversed) {
+            detail::append_excluded(detail::sub_piece(piece, 1.0 - g, 1.0), p, r, height, false, true, cuts);
+          } else {
+            detail::append_excluded(detail::sub_piece(piece, 0.0, g), p, r, height, true, false, cuts);
+          }
+          remaining = detail::subtract_union(remaining, cuts, 1e-12);
+          cuts.clear();
+        }
+        // Earlier pieces, most recent first, culled by the box of what is still engaged.
+        Box box = arcs_box(remaining, p, r);
+        int contributed = 0;
+        for (const std::uint32_t j : candidates[current]) {
+          if (remaining.empty()) break;
+          const SweptPiece& piece = pieces[j];
+          if (!boxes_overlap(box, piece)) continue;
+          if (detail::append_excluded(piece, p, r, height, true, true, cuts) && ++contributed == kCompactEvery) {
+            remaining = detail::subtract_union(remaining, cuts, 1e-12);
+            cuts.clear();
+            box = arcs_box(remaining, p, r);
+            contributed = 0;
+          }
+        }
+        remaining = detail::subtract_union(remaining, cuts, kMinEngagedRad);
+        to_immersion(remaining, sample.feed_direction_rad, profile.intervals);
+      }
+
+      sample.interval_count = static_cast<int>(profile.intervals.size()) - sample.interval_begin;
+      if (sample.interval_count > 0) {
+        const EngagedInterval* first = profile.intervals.data() + sample.interval_begin;
+        const EngagedInterval* end = first + sample.interval_count;
+        for (const auto* e = first; e != end; ++e) sample.engagement_rad += e->exit_rad - e->entry_rad;
+        sample.entry_rad = first->entry_rad;
+        sample.exit_rad = (end - 1)->exit_rad;
+        sample.chip_factor = sample.xy_speed_ratio > 0.0 ? chip_factor_of(first, end) : 0.0;
+      }
+      sample.contact_length_mm = r * sample.engagement_rad;
+      if (!is_cutting && sample.engagement_rad > kAirContactRad && !warned[i]) {
+        warned[i] = true;
+        std::ostringstream out;
+        out << describe(move, i, path.part_names) << " meets material at s = " << sample.s_mm
+            << " mm (engagement " << rad_to_deg(sample.engagement_rad) << " deg): a collision or a gouge";
+        profile.warnings.push_back(out.str());
+      }
+      profile.samples.push_back(sample);
+    }
+    s_start_mm += move_length;
+  }
+  return profile;
+}
+
+}  // namespace feedplan::geometry
