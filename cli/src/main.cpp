@@ -1,0 +1,54 @@
+// feedplan — feedforward feedrate planning for canned milling cycles. The CLI is thin: it parses,
+// calls the libraries, prints, and exits 0 (done), 1 (failed) or 2 (bad input).
+
+#include <CLI/CLI.hpp>
+
+#include <exception>
+#include <iostream>
+
+#include "cycle_command.hpp"
+#include "feedplan/core/input_error.hpp"
+
+namespace {
+
+constexpr int kExitFailed = 1;
+constexpr int kExitBadInput = 2;
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"feedplan " FEEDPLAN_VERSION
+               " — feedforward feedrate planning for canned milling cycles (corner rounding, trochoid,\n"
+               "spiral, helical boring, pocket): tool path, cutter engagement, and feeds that hold the\n"
+               "cutting force at a target."};
+  app.set_version_flag("--version", "feedplan " FEEDPLAN_VERSION);
+  app.require_subcommand(1);
+
+  feedplan::cli::CycleOptions cycle_options;
+  feedplan::cli::add_cycle_command(app, cycle_options);
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForAllHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForVersion& e) {
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    app.exit(e);
+    return kExitBadInput;
+  }
+
+  try {
+    if (app.got_subcommand("cycle")) return feedplan::cli::run_cycle_command(cycle_options);
+  } catch (const feedplan::InputError& e) {
+    std::cerr << "feedplan: bad input:\n";
+    for (const auto& problem : e.problems()) std::cerr << "  " << feedplan::to_string(problem) << "\n";
+    return kExitBadInput;
+  } catch (const std::exception& e) {
+    std::cerr << "feedplan: failed: " << e.what() << "\n";
+    return kExitFailed;
+  }
+  return kExitFailed;
+}
