@@ -52,10 +52,27 @@ Box arcs_box(const AngleIntervals& arcs, Vec2 p, double r) {
   return box;
 }
 
-bool boxes_overlap(const Box& box, const SweptPiece& piece) {
+// False when the piece's sweep certainly misses the box: its bounding box, grown by the sweep
+// radius, misses it, or (a tighter bound) the box lies farther than the sweep radius from the
+// piece's circle (arcs) or from the segment (lines, via the box centre and half-diagonal).
+bool sweep_may_reach(const Box& box, const SweptPiece& piece) {
   const double g = piece.sweep_radius_mm;
-  return !(piece.box_min.x - g > box.hi.x || piece.box_max.x + g < box.lo.x || piece.box_min.y - g > box.hi.y ||
-           piece.box_max.y + g < box.lo.y);
+  if (piece.box_min.x - g > box.hi.x || piece.box_max.x + g < box.lo.x || piece.box_min.y - g > box.hi.y ||
+      piece.box_max.y + g < box.lo.y) {
+    return false;
+  }
+  if (piece.is_arc) {
+    const double dx_near = std::max({box.lo.x - piece.center.x, 0.0, piece.center.x - box.hi.x});
+    const double dy_near = std::max({box.lo.y - piece.center.y, 0.0, piece.center.y - box.hi.y});
+    const double dx_far = std::max(std::abs(box.lo.x - piece.center.x), std::abs(box.hi.x - piece.center.x));
+    const double dy_far = std::max(std::abs(box.lo.y - piece.center.y), std::abs(box.hi.y - piece.center.y));
+    const double nearest = std::hypot(dx_near, dy_near);
+    const double farthest = std::hypot(dx_far, dy_far);
+    return nearest - piece.radius_mm < g && piece.radius_mm - farthest < g;
+  }
+  const Vec2 mid{0.5 * (box.lo.x + box.hi.x), 0.5 * (box.lo.y + box.hi.y)};
+  const double half_diagonal = 0.5 * std::hypot(box.hi.x - box.lo.x, box.hi.y - box.lo.y);
+  return detail::distance_to_path_mm(piece, mid) - half_diagonal < g;
 }
 
 // Converts engaged world angles θ (counter-clockwise from +X) to immersion angles φ = ψ + π/2 − θ
@@ -193,7 +210,7 @@ EngagementProfile compute_engagement(const ToolPath& path, const Stock& stock, d
         for (const std::uint32_t j : candidates[current]) {
           if (remaining.empty()) break;
           const SweptPiece& piece = pieces[j];
-          if (!boxes_overlap(box, piece)) continue;
+          if (!sweep_may_reach(box, piece)) continue;
           if (detail::append_excluded(piece, p, r, height, true, true, cuts) && ++contributed == kCompactEvery) {
             remaining = detail::subtract_union(remaining, cuts, 1e-12);
             cuts.clear();

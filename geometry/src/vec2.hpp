@@ -19,7 +19,8 @@ constexpr Vec2 operator-(Vec2 a, Vec2 b) { return {a.x - b.x, a.y - b.y}; }
 constexpr Vec2 operator*(double s, Vec2 a) { return {s * a.x, s * a.y}; }
 constexpr double dot(Vec2 a, Vec2 b) { return a.x * b.x + a.y * b.y; }
 constexpr double cross(Vec2 a, Vec2 b) { return a.x * b.y - a.y * b.x; }
-inline double norm(Vec2 a) { return std::hypot(a.x, a.y); }
+// sqrt of the sum of squares: coordinates are in mm, far from overflow, and std::hypot is slow.
+inline double norm(Vec2 a) { return std::sqrt(a.x * a.x + a.y * a.y); }
 inline double angle_of(Vec2 a) { return std::atan2(a.y, a.x); }
 inline Vec2 unit_at(double angle_rad) { return {std::cos(angle_rad), std::sin(angle_rad)}; }
 
