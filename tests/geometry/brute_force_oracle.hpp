@@ -3,8 +3,8 @@
 // samples the tool circle densely and asks, for each point, the defining question of DESIGN.md
 // §5.2 — inside the initial stock, and farther than the sweep radius from every earlier tool
 // position at or below the evaluation height? Transitions between engaged and free points are then
-// refined by bisection. Distances to earlier moves are point-to-segment and point-to-arc in closed
-// form for moves at constant z, and to densely sampled points for moves whose z changes.
+// refined by bisection. Distances to earlier moves are point-to-segment and point-to-arc; a move
+// whose z changes (a helix) counts only over the fraction whose tip is at or below the height.
 
 #include <algorithm>
 #include <cmath>
@@ -49,12 +49,15 @@ inline bool in_initial_stock(const Stock& stock, XY q, double height_mm) {
   return false;
 }
 
-// An earlier tool-centre path piece (the part of a move up to some fraction), as the oracle sees it.
+// An earlier tool-centre move (or the part of the current one travelled so far) as the oracle sees
+// it: the fractions [from, upto] of the move whose tool tip is at or below the evaluation height.
 struct Earlier {
   Move move;
-  double upto = 1.0;  // fraction of the move that was travelled
+  double travelled = 1.0;         // fraction of the move that was travelled
   double sweep_radius_mm = 0.0;
-  std::vector<XY> dense;  // for z-varying moves: the points at or below the height
+  double lo_x = 0, lo_y = 0, hi_x = 0, hi_y = 0;  // XY bounding box of the whole move
+  double from = 0.0, upto = 1.0;  // part below the height (set by clip)
+  bool active = true;
 };
 
 inline double dist_segment(XY q, XY a, XY b) {
@@ -65,50 +68,80 @@ inline double dist_segment(XY q, XY a, XY b) {
   return std::hypot(q.x - a.x - t * dx, q.y - a.y - t * dy);
 }
 
-inline double dist_to(const Earlier& e, XY q) {
-  if (!e.dense.empty()) {
-    double best = 1e300;
-    for (std::size_t i = 0; i + 1 < e.dense.size(); ++i) best = std::min(best, dist_segment(q, e.dense[i], e.dense[i + 1]));
-    if (e.dense.size() == 1) best = std::hypot(q.x - e.dense[0].x, q.y - e.dense[0].y);
-    return best;
+inline Earlier make_earlier(const Move& m, double travelled, double radius) {
+  Earlier e{m, travelled, radius, 1e300, 1e300, -1e300, -1e300, 0.0, travelled, true};
+  const int n = 64;
+  for (int i = 0; i <= n; ++i) {
+    const Point3 s = point_at(m, travelled * i / n);
+    e.lo_x = std::min(e.lo_x, s.x_mm), e.lo_y = std::min(e.lo_y, s.y_mm);
+    e.hi_x = std::max(e.hi_x, s.x_mm), e.hi_y = std::max(e.hi_y, s.y_mm);
   }
-  const Point3 end = point_at(e.move, e.upto);
-  if (e.move.kind != MoveKind::kArc) return dist_segment(q, {e.move.start.x_mm, e.move.start.y_mm}, {end.x_mm, end.y_mm});
-  // Arc: radial distance if q's angle is within the travelled sweep, else the nearer end point.
+  // Arcs bulge up to the sagitta of one 1/64 step beyond the sampled points.
+  const double bulge = m.kind == MoveKind::kArc ? arc_radius_mm(m) * (1 - std::cos(m.sweep_rad * travelled / (2 * n))) : 0.0;
+  e.lo_x -= bulge, e.lo_y -= bulge, e.hi_x += bulge, e.hi_y += bulge;
+  return e;
+}
+
+// Keeps the part of the travelled move whose tip z (linear along the move) is at or below height_mm.
+inline void clip(Earlier& e, double height_mm) {
+  const double z0 = e.move.start.z_mm;
+  const double z1 = point_at(e.move, e.travelled).z_mm;
+  const double h = height_mm + 1e-9;
+  e.active = true;
+  e.from = 0.0;
+  e.upto = e.travelled;
+  if (z0 <= h && z1 <= h) return;
+  if (z0 > h && z1 > h) {
+    e.active = false;
+    return;
+  }
+  const double t = e.travelled * (height_mm - z0) / (z1 - z0);
+  if (z0 <= h) e.upto = t; else e.from = t;
+}
+
+// Distance in XY from q to the active part of the move.
+inline double dist_to(const Earlier& e, XY q) {
+  if (!e.active) return 1e300;
+  const Point3 a = point_at(e.move, e.from);
+  const Point3 b = point_at(e.move, e.upto);
+  if (e.move.kind != MoveKind::kArc) return dist_segment(q, {a.x_mm, a.y_mm}, {b.x_mm, b.y_mm});
+  // Arc: radial distance if q's angle is within the active sweep, else the nearer end point.
   const double cx = e.move.center.x_mm, cy = e.move.center.y_mm;
-  const double rho = std::hypot(e.move.start.x_mm - cx, e.move.start.y_mm - cy);
-  const double a0 = std::atan2(e.move.start.y_mm - cy, e.move.start.x_mm - cx);
+  const double rho = std::hypot(a.x_mm - cx, a.y_mm - cy);
+  const double a0 = std::atan2(a.y_mm - cy, a.x_mm - cx);
   const double aq = std::atan2(q.y - cy, q.x - cx);
   double offset = e.move.ccw ? aq - a0 : a0 - aq;
   const double two_pi = 2 * std::numbers::pi;
   offset = std::fmod(offset, two_pi);
   if (offset < 0) offset += two_pi;
-  const double sweep = e.upto * e.move.sweep_rad;
+  const double sweep = (e.upto - e.from) * e.move.sweep_rad;
   if (offset <= sweep || sweep >= two_pi) return std::abs(std::hypot(q.x - cx, q.y - cy) - rho);
-  return std::min(std::hypot(q.x - e.move.start.x_mm, q.y - e.move.start.y_mm), std::hypot(q.x - end.x_mm, q.y - end.y_mm));
+  return std::min(std::hypot(q.x - a.x_mm, q.y - a.y_mm), std::hypot(q.x - b.x_mm, q.y - b.y_mm));
 }
 
 //! Engagement oracle at fraction `f` of move `move_index` of `path`.
 class EngagementOracle {
  public:
   EngagementOracle(const ToolPath& path, const Stock& stock, double tool_radius_mm)
-      : path_(path), stock_(stock), r_(tool_radius_mm) {}
+      : path_(path), stock_(stock), r_(tool_radius_mm) {
+    for (const auto& s : stock_.removed) moves_.push_back(make_earlier(s.move, 1.0, s.tool_radius_mm));
+    first_path_move_ = moves_.size();
+    for (const auto& m : path_.moves) moves_.push_back(make_earlier(m, 1.0, r_));
+  }
 
-  //! Total engaged angle (rad) of the tool circle at the given place, and the engaged set as a
-  //! predicate for further checks.
+  //! Total engaged angle (rad) of the tool circle at the given place.
   double engagement_rad(std::size_t move_index, double f, int samples_per_turn = 3600) {
     prepare(move_index, f);
     const double two_pi = 2 * std::numbers::pi;
+    const double step = two_pi / samples_per_turn;
     std::vector<char> state(samples_per_turn);
-    for (int i = 0; i < samples_per_turn; ++i) state[i] = engaged(two_pi * i / samples_per_turn);
+    for (int i = 0; i < samples_per_turn; ++i) state[i] = engaged(step * i);
     double total = 0.0;
-    // Each run of engaged samples, with both ends refined by bisection.
     for (int i = 0; i < samples_per_turn; ++i) {
       if (!state[i]) continue;
       const int prev = (i + samples_per_turn - 1) % samples_per_turn;
       const int next = (i + 1) % samples_per_turn;
-      const double step = two_pi / samples_per_turn;
-      const double a = two_pi * i / samples_per_turn;
+      const double a = step * i;
       // Each engaged sample stands for half a step either side; where a neighbour is free, the
       // boundary between them is found by bisection instead.
       double contribution = state[prev] ? step / 2 : a - refine(a - step, a);
@@ -118,16 +151,23 @@ class EngagementOracle {
     return total;
   }
 
-  //! Whether the tool-circle point at world angle θ is engaged (call engagement_rad or prepare first).
+  //! Whether the tool-circle point at world angle θ is engaged (after prepare or engagement_rad).
   bool engaged(double theta) const {
     const XY q{p_.x + r_ * std::cos(theta), p_.y + r_ * std::sin(theta)};
     if (!in_initial_stock(stock_, q, height_)) return false;
-    for (const auto& e : earlier_) {
-      // The tool circle itself is at exactly the sweep radius from the current position: only points
-      // clearly inside an earlier sweep are free.
-      if (dist_to(e, q) < e.sweep_radius_mm - 1e-9) return false;
+    auto blocks = [&](const Earlier& e) {
+      if (q.x < e.lo_x - e.sweep_radius_mm || q.x > e.hi_x + e.sweep_radius_mm || q.y < e.lo_y - e.sweep_radius_mm ||
+          q.y > e.hi_y + e.sweep_radius_mm) {
+        return false;
+      }
+      // The tool circle itself is at exactly the sweep radius from the current position: only
+      // points clearly inside an earlier sweep are free.
+      return dist_to(e, q) < e.sweep_radius_mm - 1e-9;
+    };
+    for (std::size_t i = 0; i < first_path_move_ + move_index_; ++i) {
+      if (blocks(moves_[i])) return false;
     }
-    return true;
+    return !blocks(current_);
   }
 
   void prepare(std::size_t move_index, double f) {
@@ -135,32 +175,16 @@ class EngagementOracle {
     const Point3 pos = point_at(move, f);
     p_ = {pos.x_mm, pos.y_mm};
     height_ = pos.z_mm + std::max(0.5 * move.axial_depth_mm, 1e-6);
-    earlier_.clear();
-    auto add = [&](const Move& m, double upto, double radius) {
-      if (upto <= 0) return;
-      Earlier e{m, upto, radius, {}};
-      if (m.start.z_mm != m.end.z_mm) {
-        const double len = length_mm(m) * upto;
-        const int n = std::max(2, static_cast<int>(len / 0.01));
-        for (int i = 0; i <= n; ++i) {
-          const Point3 s = point_at(m, upto * i / n);
-          if (s.z_mm <= height_ + 1e-9) e.dense.push_back({s.x_mm, s.y_mm});
-        }
-        if (e.dense.empty()) return;
-      } else if (m.start.z_mm > height_ + 1e-9) {
-        return;
-      }
-      earlier_.push_back(std::move(e));
-    };
-    for (const auto& s : stock_.removed) add(s.move, 1.0, s.tool_radius_mm);
-    for (std::size_t i = 0; i < move_index; ++i) add(path_.moves[i], 1.0, r_);
-    add(move, f, r_);
+    move_index_ = move_index;
+    current_ = make_earlier(move, f, r_);
+    clip(current_, height_);
+    for (std::size_t i = 0; i < first_path_move_ + move_index_; ++i) clip(moves_[i], height_);
   }
 
  private:
   // Bisection for the boundary between a free angle and an engaged one (either order).
   double refine(double a, double b) const {
-    bool ea = engaged(a);
+    const bool ea = engaged(a);
     for (int k = 0; k < 50; ++k) {
       const double m = 0.5 * (a + b);
       if (engaged(m) == ea) a = m; else b = m;
@@ -171,9 +195,12 @@ class EngagementOracle {
   const ToolPath& path_;
   const Stock& stock_;
   double r_;
+  std::vector<Earlier> moves_;
+  std::size_t first_path_move_ = 0;
+  std::size_t move_index_ = 0;
+  Earlier current_;
   XY p_{};
   double height_ = 0;
-  std::vector<Earlier> earlier_;
 };
 
 }  // namespace feedplan::geometry::oracle
