@@ -1,0 +1,28 @@
+#pragma once
+// Reading a cycle spec from YAML (DESIGN.md §4) with every problem reported at once.
+
+#include <filesystem>
+#include <string>
+
+#include "feedplan/cycles/spec.hpp"
+
+namespace feedplan::cycles {
+
+//! Parses and validates a cycle spec from YAML text. `source_name` names the text in problems that
+//! have no field (a file name, or "test").
+//!
+//! Checks the structure — a mapping; known fields only (an unknown one lists the expected names);
+//! required fields present; numbers, integers, strings, [x, y] points and ccw|cw where expected; a
+//! `cycle` of corner|trochoid|spiral|helical_boring|pocket with its section present and no section of
+//! another cycle — and then the values (validate in cycle.hpp): finite, in range, consistent. Every
+//! problem found is collected; then one feedplan::InputError is thrown carrying them all, each with
+//! the YAML path as field and the YAML line where known, e.g.
+//! `trochoid.pitch_mm (line 7) = 12: must be in (0, 10) — ...`. Malformed YAML and an empty or
+//! non-mapping document are InputErrors too. Returns a spec that generate() accepts.
+CycleSpec read_cycle_spec(const std::string& yaml_text, const std::string& source_name);
+
+//! Reads the file at `path` and parses it with read_cycle_spec (the path is the source name). A file
+//! that does not exist or cannot be read is an InputError naming the path.
+CycleSpec load_cycle_spec(const std::filesystem::path& path);
+
+}  // namespace feedplan::cycles

@@ -1,0 +1,576 @@
+#include "feedplan/cycles/spec_reader.hpp"
+
+#include <yaml-cpp/yaml.h>
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <limits>
+#include <map>
+#include <set>
+#include <sstream>
+#include <string>
+#include <system_error>
+#include <vector>
+
+#include "common_checks.hpp"
+#include "feedplan/core/input_error.hpp"
+#include "feedplan/cycles/cycle.hpp"
+#include "problems.hpp"
+
+namespace feedplan::cycles {
+
+using geometry::Point2;
+
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+const std::vector<std::string> kCycleNames = {"corner", "trochoid", "spiral", "helical_boring", "pocket"};
+
+std::string join(const std::vector<std::string>& items, const std::string& separator) {
+  std::string text;
+  for (const auto& item : items) {
+    if (!text.empty()) text += separator;
+    text += item;
+  }
+  return text;
+}
+
+// Levenshtein distance, for "did you mean" on unknown fields.
+std::size_t edit_distance(const std::string& a, const std::string& b) {
+  std::vector<std::size_t> row(b.size() + 1);
+  for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
+  for (std::size_t i = 1; i <= a.size(); ++i) {
+    std::size_t diagonal = row[0];
+    row[0] = i;
+    for (std::size_t j = 1; j <= b.size(); ++j) {
+      const std::size_t above = row[j];
+      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] == b[j - 1] ? 0 : 1)});
+      diagonal = above;
+    }
+  }
+  return row[b.size()];
+}
+
+// A YAML value as the user wrote it: quoted strings in quotes, lists and mappings in flow style.
+std::string display(const YAML::Node& node) {
+  switch (node.Type()) {
+    case YAML::NodeType::Scalar:
+      return node.Tag() == "!" ? "\"" + node.Scalar() + "\"" : node.Scalar();
+    case YAML::NodeType::Sequence: {
+      std::vector<std::string> items;
+      for (const auto& item : node) items.push_back(display(item));
+      return "[" + join(items, ", ") + "]";
+    }
+    case YAML::NodeType::Map: {
+      std::vector<std::string> items;
+      for (const auto& item : node) items.push_back(display(item.first) + ": " + display(item.second));
+      return "{" + join(items, ", ") + "}";
+    }
+    default:
+      return "null";
+  }
+}
+
+int line_of(const YAML::Node& node) {
+  const YAML::Mark mark = node.Mark();
+  return mark.is_null() ? 0 : mark.line + 1;
+}
+
+std::string with_line(const std::string& field, int line) {
+  return line > 0 ? field + " (line " + std::to_string(line) + ")" : field;
+}
+
+// Reads one document into a CycleSpec, collecting structural problems (types, unknown and missing
+// fields) and the YAML line of every field it visits.
+class SpecReader {
+ public:
+  std::vector<InputProblem> problems;    // structural problems, fields already carry their line
+  std::set<std::string> reported;        // fields with a structural problem (their value is a placeholder)
+  std::map<std::string, int> lines;      // field path → YAML line (1-based)
+
+  // Checks that `node` (the value of `path`) is a mapping with known keys only; records key lines.
+  bool mapping(const YAML::Node& node, const std::string& path, const std::vector<std::string>& allowed) {
+    if (!node.IsMap()) {
+      type_problem(path, node, "must be a mapping of fields (" + join(allowed, ", ") + ")");
+      return false;
+    }
+    for (const auto& item : node) {
+      const std::string key = item.first.IsScalar() ? item.first.Scalar() : display(item.first);
+      const std::string field = child(path, key);
+      lines[field] = line_of(item.first);
+      if (std::find(allowed.begin(), allowed.end(), key) != allowed.end()) continue;
+      std::string message = "is not a known field; expected one of " + join(allowed, ", ");
+      std::string best;
+      std::size_t best_distance = 3;
+      for (const auto& name : allowed) {
+        const std::size_t distance = edit_distance(key, name);
+        if (distance < best_distance) {
+          best_distance = distance;
+          best = name;
+        }
+      }
+      if (!best.empty()) message += " (did you mean " + best + "?)";
+      add(field, line_of(item.first), message);
+    }
+    return true;
+  }
+
+  // A number; absent: `fallback` (or, when required, a problem and NaN).
+  double number(const YAML::Node& map, const std::string& path, const std::string& key, bool required,
+                double fallback, const std::string& meaning) {
+    const YAML::Node node = map[key];
+    if (!node) {
+      if (required) missing(map, path, key, meaning);
+      return required ? kNaN : fallback;
+    }
+    const std::string field = child(path, key);
+    double value = 0;
+    if (!node.IsScalar() || node.Tag() == "!" || !YAML::convert<double>::decode(node, value)) {
+      type_problem(field, node, "must be a number — " + meaning);
+      return kNaN;
+    }
+    return value;
+  }
+
+  std::optional<double> optional_number(const YAML::Node& map, const std::string& path, const std::string& key,
+                                        const std::string& meaning) {
+    if (!map[key]) return std::nullopt;
+    return number(map, path, key, false, kNaN, meaning);
+  }
+
+  // A number that may be left out, but when given must be > 0 (0 means "not given" in the struct).
+  double positive_if_given(const YAML::Node& map, const std::string& path, const std::string& key,
+                           const std::string& meaning) {
+    if (!map[key]) return 0.0;
+    const double value = number(map, path, key, false, 0.0, meaning);
+    const std::string field = child(path, key);
+    if (reported.count(field) == 0 && !detail::check(problems, with_line(field, lines[field]), value,
+                                                     detail::above(0), meaning + "; leave it out when unknown")) {
+      reported.insert(field);
+    }
+    return value;
+  }
+
+  int integer(const YAML::Node& map, const std::string& path, const std::string& key, bool required, int fallback,
+              const std::string& meaning) {
+    const YAML::Node node = map[key];
+    if (!node) {
+      if (required) missing(map, path, key, meaning);
+      return fallback;
+    }
+    long long value = 0;
+    if (!node.IsScalar() || node.Tag() == "!" || !YAML::convert<long long>::decode(node, value) ||
+        value < std::numeric_limits<int>::min() || value > std::numeric_limits<int>::max()) {
+      type_problem(child(path, key), node, "must be an integer — " + meaning);
+      return fallback;
+    }
+    return static_cast<int>(value);
+  }
+
+  std::string text(const YAML::Node& map, const std::string& path, const std::string& key, bool required,
+                   const std::string& meaning) {
+    const YAML::Node node = map[key];
+    if (!node) {
+      if (required) missing(map, path, key, meaning);
+      return {};
+    }
+    if (!node.IsScalar()) {
+      type_problem(child(path, key), node, "must be text — " + meaning);
+      return {};
+    }
+    return node.Scalar();
+  }
+
+  Point2 point(const YAML::Node& map, const std::string& path, const std::string& key, bool required,
+               const std::string& meaning) {
+    const YAML::Node node = map[key];
+    if (!node) {
+      if (required) missing(map, path, key, meaning);
+      return required ? Point2{kNaN, kNaN} : Point2{};
+    }
+    Point2 p{kNaN, kNaN};
+    if (!node.IsSequence() || node.size() != 2 || !coordinate(node[0], p.x_mm) || !coordinate(node[1], p.y_mm)) {
+      type_problem(child(path, key), node, "must be [x, y], two numbers in mm — " + meaning);
+      return {kNaN, kNaN};
+    }
+    return p;
+  }
+
+  Direction direction(const YAML::Node& map, const std::string& path) {
+    const YAML::Node node = map["direction"];
+    if (!node) return Direction::kCcw;
+    if (node.IsScalar() && node.Scalar() == "ccw") return Direction::kCcw;
+    if (node.IsScalar() && node.Scalar() == "cw") return Direction::kCw;
+    type_problem(child(path, "direction"), node,
+                 "must be ccw or cw — ccw is climb milling with an M3 spindle, cw its mirror image");
+    return Direction::kCcw;
+  }
+
+  geometry::Contour contour(const YAML::Node& node, const std::string& path) {
+    geometry::Contour result = geometry::Contour::circle({kNaN, kNaN}, kNaN);
+    if (!mapping(node, path, {"polygon", "circle"})) return result;
+    const bool has_polygon = static_cast<bool>(node["polygon"]);
+    const bool has_circle = static_cast<bool>(node["circle"]);
+    if (has_polygon == has_circle) {
+      add(path, line_of(node), has_polygon ? "has both polygon and circle: give exactly one"
+                                           : "is empty: give polygon: [[x, y], ...] or circle: {center: [x, y], "
+                                             "radius_mm: R}");
+      return result;
+    }
+    if (has_circle) {
+      const YAML::Node circle = node["circle"];
+      const std::string circle_path = child(path, "circle");
+      if (!mapping(circle, circle_path, {"center", "radius_mm"})) return result;
+      result.center = point(circle, circle_path, "center", true, "circle centre");
+      result.radius_mm = number(circle, circle_path, "radius_mm", true, kNaN, "circle radius in mm");
+      detail_check(circle_path + ".radius_mm", result.radius_mm, detail::above(0), "a circle's radius");
+      return result;
+    }
+    const YAML::Node polygon = node["polygon"];
+    const std::string polygon_path = child(path, "polygon");
+    if (!polygon.IsSequence()) {
+      type_problem(polygon_path, polygon, "must be a list of vertices [[x, y], ...] in mm");
+      return result;
+    }
+    result = geometry::Contour::polygon({});
+    for (std::size_t i = 0; i < polygon.size(); ++i) {
+      const std::string vertex_path = polygon_path + "[" + std::to_string(i) + "]";
+      lines[vertex_path] = line_of(polygon[i]);
+      Point2 p{kNaN, kNaN};
+      if (!polygon[i].IsSequence() || polygon[i].size() != 2 || !coordinate(polygon[i][0], p.x_mm) ||
+          !coordinate(polygon[i][1], p.y_mm)) {
+        type_problem(vertex_path, polygon[i], "must be [x, y], two numbers in mm");
+      } else if (!std::isfinite(p.x_mm) || !std::isfinite(p.y_mm)) {
+        add(vertex_path, line_of(polygon[i]), "= " + display(polygon[i]) + ": coordinates must be finite numbers");
+      }
+      result.vertices.push_back(p);
+    }
+    if (polygon.size() < 3) {
+      add(polygon_path, line_of(polygon),
+          "has " + std::to_string(polygon.size()) + " vertices: a polygon needs at least 3");
+    }
+    return result;
+  }
+
+  geometry::Stock stock(const YAML::Node& node, const std::string& path) {
+    geometry::Stock result;
+    if (!mapping(node, path, {"z_bottom_mm", "z_top_mm", "regions"})) return result;
+    result.z_bottom_mm = number(node, path, "z_bottom_mm", true, kNaN, "bottom of the material in mm");
+    result.z_top_mm = number(node, path, "z_top_mm", true, kNaN, "top face of the material in mm");
+    detail_check(path + ".z_bottom_mm", result.z_bottom_mm, {}, "");
+    detail_check(path + ".z_top_mm", result.z_top_mm, {}, "");
+    const YAML::Node regions = node["regions"];
+    const std::string regions_path = child(path, "regions");
+    if (!regions) {
+      missing(node, path, "regions", "list of {outer: contour, holes: [contour, ...]}");
+      return result;
+    }
+    if (!regions.IsSequence() || regions.size() == 0) {
+      type_problem(regions_path, regions, "must be a non-empty list of {outer: contour, holes: [contour, ...]}");
+      return result;
+    }
+    for (std::size_t i = 0; i < regions.size(); ++i) {
+      const std::string region_path = regions_path + "[" + std::to_string(i) + "]";
+      lines[region_path] = line_of(regions[i]);
+      geometry::StockRegion region;
+      if (!mapping(regions[i], region_path, {"outer", "holes"})) continue;
+      if (!regions[i]["outer"]) {
+        missing(regions[i], region_path, "outer", "the region's outer contour");
+      } else {
+        region.outer = contour(regions[i]["outer"], child(region_path, "outer"));
+      }
+      if (const YAML::Node holes = regions[i]["holes"]) {
+        const std::string holes_path = child(region_path, "holes");
+        if (!holes.IsSequence()) {
+          type_problem(holes_path, holes, "must be a list of contours");
+        } else {
+          for (std::size_t h = 0; h < holes.size(); ++h) {
+            const std::string hole_path = holes_path + "[" + std::to_string(h) + "]";
+            lines[hole_path] = line_of(holes[h]);
+            region.holes.push_back(contour(holes[h], hole_path));
+          }
+        }
+      }
+      result.regions.push_back(region);
+    }
+    return result;
+  }
+
+  void add(const std::string& field, int line, const std::string& message) {
+    problems.push_back({with_line(field, line), message});
+    reported.insert(field);
+  }
+
+  static std::string child(const std::string& path, const std::string& key) {
+    return path.empty() ? key : path + "." + key;
+  }
+
+ private:
+  bool coordinate(const YAML::Node& node, double& value) {
+    return node.IsScalar() && node.Tag() != "!" && YAML::convert<double>::decode(node, value);
+  }
+
+  // A value-range problem found while reading (stock contours), attributed like a structural one.
+  void detail_check(const std::string& field, double value, const detail::Range& range, const std::string& why) {
+    if (reported.count(field) != 0) return;
+    std::vector<InputProblem> found;
+    if (!detail::check(found, field, value, range, why)) add(field, lines.count(field) ? lines[field] : 0, found.front().message);
+  }
+
+  void missing(const YAML::Node& map, const std::string& path, const std::string& key, const std::string& meaning) {
+    const std::string where = path.empty() ? "" : " from the " + path + " section (line " + std::to_string(line_of(map)) + ")";
+    problems.push_back({child(path, key), "is missing" + where + ": required — " + meaning});
+    reported.insert(child(path, key));
+  }
+
+  void type_problem(const std::string& field, const YAML::Node& node, const std::string& expected) {
+    const std::string value = node.IsNull() ? "has no value" : "= " + display(node);
+    add(field, line_of(node), value + ": " + expected);
+  }
+};
+
+CycleGeometry read_corner(SpecReader& in, const YAML::Node& node) {
+  CornerSpec g;
+  const std::string p = "corner";
+  if (!in.mapping(node, p, {"corner_point", "entry_heading_deg", "corner_angle_deg", "corner_radius_mm",
+                            "radial_depth_mm", "wall_length_mm", "lead_mm", "direction"})) {
+    return g;
+  }
+  g.corner_point = in.point(node, p, "corner_point", false, "intersection of the two finished wall lines");
+  g.entry_heading_deg = in.number(node, p, "entry_heading_deg", false, 0.0, "direction of travel along wall 1 in deg");
+  g.corner_angle_deg = in.number(node, p, "corner_angle_deg", false, 90.0, "interior angle between the walls in deg");
+  g.corner_radius_mm = in.number(node, p, "corner_radius_mm", true, 0, "radius of the finished wall at the corner in mm");
+  g.radial_depth_mm = in.number(node, p, "radial_depth_mm", true, 0, "radial depth of cut R_d in mm");
+  g.wall_length_mm = in.number(node, p, "wall_length_mm", false, 30.0, "length of each straight wall in mm");
+  g.lead_mm = in.optional_number(node, p, "lead_mm", "air approach and departure beyond the stock in mm");
+  g.direction = in.direction(node, p);
+  return g;
+}
+
+CycleGeometry read_trochoid(SpecReader& in, const YAML::Node& node) {
+  TrochoidSpec g;
+  const std::string p = "trochoid";
+  if (!in.mapping(node, p, {"start", "end", "loop_radius_mm", "pitch_mm", "direction"})) return g;
+  g.start = in.point(node, p, "start", true, "centre of the first loop");
+  g.end = in.point(node, p, "end", true, "centre of the last loop");
+  g.loop_radius_mm = in.number(node, p, "loop_radius_mm", true, 0, "radius of the tool-centre circles in mm");
+  g.pitch_mm = in.number(node, p, "pitch_mm", true, 0, "advance of the loop centre per loop in mm");
+  g.direction = in.direction(node, p);
+  return g;
+}
+
+CycleGeometry read_spiral(SpecReader& in, const YAML::Node& node) {
+  SpiralSpec g;
+  const std::string p = "spiral";
+  if (!in.mapping(node, p, {"center", "initial_radius_mm", "final_radius_mm", "pitch_mm", "direction"})) return g;
+  g.center = in.point(node, p, "center", false, "bore axis");
+  g.initial_radius_mm = in.number(node, p, "initial_radius_mm", true, 0, "radius of the pre-drilled bore in mm");
+  g.final_radius_mm = in.number(node, p, "final_radius_mm", true, 0, "radius of the finished bore in mm");
+  g.pitch_mm = in.number(node, p, "pitch_mm", true, 0, "increase of the radius per turn in mm");
+  g.direction = in.direction(node, p);
+  return g;
+}
+
+CycleGeometry read_helical_boring(SpecReader& in, const YAML::Node& node) {
+  HelicalBoringSpec g;
+  const std::string p = "helical_boring";
+  if (!in.mapping(node, p, {"center", "hole_diameter_mm", "pitch_mm", "depth_mm", "direction"})) return g;
+  g.center = in.point(node, p, "center", false, "hole axis");
+  g.hole_diameter_mm = in.number(node, p, "hole_diameter_mm", true, 0, "finished hole diameter in mm");
+  g.pitch_mm = in.number(node, p, "pitch_mm", true, 0, "depth per helix turn in mm");
+  g.depth_mm = in.number(node, p, "depth_mm", true, 0, "hole depth below the stock top in mm");
+  g.direction = in.direction(node, p);
+  return g;
+}
+
+CycleGeometry read_pocket(SpecReader& in, const YAML::Node& node) {
+  PocketSpec g;
+  const std::string p = "pocket";
+  if (!in.mapping(node, p, {"center", "width_mm", "height_mm", "depth_mm", "corner_radius_mm", "finish_allowance_mm",
+                            "helix_pitch_mm", "spiral_pitch_mm", "trochoid_pitch_mm", "direction"})) {
+    return g;
+  }
+  g.center = in.point(node, p, "center", false, "pocket centre");
+  g.width_mm = in.number(node, p, "width_mm", true, 0, "pocket size along X in mm");
+  g.height_mm = in.number(node, p, "height_mm", true, 0, "pocket size along Y in mm");
+  g.depth_mm = in.number(node, p, "depth_mm", true, 0, "pocket depth below the stock top in mm");
+  g.corner_radius_mm = in.number(node, p, "corner_radius_mm", true, 0, "finished corner radius in mm");
+  g.finish_allowance_mm = in.optional_number(node, p, "finish_allowance_mm", "wall stock for the finishing pass in mm");
+  g.helix_pitch_mm = in.optional_number(node, p, "helix_pitch_mm", "pitch of the centre bore's helix in mm");
+  g.spiral_pitch_mm = in.optional_number(node, p, "spiral_pitch_mm", "radius increase per spiral turn in mm");
+  g.trochoid_pitch_mm = in.optional_number(node, p, "trochoid_pitch_mm", "loop advance of the slots in mm");
+  g.direction = in.direction(node, p);
+  return g;
+}
+
+// The line of `field` or, failing that, of its nearest recorded ancestor ("a.b[2].c" → "a.b[2]" → "a.b").
+int line_for(const std::map<std::string, int>& lines, std::string field) {
+  while (!field.empty()) {
+    if (const auto it = lines.find(field); it != lines.end()) return it->second;
+    const std::size_t cut = field.find_last_of(".[");
+    if (cut == std::string::npos) break;
+    field.resize(cut);
+  }
+  return 0;
+}
+
+// The stock element a field belongs to: its contour ("stock.regions[0].outer",
+// "stock.regions[0].holes[1]") or, above contours, the field itself.
+std::string stock_part_of(const std::string& field) {
+  if (const std::size_t outer = field.find(".outer"); outer != std::string::npos) return field.substr(0, outer + 6);
+  if (const std::size_t holes = field.find(".holes["); holes != std::string::npos) {
+    const std::size_t close = field.find(']', holes);
+    if (close != std::string::npos) return field.substr(0, close + 1);
+  }
+  return field;
+}
+
+// True when `field` is `part` or lies inside it ("part.x", "part[2]").
+bool is_within(const std::string& field, const std::string& part) {
+  if (field.rfind(part, 0) != 0) return false;
+  return field.size() == part.size() || field[part.size()] == '.' || field[part.size()] == '[';
+}
+
+}  // namespace
+
+CycleSpec read_cycle_spec(const std::string& yaml_text, const std::string& source_name) {
+  YAML::Node loaded;
+  try {
+    loaded = YAML::Load(yaml_text);
+  } catch (const YAML::Exception& e) {
+    std::string where;
+    if (!e.mark.is_null()) {
+      where = " at line " + std::to_string(e.mark.line + 1) + ", column " + std::to_string(e.mark.column + 1);
+    }
+    throw InputError(source_name, "is not valid YAML" + where + ": " + e.msg);
+  }
+  // Const access only: a non-const operator[] may add the key it looks up.
+  const YAML::Node& root = loaded;
+  if (!root || root.IsNull()) {
+    throw InputError(source_name, "is empty: expected a cycle spec, a YAML mapping with cycle, tool, axial_depth_mm "
+                                  "and the cycle's section (see samples/*.yaml)");
+  }
+  if (!root.IsMap()) {
+    throw InputError(source_name, "is not a YAML mapping (it is " + std::string(root.IsSequence() ? "a list" : "a single value") +
+                                      "): expected fields such as cycle: trochoid, tool: {diameter_mm: 10, flutes: 4}");
+  }
+
+  SpecReader in;
+  std::vector<std::string> top_fields = {"cycle", "tool", "material", "spindle_rpm", "axial_depth_mm",
+                                         "target_force_n", "machine", "clearance_z_mm", "stock"};
+  top_fields.insert(top_fields.end(), kCycleNames.begin(), kCycleNames.end());
+  in.mapping(root, "", top_fields);
+
+  CycleSpec spec;
+  spec.cycle = in.text(root, "", "cycle", true, "one of " + join(kCycleNames, ", "));
+  const bool cycle_known = std::find(kCycleNames.begin(), kCycleNames.end(), spec.cycle) != kCycleNames.end();
+  if (!cycle_known && in.reported.count("cycle") == 0) {
+    in.add("cycle", line_of(root["cycle"]),
+           "= " + display(root["cycle"]) + ": unknown cycle; expected one of " + join(kCycleNames, ", "));
+  }
+
+  if (const YAML::Node tool = root["tool"]) {
+    if (in.mapping(tool, "tool", {"diameter_mm", "flutes", "helix_deg", "name"})) {
+      spec.tool.diameter_mm = in.number(tool, "tool", "diameter_mm", true, kNaN, "cutting diameter of the end mill in mm");
+      spec.tool.flutes = in.integer(tool, "tool", "flutes", true, 4, "number of teeth");
+      spec.tool.helix_deg = in.number(tool, "tool", "helix_deg", false, 30.0, "helix angle in deg");
+      spec.tool.name = in.text(tool, "tool", "name", false, "free text shown in reports");
+    } else {
+      spec.tool.diameter_mm = kNaN;
+    }
+  } else {
+    in.text(root, "", "tool", true, "the end mill: {diameter_mm, flutes, helix_deg, name}");
+    spec.tool.diameter_mm = kNaN;
+  }
+  spec.material = in.text(root, "", "material", false, "workpiece material name");
+  spec.spindle_rpm = in.positive_if_given(root, "", "spindle_rpm", "spindle speed in rev/min");
+  spec.target_force_n = in.positive_if_given(root, "", "target_force_n", "cutting force to hold in N");
+  spec.clearance_z_mm = in.number(root, "", "clearance_z_mm", false, 5.0, "rapid height above the stock top in mm");
+  const bool layered = spec.cycle == "corner" || spec.cycle == "trochoid" || spec.cycle == "spiral";
+  spec.axial_depth_mm = in.number(root, "", "axial_depth_mm", layered, 0.0, "axial depth of cut A_d in mm");
+  if (const YAML::Node machine = root["machine"]) {
+    const std::string p = "machine";
+    if (in.mapping(machine, p, {"max_feed_mm_per_min", "min_feed_mm_per_min", "max_accel_mm_per_s2",
+                                "rapid_feed_mm_per_min", "block_time_min_s"})) {
+      MachineLimits& m = spec.machine;
+      m.max_feed_mm_per_min = in.number(machine, p, "max_feed_mm_per_min", false, m.max_feed_mm_per_min, "mm/min");
+      m.min_feed_mm_per_min = in.number(machine, p, "min_feed_mm_per_min", false, m.min_feed_mm_per_min, "mm/min");
+      m.max_accel_mm_per_s2 = in.number(machine, p, "max_accel_mm_per_s2", false, m.max_accel_mm_per_s2, "mm/s²");
+      m.rapid_feed_mm_per_min = in.number(machine, p, "rapid_feed_mm_per_min", false, m.rapid_feed_mm_per_min, "mm/min");
+      m.block_time_min_s = in.number(machine, p, "block_time_min_s", false, m.block_time_min_s, "s");
+    }
+  }
+  if (const YAML::Node stock = root["stock"]) spec.stock = in.stock(stock, "stock");
+
+  for (const auto& name : kCycleNames) {
+    if (name == spec.cycle || !root[name]) continue;
+    in.add(name, line_of(root[name]),
+           "is a section for cycle " + name + ", but cycle is " + (spec.cycle.empty() ? "not given" : spec.cycle) +
+               ": remove it or change cycle");
+  }
+
+  bool have_geometry = false;
+  if (cycle_known) {
+    const YAML::Node section = root[spec.cycle];
+    if (!section) {
+      in.text(root, "", spec.cycle, true, "the " + spec.cycle + " cycle's parameters");
+    } else {
+      have_geometry = section.IsMap();  // otherwise the reader reports it and the values are placeholders
+      if (spec.cycle == "corner") {
+        spec.geometry = read_corner(in, section);
+      } else if (spec.cycle == "trochoid") {
+        spec.geometry = read_trochoid(in, section);
+      } else if (spec.cycle == "spiral") {
+        spec.geometry = read_spiral(in, section);
+      } else if (spec.cycle == "helical_boring") {
+        spec.geometry = read_helical_boring(in, section);
+      } else {
+        spec.geometry = read_pocket(in, section);
+      }
+    }
+  }
+  std::vector<InputProblem> semantic;
+  if (have_geometry) {
+    semantic = validate(spec);
+  } else {
+    // No geometry to check: still check the tool and the rest.
+    semantic = validate_tool(spec.tool);
+    for (auto& problem : detail::validate_common(spec)) semantic.push_back(std::move(problem));
+  }
+  // Contours (or z fields, or the region list) of the stock that had structural problems hold
+  // placeholders: geometry::validate's findings about them would only repeat those problems.
+  std::vector<std::string> bad_stock_parts;
+  for (const auto& field : in.reported) {
+    if (field.rfind("stock", 0) == 0) bad_stock_parts.push_back(stock_part_of(field));
+  }
+  std::erase_if(semantic, [&](const InputProblem& p) {
+    return std::any_of(bad_stock_parts.begin(), bad_stock_parts.end(),
+                       [&](const std::string& part) { return is_within(p.field, part); });
+  });
+
+  std::vector<InputProblem> problems = std::move(in.problems);
+  for (auto& problem : semantic) {
+    if (in.reported.count(problem.field) != 0) continue;
+    problem.field = with_line(problem.field, line_for(in.lines, problem.field));
+    problems.push_back(std::move(problem));
+  }
+  if (!problems.empty()) throw InputError(std::move(problems));
+  return spec;
+}
+
+CycleSpec load_cycle_spec(const std::filesystem::path& path) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  if (!fs::exists(path, ec)) throw InputError(path.string(), "cannot be read: no such file");
+  if (fs::is_directory(path, ec)) throw InputError(path.string(), "cannot be read: it is a directory, not a cycle spec");
+  std::ifstream file(path, std::ios::binary);
+  if (!file) throw InputError(path.string(), "cannot be read: permission denied or I/O error");
+  std::ostringstream text;
+  text << file.rdbuf();
+  if (file.bad()) throw InputError(path.string(), "cannot be read: I/O error");
+  return read_cycle_spec(text.str(), path.string());
+}
+
+}  // namespace feedplan::cycles
