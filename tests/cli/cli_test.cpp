@@ -15,14 +15,14 @@ namespace {
 
 namespace fs = std::filesystem;
 
-struct Run {
+struct RunResult {
   int exit_code = -1;
   std::string output;  // stdout and stderr together
 };
 
-Run run(const std::string& arguments) {
+RunResult run_feedplan(const std::string& arguments) {
   const std::string command = std::string(FEEDPLAN_BINARY) + " " + arguments + " 2>&1";
-  Run result;
+  RunResult result;
   FILE* pipe = popen(command.c_str(), "r");
   if (!pipe) return result;
   char buffer[4096];
@@ -58,17 +58,17 @@ class CliTest : public ::testing::Test {
 const std::string kSamples = FEEDPLAN_SAMPLES_DIR;
 
 TEST_F(CliTest, VersionAndHelp) {
-  const Run version = run("--version");
+  const RunResult version = run_feedplan("--version");
   EXPECT_EQ(version.exit_code, 0);
   EXPECT_NE(version.output.find("feedplan 0."), std::string::npos) << version.output;
-  const Run help = run("--help");
+  const RunResult help = run_feedplan("--help");
   EXPECT_EQ(help.exit_code, 0);
   EXPECT_NE(help.output.find("cycle"), std::string::npos);
 }
 
 TEST_F(CliTest, CycleWritesEngagementCsvWithOneRowPerSample) {
   const fs::path csv = dir_ / "trochoid.csv";
-  const Run json = run("cycle " + kSamples + "/trochoid.yaml --json --engagement " + csv.string());
+  const RunResult json = run_feedplan("cycle " + kSamples + "/trochoid.yaml --json --engagement " + csv.string());
   ASSERT_EQ(json.exit_code, 0) << json.output;
   const std::string text = read_text(csv);
   const std::string header = text.substr(0, text.find('\n'));
@@ -84,7 +84,7 @@ TEST_F(CliTest, CycleWritesEngagementCsvWithOneRowPerSample) {
 
 TEST_F(CliTest, EverySampleRunsAndPrintsASummary) {
   for (const char* name : {"corner", "trochoid", "spiral", "helical_boring", "pocket"}) {
-    const Run r = run("cycle " + kSamples + "/" + name + ".yaml");
+    const RunResult r = run_feedplan("cycle " + kSamples + "/" + name + ".yaml");
     EXPECT_EQ(r.exit_code, 0) << name << ": " << r.output;
     EXPECT_NE(r.output.find("engagement:"), std::string::npos) << name;
     EXPECT_EQ(r.output.find("warning"), std::string::npos) << name << ": " << r.output;
@@ -92,7 +92,7 @@ TEST_F(CliTest, EverySampleRunsAndPrintsASummary) {
 }
 
 TEST_F(CliTest, MissingSpecIsBadInput) {
-  const Run r = run("cycle " + (dir_ / "nope.yaml").string());
+  const RunResult r = run_feedplan("cycle " + (dir_ / "nope.yaml").string());
   EXPECT_EQ(r.exit_code, 2) << r.output;
   EXPECT_NE(r.output.find("nope.yaml"), std::string::npos) << r.output;
 }
@@ -105,7 +105,7 @@ TEST_F(CliTest, BadSpecLeavesExistingOutputUntouched) {
                                    "tool: {diameter_mm: 10, flutes: 4, helix_deg: 30}\n"
                                    "axial_depth_mm: 10\n"
                                    "trochoid: {start: [0, 0], end: [9, 0], loop_radius_mm: 5, pitch_mm: 12}\n");
-  const Run r = run("cycle " + spec.string() + " --engagement " + csv.string());
+  const RunResult r = run_feedplan("cycle " + spec.string() + " --engagement " + csv.string());
   EXPECT_EQ(r.exit_code, 2) << r.output;
   EXPECT_NE(r.output.find("trochoid.pitch_mm"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("12"), std::string::npos) << r.output;
@@ -114,22 +114,22 @@ TEST_F(CliTest, BadSpecLeavesExistingOutputUntouched) {
 
 TEST_F(CliTest, BadDsIsBadInputNamingTheFlag) {
   for (const char* ds : {"0", "-1", "100"}) {
-    const Run r = run("cycle " + kSamples + "/trochoid.yaml --ds " + std::string(ds));
+    const RunResult r = run_feedplan("cycle " + kSamples + "/trochoid.yaml --ds " + std::string(ds));
     EXPECT_EQ(r.exit_code, 2) << ds << ": " << r.output;
     EXPECT_NE(r.output.find("--ds"), std::string::npos) << r.output;
   }
-  const Run nan = run("cycle " + kSamples + "/trochoid.yaml --ds abc");
+  const RunResult nan = run_feedplan("cycle " + kSamples + "/trochoid.yaml --ds abc");
   EXPECT_EQ(nan.exit_code, 2) << nan.output;
 }
 
 TEST_F(CliTest, UnknownFlagOrNoCommandIsBadInput) {
-  EXPECT_EQ(run("cycle " + kSamples + "/trochoid.yaml --frobnicate").exit_code, 2);
-  EXPECT_EQ(run("").exit_code, 2);
-  EXPECT_EQ(run("plan-everything").exit_code, 2);
+  EXPECT_EQ(run_feedplan("cycle " + kSamples + "/trochoid.yaml --frobnicate").exit_code, 2);
+  EXPECT_EQ(run_feedplan("").exit_code, 2);
+  EXPECT_EQ(run_feedplan("plan-everything").exit_code, 2);
 }
 
 TEST_F(CliTest, UnwritableOutputFailsWithExitOne) {
-  const Run r = run("cycle " + kSamples + "/trochoid.yaml --engagement " + (dir_ / "no_such_dir" / "x.csv").string());
+  const RunResult r = run_feedplan("cycle " + kSamples + "/trochoid.yaml --engagement " + (dir_ / "no_such_dir" / "x.csv").string());
   EXPECT_EQ(r.exit_code, 1) << r.output;
   EXPECT_NE(r.output.find("no_such_dir"), std::string::npos) << r.output;
 }
