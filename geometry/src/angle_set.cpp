@@ -8,6 +8,13 @@
 namespace feedplan::geometry::detail {
 
 double wrap_two_pi(double angle_rad) {
+  // The kernels' angles are within a few turns of [0, 2π): avoid fmod for them.
+  if (angle_rad >= 0.0 && angle_rad < kTwoPi) return angle_rad;
+  if (angle_rad >= -kTwoPi && angle_rad < 0.0) {
+    const double a = angle_rad + kTwoPi;
+    return a < kTwoPi ? a : 0.0;
+  }
+  if (angle_rad >= kTwoPi && angle_rad < 2.0 * kTwoPi) return angle_rad - kTwoPi;
   double a = std::fmod(angle_rad, kTwoPi);
   if (a < 0.0) a += kTwoPi;
   if (a >= kTwoPi) a -= kTwoPi;

@@ -66,12 +66,12 @@ bool sweep_may_reach(const Box& box, const SweptPiece& piece) {
     const double dy_near = std::max({box.lo.y - piece.center.y, 0.0, piece.center.y - box.hi.y});
     const double dx_far = std::max(std::abs(box.lo.x - piece.center.x), std::abs(box.hi.x - piece.center.x));
     const double dy_far = std::max(std::abs(box.lo.y - piece.center.y), std::abs(box.hi.y - piece.center.y));
-    const double nearest = std::hypot(dx_near, dy_near);
-    const double farthest = std::hypot(dx_far, dy_far);
+    const double nearest = std::sqrt(dx_near * dx_near + dy_near * dy_near);
+    const double farthest = std::sqrt(dx_far * dx_far + dy_far * dy_far);
     return nearest - piece.radius_mm < g && piece.radius_mm - farthest < g;
   }
   const Vec2 mid{0.5 * (box.lo.x + box.hi.x), 0.5 * (box.lo.y + box.hi.y)};
-  const double half_diagonal = 0.5 * std::hypot(box.hi.x - box.lo.x, box.hi.y - box.lo.y);
+  const double half_diagonal = 0.5 * detail::norm(box.hi - box.lo);
   return detail::distance_to_path_mm(piece, mid) - half_diagonal < g;
 }
 
@@ -111,6 +111,41 @@ double chip_factor_of(const EngagedInterval* begin, const EngagedInterval* end) 
   }
   return best;
 }
+
+// Position and feed direction along one move, with the move's constants (arc radius and start
+// angle, line direction) computed once: the same formulas as point_at and tangent_angle_rad.
+class MoveFrame {
+ public:
+  explicit MoveFrame(const Move& move) : move_(move) {
+    if (move.kind == MoveKind::kArc) {
+      radius_mm_ = arc_radius_mm(move);
+      start_angle_rad_ = std::atan2(move.start.y_mm - move.center.y_mm, move.start.x_mm - move.center.x_mm);
+      sign_ = move.ccw ? 1.0 : -1.0;
+    } else {
+      line_direction_rad_ = tangent_angle_rad(move, 0.0);
+    }
+  }
+
+  //! Sets the position at fraction f and returns the feed direction there (NaN on a vertical line).
+  double evaluate(double f, Point3& position) const {
+    const Move& m = move_;
+    const double z = m.start.z_mm + f * (m.end.z_mm - m.start.z_mm);
+    if (m.kind != MoveKind::kArc) {
+      position = {m.start.x_mm + f * (m.end.x_mm - m.start.x_mm), m.start.y_mm + f * (m.end.y_mm - m.start.y_mm), z};
+      return line_direction_rad_;
+    }
+    const double angle = start_angle_rad_ + sign_ * f * m.sweep_rad;
+    position = {m.center.x_mm + radius_mm_ * std::cos(angle), m.center.y_mm + radius_mm_ * std::sin(angle), z};
+    return angle + sign_ * 0.5 * kPi;
+  }
+
+ private:
+  const Move& move_;
+  double radius_mm_ = 0.0;
+  double start_angle_rad_ = 0.0;
+  double sign_ = 1.0;
+  double line_direction_rad_ = 0.0;
+};
 
 std::string describe(const Move& move, std::size_t index, const std::vector<std::string>& part_names) {
   std::ostringstream out;
@@ -163,17 +198,17 @@ EngagementProfile compute_engagement(const ToolPath& path, const Stock& stock, d
     const int last_step = i + 1 == path.moves.size() ? steps : steps - 1;
     const auto& fractions = move_fractions[i];
     const bool is_cutting = move.cutting && move.kind != MoveKind::kRapid;
+    const MoveFrame frame(move);
     for (int k = 0; k <= last_step; ++k) {
       const double f = static_cast<double>(k) / steps;
       EngagementSample sample;
       sample.s_mm = s_start_mm + f * move_length;
-      sample.position = point_at(move, f);
+      const double direction = frame.evaluate(f, sample.position);
       sample.move_index = static_cast<int>(i);
       sample.part = move.part;
       sample.cutting = is_cutting;
       sample.axial_depth_mm = move.axial_depth_mm;
       sample.xy_speed_ratio = move_length > 0.0 ? move_xy_length / move_length : 0.0;
-      const double direction = tangent_angle_rad(move, f);
       if (std::isnan(direction) || move_xy_length <= 0.0) {
         sample.feed_direction_rad = last_direction_rad;
         sample.xy_speed_ratio = 0.0;

@@ -16,7 +16,19 @@ constexpr double kHeightToleranceMm = 1e-9;
 // Below this distance two centres coincide.
 constexpr double kCoincidentMm = 1e-12;
 
-void set_box(SweptPiece& piece) {
+// Bounding box and the derived directions of a piece whose a, b (and arc fields) are set.
+void finish_piece(SweptPiece& piece) {
+  if (piece.is_arc) {
+    piece.start_normal_rad = piece.start_angle_rad + 0.5 * kPi;
+    piece.end_normal_rad = piece.start_angle_rad + piece.sweep_rad - 0.5 * kPi;
+    piece.start_normal = unit_at(piece.start_normal_rad);
+    piece.end_normal = unit_at(piece.end_normal_rad);
+  } else {
+    const Vec2 d = piece.b - piece.a;
+    piece.length_mm = norm(d);
+    piece.unit = piece.length_mm > 0.0 ? (1.0 / piece.length_mm) * d : Vec2{1.0, 0.0};
+    piece.direction_rad = angle_of(piece.unit);
+  }
   piece.box_min = {std::min(piece.a.x, piece.b.x), std::min(piece.a.y, piece.b.y)};
   piece.box_max = {std::max(piece.a.x, piece.b.x), std::max(piece.a.y, piece.b.y)};
   if (!piece.is_arc) return;
@@ -42,12 +54,13 @@ void append_disc(Vec2 c, double disc_radius, Vec2 p, double r, AngleIntervals& c
   }
   // |q − c|² = d² + r² − 2 r d cos(θ − angle(c − p)) < R²
   const double threshold = (d * d + r * r - disc_radius * disc_radius) / (2.0 * r * d);
+  if (threshold >= 1.0 - kCosTangencyTolerance) return;  // disjoint or tangent: skip the atan2
   for (const auto& interval : AngleSet::cos_above(angle_of(pc), threshold).intervals()) cuts.push_back(interval);
 }
 
-// Angles θ with n·(p + r e(θ) − origin) > 0 for a unit normal n at angle normal_angle.
-AngleSet half_plane(Vec2 origin, double normal_angle, Vec2 p, double r) {
-  const double offset = dot(unit_at(normal_angle), p - origin);
+// Angles θ with n·(p + r e(θ) − origin) > 0 for the unit normal n at angle normal_angle.
+AngleSet half_plane(Vec2 origin, Vec2 normal, double normal_angle, Vec2 p, double r) {
+  const double offset = dot(normal, p - origin);
   return AngleSet::cos_above(normal_angle, -offset / r);
 }
 
@@ -89,7 +102,7 @@ void split_move(const Move& move, double sweep_radius_mm, double max_piece_lengt
       }
       piece.start_angle_rad = wrap_two_pi(piece.start_angle_rad);
     }
-    set_box(piece);
+    finish_piece(piece);
     pieces.push_back(piece);
   }
   if (fractions) fractions->push_back(1.0);
@@ -111,7 +124,7 @@ SweptPiece sub_piece(const SweptPiece& piece, double f0, double f1) {
     sub.a = piece.a + f0 * d;
     sub.b = piece.a + f1 * d;
   }
-  set_box(sub);
+  finish_piece(sub);
   return sub;
 }
 
@@ -123,9 +136,11 @@ double distance_to_path_mm(const SweptPiece& piece, Vec2 p) {
     t = std::clamp(t, 0.0, 1.0);
     return norm(p - (piece.a + t * d));
   }
+  // Inside the wedge of the arc (sweep ≤ π/2): the nearest point is on the arc.
   const Vec2 pc = p - piece.center;
-  const double offset = wrap_two_pi(angle_of(pc) - piece.start_angle_rad);
-  if (offset <= piece.sweep_rad) return std::abs(norm(pc) - piece.radius_mm);
+  if (cross(piece.a - piece.center, pc) >= 0.0 && cross(pc, piece.b - piece.center) >= 0.0) {
+    return std::abs(norm(pc) - piece.radius_mm);
+  }
   return std::min(norm(p - piece.a), norm(p - piece.b));
 }
 
@@ -162,12 +177,11 @@ bool append_excluded(const SweptPiece& whole, Vec2 p, double r, double height_mm
 
   AngleSet body = AngleSet::full();
   if (!piece->is_arc) {
-    const Vec2 d = piece->b - piece->a;
-    const double length = norm(d);
+    const double length = piece->length_mm;
     if (length <= kCoincidentMm) return cuts.size() > before;
-    const double u_angle = angle_of(d);
+    const double u_angle = piece->direction_rad;
     const double n_angle = u_angle + 0.5 * kPi;
-    const Vec2 u = (1.0 / length) * d;
+    const Vec2 u = piece->unit;
     const Vec2 n{-u.y, u.x};
     const double t = dot(p - piece->a, u);
     const double s = dot(p - piece->a, n);
@@ -182,8 +196,8 @@ bool append_excluded(const SweptPiece& whole, Vec2 p, double r, double height_mm
     const Vec2 pc = p - piece->center;
     const double d = norm(pc);
     // Wedge: angle about the centre within [start, start + sweep] (sweep ≤ π/2: two half-planes).
-    body = half_plane(piece->center, piece->start_angle_rad + 0.5 * kPi, p, r);
-    body.intersect_with(half_plane(piece->center, piece->start_angle_rad + piece->sweep_rad - 0.5 * kPi, p, r));
+    body = half_plane(piece->center, piece->start_normal, piece->start_normal_rad, p, r);
+    body.intersect_with(half_plane(piece->center, piece->end_normal, piece->end_normal_rad, p, r));
     if (body.is_empty()) return cuts.size() > before;
     // Annulus rho − rs < |q − c| < rho + rs; |q − c|² = d² + r² + 2 r d cos(θ − angle(p − c)).
     if (d < kCoincidentMm) {

@@ -25,6 +25,14 @@ struct SweptPiece {
   double sweep_radius_mm = 0.0;  //!< radius of the tool that swept it
   Vec2 box_min;               //!< bounding box of the centre path, mm
   Vec2 box_max;
+  // Derived once per piece (finish_piece) so the per-sample kernels need no atan2/sincos for them.
+  double length_mm = 0.0;     //!< lines: |b − a|
+  Vec2 unit;                  //!< lines: (b − a)/|b − a|
+  double direction_rad = 0.0;  //!< lines: angle of unit
+  double start_normal_rad = 0.0;  //!< arcs: start_angle + π/2 (inward normal of the start ray's half-plane)
+  double end_normal_rad = 0.0;    //!< arcs: start_angle + sweep − π/2
+  Vec2 start_normal;          //!< arcs: unit vector at start_normal_rad
+  Vec2 end_normal;            //!< arcs: unit vector at end_normal_rad
 };
 
 //! Splits a move into pieces: arcs into at most quarter turns, both into pieces no longer than
