@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdio>
 #include <iostream>
+#include <sstream>
 
 #include "feedplan/core/angle.hpp"
 #include "feedplan/core/atomic_file.hpp"
@@ -30,8 +31,10 @@ int run_cycle_command(const CycleOptions& options) {
   const cycles::CycleSpec spec = cycles::load_cycle_spec(options.spec_path);
   const double tool_radius_mm = spec.tool.radius_mm();
   if (!(options.ds_mm >= 0.001 && options.ds_mm <= tool_radius_mm)) {
-    throw InputError("--ds", "= " + std::to_string(options.ds_mm) + ": must be in [0.001, " +
-                                 std::to_string(tool_radius_mm) + "] mm (at most the tool radius)");
+    std::ostringstream message;
+    message << "= " << options.ds_mm << ": must be in [0.001, " << tool_radius_mm
+            << "] mm (at least 1 µm, at most the tool radius)";
+    throw InputError("--ds", message.str());
   }
   const cycles::Cycle cycle = cycles::generate(spec);
 

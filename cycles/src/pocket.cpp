@@ -118,7 +118,12 @@ std::vector<InputProblem> validate(const PocketSpec& spec, const geometry::Tool&
     }
   }
   bool corner_ok = false;
-  if (tool_ok && sizes_ok) {
+  if (tool_ok && sizes_ok && 0.5 * short_side_of(spec) <= r) {
+    // The pocket is too narrow for the tool: the width check below says so; the corner radius can
+    // only be checked against the tool here.
+    check(problems, "pocket.corner_radius_mm", spec.corner_radius_mm, above(r),
+          "the tool cannot cut a corner radius of at most its radius " + format_number(r));
+  } else if (tool_ok && sizes_ok) {
     const double s = short_side_of(spec);
     corner_ok = check(problems, "pocket.corner_radius_mm", spec.corner_radius_mm, {r, false, 0.5 * s, true},
                       "more than the tool radius " + format_number(r) + " (the tool cannot cut a smaller corner) and " +

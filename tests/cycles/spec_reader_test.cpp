@@ -271,6 +271,20 @@ TEST_P(BadSpecTest, ThrowsInputErrorNamingFieldValueAndRange) {
 INSTANTIATE_TEST_SUITE_P(SpecReader, BadSpecTest, ::testing::ValuesIn(kBadSpecs),
                          [](const ::testing::TestParamInfo<BadSpec>& info) { return std::string(info.param.name); });
 
+// A pocket narrower than the tool is reported once, on its short side, and the corner radius is
+// not given an empty allowed range (5, 4] as a consequence.
+TEST(SpecReader, NarrowPocketIsReportedOnItsWidthOnly) {
+  try {
+    read_cycle_spec("cycle: pocket\n" + kTool +
+                        "pocket: {width_mm: 8, height_mm: 40, depth_mm: 10, corner_radius_mm: 8}\n",
+                    "narrow.yaml");
+    FAIL() << "no InputError";
+  } catch (const InputError& e) {
+    ASSERT_EQ(e.problems().size(), 1u) << e.what();
+    EXPECT_EQ(e.problems().front().field.rfind("pocket.width_mm", 0), 0u) << e.what();
+  }
+}
+
 TEST(SpecReader, CollectsEveryProblemOnceInOneError) {
   const std::string yaml =
       "cycle: spiral\n"

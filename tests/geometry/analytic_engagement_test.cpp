@@ -3,7 +3,9 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 #include "feedplan/core/angle.hpp"
 #include "feedplan/geometry/analytic_engagement.hpp"
@@ -52,6 +54,8 @@ TEST(AnalyticEngagement, DesignReferenceValues) {
 // surface at y = −r + R_d.
 TEST(ExactEngagement, StraightCutsMatchClosedForm) {
   const double r = 5.0;
+  double worst_rad = 0.0;
+  int total = 0;
   for (double rd = 0.5; rd <= 10.0 + 1e-9; rd += 0.5) {
     Stock stock;
     stock.z_top_mm = 0;
@@ -65,6 +69,8 @@ TEST(ExactEngagement, StraightCutsMatchClosedForm) {
     for (const auto& s : profile.samples) {
       if (s.position.x_mm < 10 || s.position.x_mm > 90) continue;
       ++checked;
+      ++total;
+      worst_rad = std::max(worst_rad, std::abs(s.engagement_rad - expected));
       ASSERT_NEAR(s.engagement_rad, expected, kToleranceRad) << "R_d " << rd << " at x " << s.position.x_mm;
       ASSERT_NEAR(s.exit_rad, rd >= 2 * r ? kPi : kPi, kToleranceRad);  // down milling exits at the right side
       ASSERT_NEAR(s.entry_rad, kPi - expected, kToleranceRad);
@@ -73,12 +79,15 @@ TEST(ExactEngagement, StraightCutsMatchClosedForm) {
     }
     EXPECT_GT(checked, 300);
   }
+  std::printf("%s: %d samples, largest |alpha_en - closed form| %.3g rad\n", "straight cuts R_d 0.5-10 mm", total, worst_rad);
 }
 
 // Internal arc: the tool runs counter-clockwise inside a bore whose previous wall has radius R − R_d;
 // the finished wall has radius R, so the tool centre runs on R − r.
 TEST(ExactEngagement, InternalArcsMatchClosedForm) {
   const double r = 5.0;
+  double worst_rad = 0.0;
+  int total = 0;
   const double cases[][2] = {{20, 1.5}, {10, 1.5}, {8, 1}, {8, 3}, {12, 2}, {16, 4}, {25, 0.5}, {40, 1.5}, {40, 6}};
   for (const auto& c : cases) {
     const double wall = c[0];
@@ -95,16 +104,21 @@ TEST(ExactEngagement, InternalArcsMatchClosedForm) {
       const double angle = std::atan2(s.position.y_mm, s.position.x_mm);
       if (angle < 0.5 || angle > 2.8) continue;  // steady part, away from the start and end
       ++checked;
+      ++total;
+      worst_rad = std::max(worst_rad, std::abs(s.engagement_rad - expected));
       ASSERT_NEAR(s.engagement_rad, expected, kToleranceRad) << "R " << wall << " R_d " << rd << " at " << angle;
       ASSERT_NEAR(s.exit_rad, kPi, kToleranceRad);
     }
     EXPECT_GT(checked, 10) << "R " << wall;
   }
+  std::printf("%s: %d samples, largest |alpha_en - closed form| %.3g rad\n", "internal arcs R 8-40 mm", total, worst_rad);
 }
 
 // External arc: the tool runs clockwise around a boss of radius R + R_d, finishing it to R.
 TEST(ExactEngagement, ExternalArcsMatchClosedForm) {
   const double r = 5.0;
+  double worst_rad = 0.0;
+  int total = 0;
   const double cases[][2] = {{10, 1.5}, {10, 4}, {8, 1}, {20, 2}, {40, 3}, {5, 8}};
   for (const auto& c : cases) {
     const double wall = c[0];
@@ -121,11 +135,14 @@ TEST(ExactEngagement, ExternalArcsMatchClosedForm) {
       const double angle = std::atan2(s.position.y_mm, s.position.x_mm);
       if (angle > -0.5 || angle < -2.8) continue;
       ++checked;
+      ++total;
+      worst_rad = std::max(worst_rad, std::abs(s.engagement_rad - expected));
       ASSERT_NEAR(s.engagement_rad, expected, kToleranceRad) << "R " << wall << " R_d " << rd << " at " << angle;
       ASSERT_NEAR(s.exit_rad, kPi, kToleranceRad);
     }
     EXPECT_GT(checked, 10) << "R " << wall;
   }
+  std::printf("%s: %d samples, largest |alpha_en - closed form| %.3g rad\n", "external arcs R 5-40 mm", total, worst_rad);
 }
 
 }  // namespace

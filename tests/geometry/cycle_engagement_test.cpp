@@ -187,6 +187,8 @@ TEST(PocketEngagement, NothingEngagedWhereEarlierCyclesCut) {
     }
   }
   EXPECT_GT(checked_points, 1000u);
+  std::printf("pocket: %zu engaged tool-circle points checked against the oracle, none in removed material\n",
+              checked_points);
   // And the totals agree with the oracle on a subset of samples.
   for (std::size_t i = 0; i < p.profile.samples.size(); i += 97) {
     const auto& s = p.profile.samples[i];
