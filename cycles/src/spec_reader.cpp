@@ -433,12 +433,10 @@ bool is_within(const std::string& field, const std::string& part) {
   return field.size() == part.size() || field[part.size()] == '.' || field[part.size()] == '[';
 }
 
-}  // namespace
-
-CycleSpec read_cycle_spec(const std::string& yaml_text, const std::string& source_name) {
-  YAML::Node loaded;
+// Parses YAML text; malformed YAML is an InputError naming the source, line and column.
+YAML::Node load_yaml(const std::string& yaml_text, const std::string& source_name) {
   try {
-    loaded = YAML::Load(yaml_text);
+    return YAML::Load(yaml_text);
   } catch (const YAML::Exception& e) {
     std::string where;
     if (!e.mark.is_null()) {
@@ -446,6 +444,25 @@ CycleSpec read_cycle_spec(const std::string& yaml_text, const std::string& sourc
     }
     throw InputError(source_name, "is not valid YAML" + where + ": " + e.msg);
   }
+}
+
+std::string read_text_file(const std::filesystem::path& path, const std::string& what) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  if (!fs::exists(path, ec)) throw InputError(path.string(), "cannot be read: no such file");
+  if (fs::is_directory(path, ec)) throw InputError(path.string(), "cannot be read: it is a directory, not " + what);
+  std::ifstream file(path, std::ios::binary);
+  if (!file) throw InputError(path.string(), "cannot be read: permission denied or I/O error");
+  std::ostringstream text;
+  text << file.rdbuf();
+  if (file.bad()) throw InputError(path.string(), "cannot be read: I/O error");
+  return text.str();
+}
+
+}  // namespace
+
+CycleSpec read_cycle_spec(const std::string& yaml_text, const std::string& source_name) {
+  const YAML::Node loaded = load_yaml(yaml_text, source_name);
   // Const access only: a non-const operator[] may add the key it looks up.
   const YAML::Node& root = loaded;
   if (!root || root.IsNull()) {
@@ -561,16 +578,47 @@ CycleSpec read_cycle_spec(const std::string& yaml_text, const std::string& sourc
 }
 
 CycleSpec load_cycle_spec(const std::filesystem::path& path) {
-  namespace fs = std::filesystem;
-  std::error_code ec;
-  if (!fs::exists(path, ec)) throw InputError(path.string(), "cannot be read: no such file");
-  if (fs::is_directory(path, ec)) throw InputError(path.string(), "cannot be read: it is a directory, not a cycle spec");
-  std::ifstream file(path, std::ios::binary);
-  if (!file) throw InputError(path.string(), "cannot be read: permission denied or I/O error");
-  std::ostringstream text;
-  text << file.rdbuf();
-  if (file.bad()) throw InputError(path.string(), "cannot be read: I/O error");
-  return read_cycle_spec(text.str(), path.string());
+  return read_cycle_spec(read_text_file(path, "a cycle spec"), path.string());
+}
+
+geometry::Stock read_stock_spec(const std::string& yaml_text, const std::string& source_name) {
+  const YAML::Node loaded = load_yaml(yaml_text, source_name);
+  const YAML::Node& root = loaded;
+  if (!root || root.IsNull()) {
+    throw InputError(source_name, "is empty: expected a stock (stock: {z_bottom_mm, z_top_mm, regions}) or a cycle spec");
+  }
+  if (root.IsMap() && root["cycle"]) return generate(read_cycle_spec(yaml_text, source_name)).stock;
+  if (!root.IsMap()) {
+    throw InputError(source_name, "is not a YAML mapping: expected stock: {z_bottom_mm, z_top_mm, regions: [...]}");
+  }
+  SpecReader in;
+  in.mapping(root, "", {"stock"});
+  geometry::Stock stock;
+  if (const YAML::Node node = root["stock"]) {
+    stock = in.stock(node, "stock");
+  } else {
+    in.text(root, "", "stock", true, "the workpiece: {z_bottom_mm, z_top_mm, regions: [{outer: contour, holes: [...]}]}");
+  }
+  std::vector<std::string> bad_stock_parts;
+  for (const auto& field : in.reported) {
+    if (field.rfind("stock", 0) == 0) bad_stock_parts.push_back(stock_part_of(field));
+  }
+  std::vector<InputProblem> problems = std::move(in.problems);
+  if (root["stock"]) {
+    for (auto& problem : geometry::validate(stock, "stock")) {
+      const bool repeats = std::any_of(bad_stock_parts.begin(), bad_stock_parts.end(),
+                                       [&](const std::string& part) { return is_within(problem.field, part); });
+      if (repeats || in.reported.count(problem.field) != 0) continue;
+      problem.field = with_line(problem.field, line_for(in.lines, problem.field));
+      problems.push_back(std::move(problem));
+    }
+  }
+  if (!problems.empty()) throw InputError(std::move(problems));
+  return stock;
+}
+
+geometry::Stock load_stock_spec(const std::filesystem::path& path) {
+  return read_stock_spec(read_text_file(path, "a stock spec"), path.string());
 }
 
 }  // namespace feedplan::cycles

@@ -219,8 +219,11 @@ EngagementProfile compute_engagement(const ToolPath& path, const Stock& stock, d
       sample.interval_begin = static_cast<int>(profile.intervals.size());
 
       const Vec2 p = detail::to_vec(sample.position);
-      const double height = sample.position.z_mm + std::max(0.5 * move.axial_depth_mm, 1e-6);
-      AngleIntervals remaining = detail::initial_material(stock, p, r, height);
+      const double height = options.evaluation_z_mm
+                                ? *options.evaluation_z_mm
+                                : sample.position.z_mm + std::max(0.5 * move.axial_depth_mm, 1e-6);
+      AngleIntervals remaining;
+      if (height > sample.position.z_mm) remaining = detail::initial_material(stock, p, r, height);
       if (!remaining.empty()) {
         // The piece being travelled, from its start up to the tool.
         std::size_t piece_in_move = 0;

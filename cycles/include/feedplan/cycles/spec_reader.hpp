@@ -5,6 +5,7 @@
 #include <string>
 
 #include "feedplan/cycles/spec.hpp"
+#include "feedplan/geometry/stock.hpp"
 
 namespace feedplan::cycles {
 
@@ -24,5 +25,14 @@ CycleSpec read_cycle_spec(const std::string& yaml_text, const std::string& sourc
 //! Reads the file at `path` and parses it with read_cycle_spec (the path is the source name). A file
 //! that does not exist or cannot be read is an InputError naming the path.
 CycleSpec load_cycle_spec(const std::filesystem::path& path);
+
+//! Parses a workpiece from YAML: either a document `stock: {z_bottom_mm, z_top_mm, regions: [{outer:
+//! contour, holes: [contour, ...]}]}` (contours as in a cycle spec's stock: `{polygon: [[x, y], ...]}`
+//! or `{circle: {center: [x, y], radius_mm: r}}`), or a whole cycle spec, whose implied (or given)
+//! stock is returned. Every problem is reported at once, as read_cycle_spec does, in one InputError.
+geometry::Stock read_stock_spec(const std::string& yaml_text, const std::string& source_name);
+
+//! Reads the file at `path` with read_stock_spec; an unreadable file is an InputError naming it.
+geometry::Stock load_stock_spec(const std::filesystem::path& path);
 
 }  // namespace feedplan::cycles

@@ -8,6 +8,7 @@
 // [−π/2, 3π/2) so that no engaged interval is split at the back of the tool. Down (climb) milling
 // with the material on the right exits at φ = π; a full slot is engaged over [0, π].
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -21,6 +22,11 @@ namespace feedplan::geometry {
 struct EngagementOptions {
   double ds_mm = 0.05;  //!< sample spacing along the path (3D arc length), mm; each move gets
                         //!< ceil(length / ds) equal steps
+  //! When set, the engagement is evaluated on this absolute height (mm) instead of the default layer
+  //! (half the move's axial depth above the tip): one axial layer of the stock, as the virtual
+  //! machine needs for helices. Samples whose tool tip is at or above this height do not reach the
+  //! layer and have no engagement there.
+  std::optional<double> evaluation_z_mm;
 };
 
 //! One engaged interval of the tool circle, in immersion angles (radians, entry < exit).
