@@ -1,0 +1,273 @@
+#include "feedplan/sim/motion_profile.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cassert>
+#include <cmath>
+#include <limits>
+#include <sstream>
+#include <string>
+
+#include "feedplan/core/angle.hpp"
+#include "feedplan/geometry/tool_path.hpp"
+
+namespace feedplan::sim {
+
+namespace {
+
+using geometry::Move;
+using geometry::MoveKind;
+using Vec3 = std::array<double, 3>;
+
+constexpr double kInfinity = std::numeric_limits<double>::infinity();
+constexpr std::size_t kMaxReportedMoves = 20;
+
+std::string format_number(double value) {
+  std::ostringstream out;
+  out << value;
+  return out.str();
+}
+
+// Appends "<field> = <value>: must be <rule>" unless `ok`.
+void require(std::vector<InputProblem>& problems, bool ok, const std::string& field, double value,
+             const std::string& rule) {
+  if (!ok) problems.push_back({field, "= " + format_number(value) + ": must be " + rule});
+}
+
+// Unit tangent in space at the start (fraction 0) or end (fraction 1) of a move of length `length`.
+Vec3 unit_tangent(const Move& move, double fraction, double length) {
+  const double dz = (move.end.z_mm - move.start.z_mm) / length;
+  if (move.kind != MoveKind::kArc) {
+    return {(move.end.x_mm - move.start.x_mm) / length, (move.end.y_mm - move.start.y_mm) / length, dz};
+  }
+  const double xy_share = geometry::xy_length_mm(move) / length;
+  const double angle = geometry::tangent_angle_rad(move, fraction);
+  return {std::cos(angle) * xy_share, std::sin(angle) * xy_share, dz};
+}
+
+// Junction-deviation speed² (see the header, step 3) between unit tangents t1 and t2.
+double junction_speed_squared(const Vec3& t1, const Vec3& t2, double accel, double deviation_mm) {
+  const Vec3 cross = {t1[1] * t2[2] - t1[2] * t2[1], t1[2] * t2[0] - t1[0] * t2[2], t1[0] * t2[1] - t1[1] * t2[0]};
+  const double dot = t1[0] * t2[0] + t1[1] * t2[1] + t1[2] * t2[2];
+  // atan2 keeps small deflections accurate, where acos(dot) would lose them.
+  const double deflection_rad = std::atan2(std::hypot(cross[0], cross[1], cross[2]), dot);
+  if (deflection_rad <= kTangentJunctionToleranceRad) return kInfinity;
+  if (deflection_rad >= kPi - kTangentJunctionToleranceRad) return 0.0;  // a reversal: cos(φ/2) is 0 only in theory
+  const double cos_half = std::max(0.0, std::cos(0.5 * deflection_rad));  // sin(θ/2), θ the interior angle
+  const double sin_quarter = std::sin(0.25 * deflection_rad);
+  return accel * deviation_mm * cos_half / (2.0 * sin_quarter * sin_quarter);  // 1 − cos(φ/2) = 2 sin²(φ/4)
+}
+
+bool is_rapid(const Move& move) { return move.kind == MoveKind::kRapid; }
+
+std::string block_name(const geometry::BlockCommand& block, std::size_t index) {
+  if (block.source_line > 0) return "line " + std::to_string(block.source_line);
+  return "move " + std::to_string(index);
+}
+
+void check_program(const geometry::Program& program, const MotionLimits& limits) {
+  std::vector<InputProblem> problems = validate(limits);
+  if (program.path.moves.empty()) problems.push_back({"program", "has no moves: there is nothing to run"});
+  std::size_t bad_moves = 0;
+  for (std::size_t i = 0; i < program.path.moves.size(); ++i) {
+    const Move& move = program.path.moves[i];
+    const geometry::BlockCommand& block = program.blocks[i];
+    std::vector<InputProblem> found;
+    const std::string where = block_name(block, i);
+    if (!is_rapid(move)) {
+      const double f = block.feed_mm_per_min;
+      require(found, std::isfinite(f) && f > 0.0, where + " F", f, "> 0 mm/min on a feed move");
+    }
+    const double dwell = block.dwell_before_s;
+    require(found, std::isfinite(dwell) && dwell >= 0.0, where + " dwell", dwell, "≥ 0 s");
+    const double length = geometry::length_mm(move);
+    require(found, std::isfinite(length), where + " length", length, "a finite number of mm");
+    if (found.empty()) continue;
+    if (++bad_moves <= kMaxReportedMoves) problems.insert(problems.end(), found.begin(), found.end());
+  }
+  if (bad_moves > kMaxReportedMoves) {
+    problems.push_back({"program", "has " + std::to_string(bad_moves - kMaxReportedMoves) + " more moves with problems"});
+  }
+  const double end_dwell = program.dwell_at_end_s;
+  require(problems, std::isfinite(end_dwell) && end_dwell >= 0.0, "program.dwell_at_end_s", end_dwell, "≥ 0 s");
+  if (!problems.empty()) throw InputError(std::move(problems));
+}
+
+}  // namespace
+
+std::vector<InputProblem> validate(const MotionLimits& limits) {
+  std::vector<InputProblem> problems;
+  auto positive = [&](const std::string& field, double value, const std::string& unit) {
+    require(problems, std::isfinite(value) && value > 0.0, "machine." + field, value, "> 0 " + unit);
+  };
+  positive("max_accel_mm_per_s2", limits.max_accel_mm_per_s2, "mm/s²");
+  positive("rapid_feed_mm_per_min", limits.rapid_feed_mm_per_min, "mm/min");
+  positive("max_feed_mm_per_min", limits.max_feed_mm_per_min, "mm/min");
+  require(problems, std::isfinite(limits.junction_deviation_mm) && limits.junction_deviation_mm >= 0.0,
+          "machine.junction_deviation_mm", limits.junction_deviation_mm, "≥ 0 mm");
+  return problems;
+}
+
+MotionProfile plan_motion(const geometry::Program& program, const MotionLimits& limits) {
+  assert(program.blocks.size() == program.path.moves.size());
+  check_program(program, limits);
+
+  const std::vector<Move>& moves = program.path.moves;
+  const std::size_t n = moves.size();
+  const double accel = limits.max_accel_mm_per_s2;
+
+  MotionProfile profile;
+  profile.path_moves_ = moves;
+  profile.timings_.resize(n);
+
+  // 1–2. Lengths and per-move caps; the moves that take time ("real" moves), in order.
+  std::vector<std::size_t> real;
+  double s_mm = 0.0;
+  for (std::size_t i = 0; i < n; ++i) {
+    const Move& move = moves[i];
+    MoveTiming& timing = profile.timings_[i];
+    timing.start_s_mm = s_mm;
+    timing.length_mm = geometry::length_mm(move);
+    s_mm += timing.length_mm;
+    double cap_mm_per_s = limits.rapid_feed_mm_per_min / 60.0;
+    if (!is_rapid(move)) {
+      cap_mm_per_s = std::min(program.blocks[i].feed_mm_per_min, limits.max_feed_mm_per_min) / 60.0;
+      if (move.kind == MoveKind::kArc && limits.limit_centripetal) {
+        cap_mm_per_s = std::min(cap_mm_per_s, std::sqrt(accel * geometry::arc_radius_mm(move)));
+      }
+    }
+    timing.cap_mm_per_s = cap_mm_per_s;
+    if (timing.length_mm >= kMinMoveLengthMm) real.push_back(i);
+  }
+  profile.length_mm_ = s_mm;
+
+  // 3. Point caps at the junctions: junction j lies before real move j (j = 0 is the start, j = m the end).
+  const std::size_t m = real.size();
+  std::vector<double> u(m + 1, 0.0);  // v² at the junctions, mm²/s²
+  for (std::size_t j = 1; j < m; ++j) {
+    const std::size_t p = real[j - 1];
+    const std::size_t q = real[j];
+    bool stop = is_rapid(moves[p]) != is_rapid(moves[q]);
+    for (std::size_t k = p + 1; k <= q; ++k) stop = stop || program.blocks[k].dwell_before_s > 0.0;
+    if (stop) continue;
+    const double cap = std::min(profile.timings_[p].cap_mm_per_s, profile.timings_[q].cap_mm_per_s);
+    const Vec3 t1 = unit_tangent(moves[p], 1.0, profile.timings_[p].length_mm);
+    const Vec3 t2 = unit_tangent(moves[q], 0.0, profile.timings_[q].length_mm);
+    u[j] = std::min(cap * cap, junction_speed_squared(t1, t2, accel, limits.junction_deviation_mm));
+  }
+
+  // 4. Look-ahead: forward then backward pass on u = v² (DESIGN.md §5.5).
+  for (std::size_t j = 1; j <= m; ++j) {
+    u[j] = std::min(u[j], u[j - 1] + 2.0 * accel * profile.timings_[real[j - 1]].length_mm);
+  }
+  for (std::size_t j = m; j-- > 0;) {
+    u[j] = std::min(u[j], u[j + 1] + 2.0 * accel * profile.timings_[real[j]].length_mm);
+  }
+
+  // 5–6. Phases of each move, dwells in between.
+  auto& segments = profile.segments_;
+  double t_s = 0.0;
+  auto add_dwell = [&](std::size_t move_index, double at_s_mm, double dwell_s) {
+    if (dwell_s <= 0.0) return;
+    segments.push_back({t_s, at_s_mm, 0.0, 0.0, dwell_s, move_index, true});
+    t_s += dwell_s;
+    profile.time_dwelling_s_ += dwell_s;
+  };
+  std::size_t j = 0;  // next junction
+  for (std::size_t i = 0; i < n; ++i) {
+    MoveTiming& timing = profile.timings_[i];
+    add_dwell(i, timing.start_s_mm, program.blocks[i].dwell_before_s);
+    timing.start_time_s = t_s;
+    if (j == m || real[j] != i) {  // takes no time: passes through junction j
+      timing.entry_speed_mm_per_s = timing.exit_speed_mm_per_s = std::sqrt(u[j]);
+      timing.end_time_s = t_s;
+      continue;
+    }
+    const double u0 = u[j];
+    const double u1 = u[j + 1];
+    ++j;
+    const double length = timing.length_mm;
+    const double cap = timing.cap_mm_per_s;
+    // Greatest profile v² = min(u0 + 2as, cap², u1 + 2a(L − s)); the passes guarantee |u1 − u0| ≤ 2aL.
+    const double u_triangle = 0.5 * (u0 + u1) + accel * length;  // peak when the cap is not reached
+    const bool reaches_cap = cap * cap <= u_triangle;
+    const double u_peak = reaches_cap ? cap * cap : std::max({u_triangle, u0, u1});
+    const double v0 = std::sqrt(u0);
+    const double v1 = std::sqrt(u1);
+    const double v_peak = std::sqrt(u_peak);
+    const double s_accel = (u_peak - u0) / (2.0 * accel);
+    const double s_decel = (u_peak - u1) / (2.0 * accel);
+    const double s_cruise = reaches_cap ? std::max(0.0, length - s_accel - s_decel) : 0.0;
+    const double t_accel = (v_peak - v0) / accel;
+    const double t_cruise = s_cruise / v_peak;
+    const double t_decel = (v_peak - v1) / accel;
+    timing.entry_speed_mm_per_s = v0;
+    timing.exit_speed_mm_per_s = v1;
+    const double time_before = t_s;
+    const double s0 = timing.start_s_mm;
+    if (t_accel > 0.0) segments.push_back({t_s, s0, v0, accel, t_accel, i, false});
+    t_s += t_accel;
+    if (t_cruise > 0.0) segments.push_back({t_s, s0 + s_accel, v_peak, 0.0, t_cruise, i, false});
+    t_s += t_cruise;
+    if (t_decel > 0.0) segments.push_back({t_s, s0 + s_accel + s_cruise, v_peak, -accel, t_decel, i, false});
+    t_s += t_decel;
+    timing.end_time_s = t_s;
+    const bool cutting = moves[i].cutting && !is_rapid(moves[i]);
+    (cutting ? profile.time_in_cut_s_ : profile.time_in_air_s_) += t_s - time_before;
+  }
+  add_dwell(n - 1, profile.length_mm_, program.dwell_at_end_s);
+  profile.duration_s_ = t_s;
+  return profile;
+}
+
+MotionState MotionProfile::state_in_segment(const MotionSegment& segment, double t_s) const {
+  const double tau = std::clamp(t_s - segment.t0_s, 0.0, segment.duration_s);
+  MotionState state;
+  state.t_s = t_s;
+  state.move_index = segment.move_index;
+  state.dwelling = segment.dwell;
+  state.s_mm = segment.s0_mm + tau * (segment.v0_mm_per_s + 0.5 * segment.a_mm_per_s2 * tau);
+  state.speed_mm_per_s = std::max(0.0, segment.v0_mm_per_s + segment.a_mm_per_s2 * tau);
+  state.accel_mm_per_s2 = segment.a_mm_per_s2;
+  const MoveTiming& timing = timings_[segment.move_index];
+  state.fraction = timing.length_mm > 0.0 ? std::clamp((state.s_mm - timing.start_s_mm) / timing.length_mm, 0.0, 1.0)
+                                          : 0.0;
+  state.position = geometry::point_at(path_moves_[segment.move_index], state.fraction);
+  return state;
+}
+
+MotionState MotionProfile::state_at_time(double t_s) const {
+  assert(!std::isnan(t_s));
+  if (t_s < duration_s_ && !segments_.empty()) {
+    const double t = std::max(t_s, 0.0);
+    auto after = std::upper_bound(segments_.begin(), segments_.end(), t,
+                                  [](double time, const MotionSegment& segment) { return time < segment.t0_s; });
+    if (after != segments_.begin()) --after;
+    return state_in_segment(*after, t);
+  }
+  MotionState state;  // at rest at the end
+  state.t_s = duration_s_;
+  state.s_mm = length_mm_;
+  state.move_index = path_moves_.size() - 1;
+  state.fraction = 1.0;
+  state.position = path_moves_.back().end;
+  return state;
+}
+
+double MotionProfile::speed_cap_at(double s_mm) const {
+  assert(!std::isnan(s_mm));
+  const double s = std::clamp(s_mm, 0.0, length_mm_);
+  auto after = std::upper_bound(segments_.begin(), segments_.end(), s,
+                                [](double length, const MotionSegment& segment) { return length < segment.s0_mm; });
+  if (after == segments_.begin()) return 0.0;
+  const MotionSegment& segment = *std::prev(after);
+  if (segment.dwell) return 0.0;
+  const double v0 = segment.v0_mm_per_s;
+  // Within the phase v² = v0² + 2a(s − s0); past its end (only at a stop or the program end) v is 0.
+  const double v_end = std::max(0.0, v0 + segment.a_mm_per_s2 * segment.duration_s);
+  const double s_end = segment.s0_mm + segment.duration_s * 0.5 * (v0 + v_end);
+  if (s >= s_end) return segment.a_mm_per_s2 == 0.0 ? v0 : v_end;
+  return std::sqrt(std::max(0.0, v0 * v0 + 2.0 * segment.a_mm_per_s2 * (s - segment.s0_mm)));
+}
+
+}  // namespace feedplan::sim
