@@ -9,6 +9,7 @@ packages=(
   libceres-dev libsqlite3-dev
   libcli11-dev libyaml-cpp-dev nlohmann-json3-dev libfmt-dev
   libgtest-dev libgmock-dev libbenchmark-dev
+  linuxcnc-uspace  # rs274, LinuxCNC's interpreter: the oracle of the G-code tests (DESIGN.md §7)
 )
 
 missing=()

@@ -1,0 +1,98 @@
+#pragma once
+// Reading RS274/NGC (LinuxCNC) G-code into a Program: the moves of the tool tip with the feed,
+// spindle and dwells commanded for each (DESIGN.md §2, gcode/ text ──► ToolPath). The reader takes
+// the subset a CAM post or feedplan's own writer emits for 2.5D milling and refuses everything else
+// by line and word — a skipped word could change the path the force model is computed on.
+//
+// What the reader does with each word (LinuxCNC's order of execution within a block: G94, F, S, T,
+// M3/M4/M5, coolant, G4, plane, units, work offset, distance modes, motion, M0/M1, M2/M30):
+//
+// Supported
+//   G0, G1            rapid and straight feed moves
+//   G2, G3            clockwise / counter-clockwise arcs in XY, with I J (centre offsets from the
+//                     start; absolute under G90.1) or R (negative R: the arc of more than 180°); a Z
+//                     word makes a helix; start == end with I J is a full circle; P n adds n − 1 turns
+//   G4 P              dwell, P in seconds; it runs before the motion of its block
+//   G17               XY plane (the only one)
+//   G20, G21          inch / mm input; everything is converted to mm
+//   G90, G91          absolute / incremental X Y Z
+//   G90.1, G91.1      absolute / incremental I J (G91.1, incremental, is LinuxCNC's default)
+//   G54 … G59.3       work offset selection, only before the first move or re-selecting the one in
+//                     effect: the reader has no offset values, a change after moving would jump
+//   G80               cancels the motion mode (axis words then need a new G0–G3); beside G0–G3
+//                     in one block (a CAM safe-start line) the motion wins, as in LinuxCNC
+//   G94               feed per minute, the only feed mode read; like LinuxCNC it resets the feed to
+//                     0, so a feed move needs an F after it (in the same block or later)
+//   F S               feed (per minute, in the length unit in effect when F is read) and spindle rpm
+//   M3, M4, M5        spindle clockwise / counter-clockwise / off
+//   M2, M30           program end; later lines are not read (a note says so when they hold words)
+//   N, O              line numbers (first in their block), program-number lines like `O1000`
+//   %                 alone on the first line opens the program, alone on a later line ends it
+//   ( ) and ;         comments; blank lines; lowercase letters; spaces inside words
+// Ignored: accepted, with no effect on the path, feeds or spindle
+//   G40 (cutter compensation off) and G49 (tool length offset off): both are the state a program
+//   without G41/G42/G43 is in; G97 (constant rpm): the default; G61, G61.1, G64 [P Q] (path
+//   control): how the controller blends corners, the programmed path stays the same; G98, G99
+//   (canned-cycle retract): canned cycles are refused anyway; M0, M1 (program pause); M7, M8, M9
+//   (coolant); T (tool preparation — M6 is refused).
+// Refused, by line and word
+//   G18, G19 and other planes; G41, G42 cutter compensation; G43 tool length offsets; G93 inverse
+//   time and G95 feed per revolution; G96 constant surface speed; G28, G30, G53 (machine
+//   positions); G10, G52, G92 (offset changes); G5.x splines, G33 threading, G38.x probing, G73–G89
+//   canned cycles, G7, G8; M6 tool changes (the path is planned for one tool: split the program per
+//   tool); every other G or M code; A, B, C, U, V, W axes; K (arcs outside XY) and the letters D,
+//   E, H, L and the like; parameters and expressions (#1, [..]); O-word subroutines and control
+//   flow; block delete `/` (whether the line runs depends on the operator's switch).
+//
+// Problems found (all collected, up to a cap, into one InputError; each names the line and the
+// word): unknown or refused words; numbers that are not plain decimals (`X1..2`, `Xabc`, `X`, no
+// exponents); two words of one modal group, or a letter twice, in a block; a feed move with no
+// positive F in effect; an arc without I J or R, with a zero radius, with I J whose end radius
+// differs from its start radius by more than the tolerance, or with an R shorter than half the chord;
+// unbalanced or nested comment parentheses; F in a block whose G20/G21 changes the units (LinuxCNC
+// would read that F in the old unit); a file that ends without M2, M30 or a closing % (optional).
+//
+// What the output means: every G1/G2/G3 move is `cutting` because a reader cannot know which feed
+// moves cut and which move through air (that needs the stock: geometry/engagement does it);
+// axial_depth_mm is 0 for the same reason. All moves belong to part 0, named "program". Moves of
+// zero length (a G0/G1 to where the tool already is, or a block without axis words) are dropped.
+
+#include <filesystem>
+#include <string>
+
+#include "feedplan/geometry/point.hpp"
+#include "feedplan/geometry/program.hpp"
+
+namespace feedplan::gcode {
+
+//! How read_program treats the parts of a program the text leaves open.
+struct ReaderOptions {
+  //! Largest |start radius − end radius| accepted on an I/J arc, and the largest amount by which
+  //! an R may fall short of half the chord, mm. Within it, the centre is moved onto the
+  //! perpendicular bisector of start and end (R arcs: R is taken as half the chord) so that both ends
+  //! lie on one circle; a note counts moves of more than 1 µm. LinuxCNC accepts I/J mismatches of
+  //! 0.05 mm and more (it drives a spiral); its limit for an R is 0.00005 in (0.00127 mm).
+  double arc_radius_tolerance_mm = 0.002;
+  geometry::Point3 initial_position{0.0, 0.0, 0.0};  //!< where the tool tip is before the first move, mm
+  bool require_program_end = true;  //!< the text must end the program with M2, M30 or a closing %
+                                    //!< (LinuxCNC's rule; catches truncated files); false accepts snippets
+  int max_problems = 50;            //!< problems collected before the reader stops looking for more
+};
+
+//! Parses RS274/NGC text (`source_name` — a file name, or e.g. "test" — prefixes every problem).
+//!
+//! Needs nothing but the text. Returns the moves with one BlockCommand each: the feed in mm/min in
+//! effect for G1/G2/G3 (0 on rapids), the spindle rpm and direction in effect, any G4 dwell since the
+//! previous move, and the 1-based text line of the move; a dwell after the last move goes to
+//! dwell_at_end_s, and Program::notes carries what the user should know that is not an error. The
+//! path satisfies geometry::consistency_defects. On any problem it throws one feedplan::InputError
+//! listing every problem found (up to options.max_problems), each as
+//! `<source_name> line N: word Q5: not supported (…)` or `… line N: G1 before any F word: …`.
+geometry::Program read_program(const std::string& text, const std::string& source_name,
+                               const ReaderOptions& options = {});
+
+//! Reads the file at `path` and parses it with read_program, the path as source name. A file that
+//! does not exist, is a directory or cannot be read is an InputError naming the path.
+geometry::Program load_program(const std::filesystem::path& path, const ReaderOptions& options = {});
+
+}  // namespace feedplan::gcode

@@ -1,0 +1,58 @@
+#pragma once
+// The problems found while reading one program, each located by its line: collected up to a cap,
+// then thrown together as one InputError (STYLE.md, "Errors"). Internal to the gcode module.
+
+#include <cstdio>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "feedplan/core/input_error.hpp"
+
+namespace feedplan::gcode::detail {
+
+//! Shortest readable form of a length or feed for messages: up to 6 significant digits.
+inline std::string format_number(double value) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.6g", value);
+  return text;
+}
+
+//! Problems of one program, field "<source> line N:" so that what() reads `part.ngc line 7: word Q5: …`.
+class ProblemLog {
+ public:
+  ProblemLog(std::string source_name, int max_problems)
+      : source_name_(std::move(source_name)), max_problems_(max_problems < 1 ? 1 : max_problems) {}
+
+  //! Records `message` for 1-based `line`. Past the cap, records one closing problem and then nothing.
+  void add(int line, std::string message) {
+    if (full()) return;
+    if (static_cast<int>(problems_.size()) == max_problems_) {
+      problems_.push_back({field(line), "more problems follow; stopped after " + std::to_string(max_problems_)});
+      return;
+    }
+    problems_.push_back({field(line), std::move(message)});
+  }
+
+  //! True once the cap is reached: the reader may stop reading.
+  bool full() const { return static_cast<int>(problems_.size()) > max_problems_; }
+
+  bool empty() const { return problems_.empty(); }
+
+  //! Throws the collected problems as one InputError (only when there are any).
+  void throw_if_any() const {
+    if (!problems_.empty()) throw InputError(problems_);
+  }
+
+ private:
+  std::string field(int line) const {
+    std::string text = source_name_.empty() ? std::string() : source_name_ + " ";
+    return text + "line " + std::to_string(line) + ":";
+  }
+
+  std::string source_name_;
+  int max_problems_;
+  std::vector<InputProblem> problems_;
+};
+
+}  // namespace feedplan::gcode::detail

@@ -1,0 +1,514 @@
+#include "feedplan/gcode/reader.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cassert>
+#include <cmath>
+#include <fstream>
+#include <optional>
+#include <sstream>
+#include <string>
+#include <string_view>
+#include <system_error>
+#include <vector>
+
+#include "arc_geometry.hpp"
+#include "code_catalog.hpp"
+#include "feedplan/core/input_error.hpp"
+#include "feedplan/geometry/tool_path.hpp"
+#include "line_lexer.hpp"
+#include "problem_log.hpp"
+
+namespace feedplan::gcode {
+
+using detail::CodeInfo;
+using detail::CodeUse;
+using detail::Word;
+using geometry::Move;
+using geometry::MoveKind;
+using geometry::Point2;
+using geometry::Point3;
+using geometry::SpindleDirection;
+
+namespace {
+
+constexpr double kMmPerInch = 25.4;
+constexpr double kReportedShiftMm = 1e-6;  // centre moves above this are counted in a note
+
+// Motion modes in tenths of their G number; kNoMotion after G80 and at the start (as LinuxCNC).
+constexpr int kNoMotion = -1;
+constexpr int kG0 = 0;
+constexpr int kG1 = 10;
+constexpr int kG2 = 20;
+constexpr int kG3 = 30;
+constexpr int kG4 = 40;
+constexpr int kG20 = 200;
+constexpr int kG64 = 640;
+constexpr int kG80 = 800;
+constexpr int kG94 = 940;
+constexpr int kG90 = 900;
+constexpr int kG90_1 = 901;
+constexpr int kG91 = 910;
+constexpr int kG91_1 = 911;
+constexpr int kG54 = 540;
+
+bool is_arc(int motion) { return motion == kG2 || motion == kG3; }
+bool is_motion(int motion) { return motion == kG0 || motion == kG1 || is_arc(motion); }
+
+// Value words the reader reads (G, M, N and O are handled separately).
+bool is_value_letter(char letter) {
+  switch (letter) {
+    case 'F': case 'I': case 'J': case 'P': case 'Q': case 'R': case 'S': case 'T': case 'X': case 'Y': case 'Z':
+      return true;
+    default:
+      return false;
+  }
+}
+
+// One block after the words are sorted: the codes by modal group and the value words by letter.
+struct Block {
+  int line = 0;
+  std::array<std::optional<int>, 16> g_by_group;    // G code (tenths) per modal group
+  std::array<std::optional<int>, 16> m_by_group;    // M code per modal group
+  std::array<const Word*, 26> letters{};            // value word per letter, nullptr when absent
+
+  const Word* word(char letter) const { return letters[static_cast<std::size_t>(letter - 'A')]; }
+  bool has(char letter) const { return word(letter) != nullptr; }
+  bool has_g(int tenths, int group) const { return g_by_group[group] == tenths; }
+  bool has_m(int code, int group) const { return m_by_group[group] == code; }
+};
+
+// The modal state of the controller while the program runs, and the program built so far.
+class Interpreter {
+ public:
+  Interpreter(const ReaderOptions& options, detail::ProblemLog& problems) : options_(options), problems_(problems) {
+    position_mm_ = options.initial_position;
+    program_.path.part_names = {"program"};
+  }
+
+  // Reads the text line by line until the program ends.
+  void run(const std::string& text) {
+    std::size_t begin = 0;
+    int line = 0;
+    while (begin <= text.size() && !problems_.full()) {
+      std::size_t end = text.find('\n', begin);
+      if (end == std::string::npos) end = text.size();
+      const std::string_view raw(text.data() + begin, end - begin);
+      ++line;
+      if (!ended_) {
+        read_line(raw, line);
+      } else if (note_text_after_end(raw, line)) {
+        break;
+      }
+      if (end == text.size()) break;
+      begin = end + 1;
+    }
+    if (!ended_ && options_.require_program_end && !problems_.full()) {
+      problems_.add(std::max(last_content_line_, 1),
+                    "end of text: the program ends without M2, M30 or a closing %, so the file may be truncated "
+                    "(ReaderOptions::require_program_end = false accepts it)");
+    }
+    program_.dwell_at_end_s = pending_dwell_s_;
+    if (shifted_arcs_ > 0) {
+      note(std::to_string(shifted_arcs_) + (shifted_arcs_ == 1 ? " arc centre was" : " arc centres were") +
+           " moved so that start and end lie on one circle (their radii differed within "
+           "ReaderOptions::arc_radius_tolerance_mm); the largest move is " + detail::format_number(largest_shift_mm_) +
+           " mm, on line " + std::to_string(largest_shift_line_));
+    }
+  }
+
+  geometry::Program take_program() { return std::move(program_); }
+
+ private:
+  void end_program(int line, const char* how) {
+    ended_ = true;
+    end_line_ = line;
+    end_word_ = how;
+  }
+
+  void read_line(std::string_view raw, int line) {
+    const detail::LexedLine lexed = detail::lex_line(raw, line, problems_);
+    if (lexed.percent) {
+      if (last_content_line_ == 0) {
+        percent_opened_ = true;
+      } else if (percent_opened_) {
+        end_program(line, "%");
+      } else {
+        problems_.add(line, "'%': a closing % needs an opening % alone on the first line");
+      }
+    } else if (lexed.ok && !lexed.words.empty()) {
+      execute(lexed.words, line);
+    }
+    if (lexed.percent || !lexed.words.empty() || !lexed.ok) last_content_line_ = line;
+  }
+
+  // Lines after the program end are not read, as on a controller. Returns true (and notes it) at
+  // the first such line that holds more than blanks or a closing %.
+  bool note_text_after_end(std::string_view raw, int line) {
+    std::string content;
+    for (char c : raw) {
+      if (c != ' ' && c != '\t' && c != '\r') content += c;
+    }
+    if (content.empty() || content == "%") return false;
+    note("line " + std::to_string(line) + " and later are not read: the program ended with " + end_word_ +
+         " on line " + std::to_string(end_line_));
+    return true;
+  }
+
+  void note(std::string text) { program_.notes.push_back(std::move(text)); }
+
+  double unit_mm() const { return inch_ ? kMmPerInch : 1.0; }
+
+  // Sorts the words of a block, reporting unknown, refused and repeated ones. False on any problem.
+  bool sort_words(const std::vector<Word>& words, Block& block) {
+    bool ok = true;
+    std::array<const Word*, 16> g_words{};
+    std::array<const Word*, 16> m_words{};
+    for (std::size_t i = 0; i < words.size(); ++i) {
+      const Word& w = words[i];
+      const int line = block.line;
+      if (w.letter == 'N') {
+        if (i != 0) {
+          problems_.add(line, "word " + w.text + ": a line number must be the first word of its block");
+          ok = false;
+        }
+        continue;
+      }
+      if (w.letter == 'O') continue;  // the lexer made sure it stands alone
+      if (w.letter == 'G' || w.letter == 'M') {
+        std::optional<CodeInfo> info;
+        std::optional<int> code;
+        if (w.letter == 'G') {
+          code = detail::g_code_tenths(w.value);
+          if (code) info = detail::find_g_code(*code);
+        } else {
+          info = detail::find_m_code(w.value);
+          if (info) code = static_cast<int>(w.value);
+        }
+        if (!info) {
+          problems_.add(line, "word " + w.text + ": not supported (not " + (w.letter == 'G' ? "a G" : "an M") +
+                                  " code the reader knows)");
+          ok = false;
+          continue;
+        }
+        if (info->use == CodeUse::kRefused) {
+          problems_.add(line, "word " + w.text + ": not supported (" + info->reason + ")");
+          ok = false;
+          continue;
+        }
+        auto& seen = w.letter == 'G' ? g_words : m_words;
+        auto& by_group = w.letter == 'G' ? block.g_by_group : block.m_by_group;
+        if (seen[info->group] != nullptr) {
+          problems_.add(line, "word " + w.text + ": same modal group (" + info->group_name + ") as " +
+                                  seen[info->group]->text + " in this block; use one");
+          ok = false;
+          continue;
+        }
+        seen[info->group] = &w;
+        by_group[info->group] = *code;
+        continue;
+      }
+      if (!is_value_letter(w.letter)) {
+        problems_.add(line, "word " + w.text + ": not supported (" + detail::letter_refusal(w.letter) + ")");
+        ok = false;
+        continue;
+      }
+      const Word*& slot = block.letters[static_cast<std::size_t>(w.letter - 'A')];
+      if (slot != nullptr) {
+        problems_.add(line, "word " + w.text + ": a second " + std::string(1, w.letter) + " word in the block (the first is " +
+                                slot->text + ")");
+        ok = false;
+        continue;
+      }
+      slot = &w;
+    }
+    return ok;
+  }
+
+  // The motion the block executes: its own G0–G3, or the modal one when it has axis words and no
+  // G80 (LinuxCNC's rule); kNoMotion otherwise.
+  int executed_motion(const Block& block) const {
+    if (const std::optional<int> own = block.g_by_group[1]) return *own;
+    const bool axis_words = block.has('X') || block.has('Y') || block.has('Z');
+    if (axis_words && !block.has_g(kG80, 11) && is_motion(motion_)) return motion_;
+    return kNoMotion;
+  }
+
+  // Checks that every word of a sorted block has a code that reads it and a value it accepts.
+  bool check_block(const Block& block) {
+    bool ok = true;
+    const int line = block.line;
+    auto fail = [&](const std::string& message) {
+      problems_.add(line, message);
+      ok = false;
+    };
+    const std::optional<int> own_motion = block.g_by_group[1];
+    const bool cancel = block.has_g(kG80, 11);
+    const int motion = executed_motion(block);
+    const bool dwell = block.has_g(kG4, 0);
+    const bool blend = block.has_g(kG64, 13);
+
+    for (char axis : {'X', 'Y', 'Z'}) {
+      const Word* w = block.word(axis);
+      if (w == nullptr) continue;
+      if (cancel && !own_motion) {
+        fail("word " + w->text + ": axis words cannot be used with G80, which cancels the motion mode");
+      } else if (!own_motion && dwell) {
+        fail("word " + w->text + ": axis words in a G4 block need G0, G1, G2 or G3 in the same block");
+      } else if (motion == kNoMotion) {
+        fail("word " + w->text + ": axis words need a motion mode, and no G0, G1, G2 or G3 is in effect");
+      }
+      break;
+    }
+    const std::string motion_name = motion == kNoMotion ? std::string("no motion") : detail::g_code_name(motion);
+    for (char letter : {'I', 'J', 'R'}) {
+      const Word* w = block.word(letter);
+      if (w != nullptr && !is_arc(motion)) {
+        fail("word " + w->text + ": " + std::string(1, letter) + " is read only with G2 or G3 (" + motion_name +
+             " in this block)");
+      }
+    }
+    if (is_arc(motion) && block.has('R') && (block.has('I') || block.has('J'))) {
+      fail("word " + block.word('R')->text + ": R and I/J in one arc; use one format");
+    }
+    if (is_arc(motion) && !block.has('R') && !block.has('I') && !block.has('J')) {
+      fail(detail::g_code_name(motion) + " without I, J or R: an arc needs its centre (I, J) or its radius (R)");
+    }
+    if (const Word* p = block.word('P')) {
+      if (dwell && (is_arc(motion) || blend)) {
+        fail("word G4: not allowed with G2, G3 or G64 in the same block (they all read P)");
+      } else if (dwell) {
+        if (p->value < 0.0) fail("word " + p->text + ": a G4 dwell must be ≥ 0 s");
+      } else if (is_arc(motion)) {
+        if (p->value < 1.0 || p->value != std::floor(p->value)) {
+          fail("word " + p->text + ": the number of turns of G2/G3 must be a whole number ≥ 1");
+        }
+      } else if (!blend) {
+        fail("word " + p->text + ": not supported here (P is read with G4, G2, G3 and G64)");
+      }
+    } else if (dwell) {
+      fail("G4 without P: a dwell needs P, its time in seconds");
+    }
+    if (const Word* q = block.word('Q'); q != nullptr && !blend) {
+      fail("word " + q->text + ": not supported (Q is read only with G64; canned cycles are not supported)");
+    }
+    if (const Word* f = block.word('F'); f != nullptr && f->value < 0.0) {
+      fail("word " + f->text + ": a feed must be ≥ 0");
+    }
+    if (const Word* s = block.word('S'); s != nullptr && s->value < 0.0) {
+      fail("word " + s->text + ": a spindle speed must be ≥ 0 rpm");
+    }
+    if (const Word* t = block.word('T'); t != nullptr && (t->value < 0.0 || t->value != std::floor(t->value))) {
+      fail("word " + t->text + ": a tool number must be a whole number ≥ 0");
+    }
+    if (const std::optional<int> offset = block.g_by_group[12]; offset && *offset != work_offset_ && moved_) {
+      fail("word " + detail::g_code_name(*offset) + ": not supported after the first move (changing the work "
+           "offset moves the program origin, and the reader has no offset values)");
+    }
+    if (const std::optional<int> units = block.g_by_group[6]; units && block.has('F') && (*units == kG20) != inch_) {
+      fail("word " + block.word('F')->text + ": F in a block whose " + detail::g_code_name(*units) +
+           " changes the units (LinuxCNC reads this F in the previous unit); put F in a later block");
+    }
+    return ok;
+  }
+
+  // Executes a block in LinuxCNC's order: G94, F, S, (T), M3/M4/M5, G4, units, work offset,
+  // distance modes, motion, program end.
+  void execute(const std::vector<Word>& words, int line) {
+    Block block;
+    block.line = line;
+    if (!sort_words(words, block) || !check_block(block)) return;
+
+    const int motion = executed_motion(block);
+    if (block.has_g(kG94, 5)) {
+      feed_mm_per_min_ = 0.0;
+      feed_line_ = line;
+      feed_reset_by_g94_ = true;
+      feed_problem_reported_ = false;
+    }
+    if (const Word* f = block.word('F')) {
+      feed_mm_per_min_ = f->value * unit_mm();
+      feed_line_ = line;
+      feed_reset_by_g94_ = false;
+      feed_problem_reported_ = false;
+    }
+    if (const Word* s = block.word('S')) spindle_rpm_ = s->value;
+    if (block.has_m(3, 7)) spindle_ = SpindleDirection::kClockwise;
+    if (block.has_m(4, 7)) spindle_ = SpindleDirection::kCounterClockwise;
+    if (block.has_m(5, 7)) spindle_ = SpindleDirection::kOff;
+    if (block.has_g(kG4, 0)) pending_dwell_s_ += block.word('P')->value;
+    if (const std::optional<int> units = block.g_by_group[6]) {
+      inch_ = *units == kG20;
+      units_set_ = true;
+    }
+    if (const std::optional<int> offset = block.g_by_group[12]) work_offset_ = *offset;
+    if (block.has_g(kG90, 3)) absolute_ = true;
+    if (block.has_g(kG91, 3)) absolute_ = false;
+    if (block.has_g(kG90_1, 4)) absolute_arc_center_ = true;
+    if (block.has_g(kG91_1, 4)) absolute_arc_center_ = false;
+    if (block.has_g(kG80, 11)) motion_ = kNoMotion;
+    if (const std::optional<int> own = block.g_by_group[1]) motion_ = *own;
+    if (motion != kNoMotion) move(block, motion);
+    if (block.has_m(2, 4) || block.has_m(30, 4)) end_program(line, block.has_m(2, 4) ? "M2" : "M30");
+  }
+
+  // Checks that a feed move has a positive F; reports once until the next F word.
+  bool feed_ok(int line, int motion) {
+    if (feed_mm_per_min_ > 0.0) return true;
+    if (!feed_problem_reported_) {
+      const std::string name = detail::g_code_name(motion);
+      if (feed_line_ == 0) {
+        problems_.add(line, name + " before any F word: feed moves need a positive F");
+      } else if (feed_reset_by_g94_) {
+        problems_.add(line, name + " with no F since G94 on line " + std::to_string(feed_line_) +
+                                " (G94 resets the feed to 0, as in LinuxCNC): feed moves need a positive F");
+      } else {
+        problems_.add(line, name + " with F0 in effect (set on line " + std::to_string(feed_line_) +
+                                "): feed moves need a positive F");
+      }
+      feed_problem_reported_ = true;
+    }
+    return false;
+  }
+
+  void move(const Block& block, int motion) {
+    const int line = block.line;
+    Point3 end = position_mm_;
+    auto axis = [&](char letter, double start_mm, double& target_mm) {
+      if (const Word* w = block.word(letter)) target_mm = (absolute_ ? 0.0 : start_mm) + w->value * unit_mm();
+    };
+    axis('X', position_mm_.x_mm, end.x_mm);
+    axis('Y', position_mm_.y_mm, end.y_mm);
+    axis('Z', position_mm_.z_mm, end.z_mm);
+    if (!units_set_ && !unit_note_given_) {
+      note("line " + std::to_string(line) + ": no G20 or G21 before the first move; lengths are read as mm");
+      unit_note_given_ = true;
+    }
+
+    Move m;
+    m.start = position_mm_;
+    m.end = end;
+    m.part = 0;
+    const bool feed = motion != kG0;
+    if (feed && !feed_ok(line, motion)) {
+      position_mm_ = end;
+      return;
+    }
+    if (!is_arc(motion)) {
+      if (end.x_mm == position_mm_.x_mm && end.y_mm == position_mm_.y_mm && end.z_mm == position_mm_.z_mm) return;
+      m.kind = feed ? MoveKind::kLine : MoveKind::kRapid;
+    } else {
+      const bool ccw = motion == kG3;
+      const int turns = block.has('P') ? static_cast<int>(block.word('P')->value) : 1;
+      const Point2 start_xy = geometry::xy(position_mm_);
+      const Point2 end_xy = geometry::xy(end);
+      detail::ArcCircle arc;
+      std::string subject = detail::g_code_name(motion);
+      if (const Word* r = block.word('R')) {
+        subject += " " + r->text;
+        arc = detail::arc_from_radius(start_xy, end_xy, r->value * unit_mm(), ccw, turns,
+                                      options_.arc_radius_tolerance_mm);
+      } else {
+        const Word* i = block.word('I');
+        const Word* j = block.word('J');
+        for (const Word* w : {i, j}) {
+          if (w != nullptr) subject += " " + w->text;
+        }
+        const double i_mm = i != nullptr ? i->value * unit_mm() : 0.0;
+        const double j_mm = j != nullptr ? j->value * unit_mm() : 0.0;
+        const Point2 center = absolute_arc_center_ ? Point2{i_mm, j_mm}
+                                                   : Point2{start_xy.x_mm + i_mm, start_xy.y_mm + j_mm};
+        arc = detail::arc_from_center(start_xy, end_xy, center, ccw, turns, options_.arc_radius_tolerance_mm);
+      }
+      if (!arc.problem.empty()) {
+        problems_.add(line, subject + ": " + arc.problem);
+        position_mm_ = end;
+        return;
+      }
+      if (arc.center_shift_mm > kReportedShiftMm) {
+        ++shifted_arcs_;
+        if (arc.center_shift_mm > largest_shift_mm_) {
+          largest_shift_mm_ = arc.center_shift_mm;
+          largest_shift_line_ = line;
+        }
+      }
+      m.kind = MoveKind::kArc;
+      m.center = arc.center;
+      m.ccw = ccw;
+      m.sweep_rad = arc.sweep_rad;
+    }
+    m.cutting = feed;
+    geometry::BlockCommand command;
+    command.feed_mm_per_min = feed ? feed_mm_per_min_ : 0.0;
+    command.spindle_rpm = spindle_rpm_;
+    command.spindle = spindle_;
+    command.dwell_before_s = pending_dwell_s_;
+    command.source_line = line;
+    pending_dwell_s_ = 0.0;
+    program_.path.moves.push_back(m);
+    program_.blocks.push_back(command);
+    position_mm_ = end;
+    moved_ = true;
+  }
+
+  const ReaderOptions& options_;
+  detail::ProblemLog& problems_;
+  geometry::Program program_;
+
+  Point3 position_mm_;
+  bool inch_ = false;
+  bool units_set_ = false;
+  bool unit_note_given_ = false;
+  bool absolute_ = true;
+  bool absolute_arc_center_ = false;
+  int motion_ = kNoMotion;
+  int work_offset_ = kG54;
+  bool moved_ = false;
+  double feed_mm_per_min_ = 0.0;
+  int feed_line_ = 0;  // line of the F word (or G94) that set the feed; 0 before any
+  bool feed_reset_by_g94_ = false;
+  bool feed_problem_reported_ = false;
+  double spindle_rpm_ = 0.0;
+  SpindleDirection spindle_ = SpindleDirection::kOff;
+  double pending_dwell_s_ = 0.0;
+  int shifted_arcs_ = 0;  // arcs whose centre moved by more than kReportedShiftMm
+  double largest_shift_mm_ = 0.0;
+  int largest_shift_line_ = 0;
+  bool percent_opened_ = false;
+  bool ended_ = false;
+  int end_line_ = 0;
+  const char* end_word_ = "";  // M2, M30 or %
+  int last_content_line_ = 0;  // last line with words, a %, or a problem
+};
+
+}  // namespace
+
+geometry::Program read_program(const std::string& text, const std::string& source_name, const ReaderOptions& options) {
+  detail::ProblemLog problems(source_name, options.max_problems);
+  if (!(options.arc_radius_tolerance_mm >= 0.0) || !std::isfinite(options.arc_radius_tolerance_mm)) {
+    throw InputError("ReaderOptions::arc_radius_tolerance_mm",
+                     "= " + detail::format_number(options.arc_radius_tolerance_mm) + ": must be a finite number ≥ 0");
+  }
+  Interpreter interpreter(options, problems);
+  interpreter.run(text);
+  problems.throw_if_any();
+  geometry::Program program = interpreter.take_program();
+  // The reader builds each move from the previous end: a defect here is a reader bug, not bad input.
+  [[maybe_unused]] const std::vector<std::string> defects = geometry::consistency_defects(program.path);
+  assert(defects.empty());
+  return program;
+}
+
+geometry::Program load_program(const std::filesystem::path& path, const ReaderOptions& options) {
+  std::error_code ec;
+  if (!std::filesystem::exists(path, ec)) throw InputError(path.string(), "does not exist");
+  if (std::filesystem::is_directory(path, ec)) throw InputError(path.string(), "is a directory, not a G-code file");
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(path.string(), "cannot be opened for reading");
+  std::ostringstream text;
+  text << in.rdbuf();
+  if (in.bad()) throw InputError(path.string(), "could not be read");
+  return read_program(text.str(), path.string(), options);
+}
+
+}  // namespace feedplan::gcode
