@@ -268,7 +268,7 @@ SimulationResult simulate(const SimulationRequest& request) {
   double tau = 0.0;          // time along the planned motion (differs from t under a feed override)
   double last_direction = 0.0;
   int revolution = 0;
-  RevolutionForce current_rev;
+  RevolutionPeak current_rev;
   double rev_sum = 0.0;
   long long rev_steps = 0;
   double contact_force_sum = 0.0;
@@ -335,16 +335,19 @@ SimulationResult simulate(const SimulationRequest& request) {
     if (rev_now != revolution && rev_steps > 0) {
       current_rev.t_end_s = t;
       current_rev.mean_xy_n = rev_sum / rev_steps;
+      current_rev.samples = static_cast<std::size_t>(rev_steps);
       result.revolutions.push_back(current_rev);
-      current_rev = RevolutionForce{};
+      current_rev = RevolutionPeak{};
       current_rev.revolution = rev_now;
       current_rev.t_start_s = t;
       rev_sum = 0.0;
       rev_steps = 0;
     }
     revolution = rev_now;
-    current_rev.peak_xy_n = std::max(current_rev.peak_xy_n, fxy);
-    current_rev.cutting = current_rev.cutting || contact;
+    if (fxy > current_rev.peak_xy_n || rev_steps == 0) {
+      current_rev.peak_xy_n = fxy;
+      current_rev.t_peak_s = t;
+    }
     rev_sum += fxy;
     ++rev_steps;
     if (contact) {
@@ -420,6 +423,7 @@ SimulationResult simulate(const SimulationRequest& request) {
   if (rev_steps > 0) {
     current_rev.t_end_s = result.summary.steps * dt;
     current_rev.mean_xy_n = rev_sum / rev_steps;
+    current_rev.samples = static_cast<std::size_t>(rev_steps);
     result.revolutions.push_back(current_rev);
   }
   if (request.progress) request.progress(1.0);

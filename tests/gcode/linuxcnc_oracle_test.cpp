@@ -10,7 +10,9 @@
 // rs274 prints 4 decimals in the program's unit, so the test programs keep inch values exact to
 // 4 decimals (0.0001 in = 2.54 µm would otherwise exceed the 1 µm budget by rounding alone).
 
+#include <fcntl.h>
 #include <gtest/gtest.h>
+#include <sys/file.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -171,8 +173,26 @@ void parse_canonical(const std::string& text, OracleRun& run) {
   run.dwell_at_end_s = dwell;
 }
 
+// Holds an exclusive lock on a machine-wide file while it lives: two rs274 processes running at the
+// same time (ctest -j) crash with a bus error, so every run of it is serialised.
+class Rs274Lock {
+ public:
+  Rs274Lock() : fd_(::open((fs::temp_directory_path() / "feedplan-rs274.lock").c_str(), O_RDWR | O_CREAT, 0666)) {
+    if (fd_ >= 0) ::flock(fd_, LOCK_EX);
+  }
+  ~Rs274Lock() {
+    if (fd_ >= 0) ::close(fd_);  // closing releases the lock
+  }
+  Rs274Lock(const Rs274Lock&) = delete;
+  Rs274Lock& operator=(const Rs274Lock&) = delete;
+
+ private:
+  int fd_;
+};
+
 // Runs rs274 on `program` in a directory of this process's own.
 OracleRun run_rs274(const fs::path& rs274, const fs::path& program) {
+  const Rs274Lock lock;
   const fs::path dir = fs::temp_directory_path() / ("feedplan-rs274-" + std::to_string(::getpid()));
   fs::create_directories(dir);
   const fs::path output = dir / "canonical.txt";

@@ -26,7 +26,7 @@ struct EngagementOptions {
   //! (half the move's axial depth above the tip): one axial layer of the stock, as the virtual
   //! machine needs for helices. Samples whose tool tip is at or above this height do not reach the
   //! layer and have no engagement there.
-  std::optional<double> evaluation_z_mm;
+  std::optional<double> evaluation_z_mm = std::nullopt;
 };
 
 //! One engaged interval of the tool circle, in immersion angles (radians, entry < exit).

@@ -17,6 +17,7 @@
 #include "feedplan/sim/feed_override.hpp"
 #include "feedplan/sim/force_log.hpp"
 #include "feedplan/sim/motion_profile.hpp"
+#include "feedplan/sim/revolution_peaks.hpp"
 #include "feedplan/sim/sensors.hpp"
 
 namespace feedplan::sim {
@@ -70,16 +71,6 @@ struct SimulationRequest {
   std::function<void(double)> progress;
 };
 
-//! Force statistics of one spindle revolution, from the true (unfiltered, noise-free) force.
-struct RevolutionForce {
-  int revolution = 0;         //!< 0-based count since the start
-  double t_start_s = 0.0;     //!< time the revolution started, s
-  double t_end_s = 0.0;       //!< time it ended, s
-  double peak_xy_n = 0.0;     //!< largest |F_xy| in it, N
-  double mean_xy_n = 0.0;     //!< mean |F_xy| over its steps, N
-  bool cutting = false;       //!< some tooth was in the cut during it
-};
-
 //! Totals of a run.
 struct SimulationSummary {
   double cycle_time_s = 0.0;       //!< program duration including dwells, s
@@ -100,7 +91,9 @@ struct SimulationSummary {
 //! material, feeding into material with the spindle stopped, M4 with a right-hand cutter).
 struct SimulationResult {
   ForceLog log;                                //!< sensor readings at options.log_rate_hz
-  std::vector<RevolutionForce> revolutions;    //!< one per spindle revolution
+  //! One per spindle revolution (by the simulated spindle angle), from the true force — unfiltered
+  //! and noise-free, at every internal step.
+  std::vector<RevolutionPeak> revolutions;
   SimulationSummary summary;
   std::vector<std::string> warnings;
 };

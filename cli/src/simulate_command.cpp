@@ -1,0 +1,376 @@
+#include "simulate_command.hpp"
+
+#include <nlohmann/json.hpp>
+#include <unistd.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <iostream>
+#include <sstream>
+
+#include "feedplan/core/atomic_file.hpp"
+#include "feedplan/core/input_error.hpp"
+#include "feedplan/cycles/cycle.hpp"
+#include "feedplan/cycles/spec_reader.hpp"
+#include "feedplan/gcode/reader.hpp"
+#include "feedplan/geometry/tool_path.hpp"
+#include "feedplan/sim/cutting_test.hpp"
+#include "feedplan/sim/force_log.hpp"
+#include "feedplan/sim/force_plot.hpp"
+#include "feedplan/sim/material.hpp"
+#include "feedplan/sim/milling_simulation.hpp"
+
+namespace feedplan::cli {
+
+namespace {
+
+std::string number_text(double value) {
+  std::ostringstream out;
+  out << value;
+  return out.str();
+}
+
+// "diameter_mm=10,flutes=4,helix_deg=30,name=SC EM D10 Z4" → Tool, every problem named "--tool".
+geometry::Tool parse_tool(const std::string& text, std::vector<InputProblem>& problems) {
+  geometry::Tool tool;
+  tool.name.clear();
+  bool have_diameter = false;
+  std::stringstream items(text);
+  std::string item;
+  while (std::getline(items, item, ',')) {
+    const auto eq = item.find('=');
+    const std::string key = item.substr(0, eq);
+    const std::string value = eq == std::string::npos ? "" : item.substr(eq + 1);
+    if (eq == std::string::npos) {
+      problems.push_back({"--tool", "item '" + item + "' is not key=value; expected diameter_mm=10,flutes=4,helix_deg=30"});
+      continue;
+    }
+    if (key == "name") {
+      tool.name = value;
+      continue;
+    }
+    char* end = nullptr;
+    const double number = std::strtod(value.c_str(), &end);
+    const bool numeric = !value.empty() && end && *end == '\0' && std::isfinite(number);
+    if (key == "diameter_mm" || key == "flutes" || key == "helix_deg") {
+      if (!numeric) {
+        problems.push_back({"--tool " + key, "= " + value + ": must be a finite number"});
+        continue;
+      }
+      if (key == "diameter_mm") {
+        tool.diameter_mm = number;
+        have_diameter = true;
+      } else if (key == "flutes") {
+        if (number != std::floor(number)) {
+          problems.push_back({"--tool flutes", "= " + value + ": must be a whole number of teeth"});
+          continue;
+        }
+        tool.flutes = static_cast<int>(number);
+      } else {
+        tool.helix_deg = number;
+      }
+    } else {
+      problems.push_back({"--tool", "key '" + key + "' is not known; expected diameter_mm, flutes, helix_deg, name"});
+    }
+  }
+  if (!have_diameter) problems.push_back({"--tool", "= '" + text + "': diameter_mm is required, e.g. diameter_mm=10,flutes=4"});
+  if (tool.name.empty()) tool.name = "D" + number_text(tool.diameter_mm) + " Z" + std::to_string(tool.flutes);
+  return tool;
+}
+
+std::vector<double> parse_runout(const std::string& text, std::vector<InputProblem>& problems) {
+  std::vector<double> values;
+  std::stringstream items(text);
+  std::string item;
+  while (std::getline(items, item, ',')) {
+    char* end = nullptr;
+    const double value = std::strtod(item.c_str(), &end);
+    if (item.empty() || !end || *end != '\0' || !std::isfinite(value)) {
+      problems.push_back({"--runout-mm", "item '" + item + "' is not a finite number (mm per tooth, comma separated)"});
+      continue;
+    }
+    values.push_back(value);
+  }
+  return values;
+}
+
+std::string bundled_materials_path() {
+  if (const char* dir = std::getenv("FEEDPLAN_DATA_DIR")) return std::string(dir) + "/materials.yaml";
+  std::error_code ec;
+  const std::filesystem::path installed = std::filesystem::path(FEEDPLAN_INSTALLED_DATA_DIR) / "materials.yaml";
+  if (std::filesystem::exists(installed, ec)) return installed.string();
+  return (std::filesystem::path(FEEDPLAN_SOURCE_DATA_DIR) / "materials.yaml").string();
+}
+
+// A solid block around every feed move, grown by the tool diameter, from below the lowest feed move
+// up to z = 0 — what a program with no stock given is assumed to cut (the worst case: full material).
+geometry::Stock default_stock(const geometry::Program& program, double tool_radius_mm) {
+  double x0 = 1e300, y0 = 1e300, x1 = -1e300, y1 = -1e300, z_low = 0.0;
+  for (const auto& move : program.path.moves) {
+    if (move.kind == geometry::MoveKind::kRapid) continue;
+    for (double f = 0.0; f <= 1.0; f += 0.125) {
+      const auto p = geometry::point_at(move, f);
+      x0 = std::min(x0, p.x_mm);
+      y0 = std::min(y0, p.y_mm);
+      x1 = std::max(x1, p.x_mm);
+      y1 = std::max(y1, p.y_mm);
+      z_low = std::min(z_low, p.z_mm);
+    }
+  }
+  geometry::Stock stock;
+  if (x0 > x1) {
+    x0 = y0 = -1.0;
+    x1 = y1 = 1.0;
+  }
+  const double grow = 4.0 * tool_radius_mm;
+  stock.regions.push_back({geometry::Contour::rectangle({x0 - grow, y0 - grow}, {x1 + grow, y1 + grow}), {}});
+  stock.z_top_mm = 0.0;
+  stock.z_bottom_mm = z_low - 5.0;
+  return stock;
+}
+
+class ProgressBar {
+ public:
+  ProgressBar() : started_(std::chrono::steady_clock::now()), terminal_(isatty(STDERR_FILENO) != 0) {}
+  void operator()(double fraction) {
+    if (!terminal_) return;
+    const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - started_).count();
+    if (elapsed < 1.0 && fraction < 1.0) return;
+    if (fraction >= 1.0 && !shown_) return;
+    shown_ = true;
+    const int width = 40;
+    const int filled = static_cast<int>(std::lround(std::clamp(fraction, 0.0, 1.0) * width));
+    std::fprintf(stderr, "\rsimulating [%s%s] %3d%%  %.0f s", std::string(filled, '#').c_str(),
+                 std::string(width - filled, '.').c_str(), static_cast<int>(std::lround(fraction * 100)), elapsed);
+    if (fraction >= 1.0) std::fprintf(stderr, "\n");
+    std::fflush(stderr);
+  }
+
+ private:
+  std::chrono::steady_clock::time_point started_;
+  bool terminal_ = false;
+  bool shown_ = false;
+};
+
+}  // namespace
+
+void add_simulate_command(CLI::App& app, SimulateOptions& options) {
+  auto* cmd = app.add_subcommand(
+      "simulate",
+      "Run a G-code program (or a virtual cutting test) on the virtual machine: mechanistic milling forces\n"
+      "tooth by tooth on the stock, feeds under the acceleration limits, sensors; writes a force log");
+  cmd->add_option("program", options.program_path, "G-code program (RS274/NGC subset) to run");
+  cmd->add_option("--spec", options.spec_path,
+                  "Cycle spec to take the tool, material, spindle speed, machine limits and stock from");
+  cmd->add_option("--tool", options.tool_text, "End mill: diameter_mm=10,flutes=4,helix_deg=30[,name=...]");
+  cmd->add_option("--material", options.material_name, "Workpiece material (name or alias in the materials file)");
+  cmd->add_option("--materials", options.materials_path, "Materials file (default: the bundled data/materials.yaml)");
+  cmd->add_option("--stock", options.stock_path,
+                  "Workpiece: a stock YAML (stock: {z_bottom_mm, z_top_mm, regions}) or a cycle spec; default: a "
+                  "solid block around the program below z = 0");
+  cmd->add_option("--log", options.log_path, "Force log to write (CSV, DESIGN.md §4)")->required();
+  cmd->add_option("--plot", options.plot_path, "Plot of the force to write (SVG)");
+  cmd->add_flag("--json", options.json, "Print the summary as JSON");
+  cmd->add_option("--spindle-rpm", options.spindle_rpm, "Spindle speed for blocks without S; the cutting test's S");
+  cmd->add_option("--max-accel", options.max_accel_mm_per_s2, "Path acceleration limit, mm/s²");
+  cmd->add_option("--rapid", options.rapid_feed_mm_per_min, "Rapid traverse rate, mm/min");
+  cmd->add_option("--max-feed", options.max_feed_mm_per_min, "Highest feed the machine runs, mm/min");
+  cmd->add_option("--runout-mm", options.runout_text, "Radial runout per tooth, mm, comma separated (one per flute)");
+  cmd->add_option("--noise-n", options.noise_n, "Dynamometer noise, RMS N");
+  cmd->add_flag("--currents", options.currents, "Also log feed-drive servo currents (seed 002: I = a + b·F)");
+  cmd->add_option("--log-rate", options.log_rate_hz, "Log sample rate, Hz");
+  cmd->add_option("--angle-step", options.angle_step_deg, "Spindle rotation per simulation step, deg");
+  cmd->add_option("--layer-mm", options.layer_mm, "Axial slice thickness, mm");
+  cmd->add_option("--seed", options.seed, "Sensor noise seed");
+  cmd->add_flag("--cutting-test", options.cutting_test,
+                "Simulate a straight cut (a dynamometer cutting test) instead of a program");
+  cmd->add_option("--radial-depth-mm", options.radial_depth_mm, "Cutting test: radial depth a_e, mm");
+  cmd->add_option("--axial-depth-mm", options.axial_depth_mm, "Cutting test: axial depth a_p, mm");
+  cmd->add_option("--feed-mm-per-min", options.feed_mm_per_min, "Cutting test: feed F, mm/min");
+  cmd->add_option("--cut-length-mm", options.cut_length_mm, "Cutting test: length of the block, mm");
+  cmd->add_flag("--up", options.up_milling, "Cutting test: up (conventional) milling instead of down (climb)");
+}
+
+int run_simulate_command(const SimulateOptions& options) {
+  std::vector<InputProblem> problems;
+  // 1. Where the tool, material, machine and stock come from: flags, else the spec.
+  std::optional<cycles::CycleSpec> spec;
+  if (!options.spec_path.empty()) spec = cycles::load_cycle_spec(options.spec_path);
+  if (options.cutting_test == !options.program_path.empty()) {
+    problems.push_back({"simulate", options.cutting_test
+                                        ? "give either a PROGRAM or --cutting-test, not both"
+                                        : "needs a PROGRAM to run, or --cutting-test for a straight cut"});
+  }
+  geometry::Tool tool;
+  if (!options.tool_text.empty()) {
+    tool = parse_tool(options.tool_text, problems);
+  } else if (spec) {
+    tool = spec->tool;
+  } else {
+    problems.push_back({"--tool", "is required (or --spec): e.g. --tool diameter_mm=10,flutes=4,helix_deg=30"});
+  }
+  std::string material_name = options.material_name;
+  if (material_name.empty() && spec) material_name = spec->material;
+  if (material_name.empty()) problems.push_back({"--material", "is required (or a --spec with material:), e.g. --material S50C"});
+  double rpm = options.spindle_rpm;
+  if (rpm == 0.0 && spec) rpm = spec->spindle_rpm;
+  if (!(std::isfinite(rpm) && rpm >= 0.0)) {
+    problems.push_back({"--spindle-rpm", "= " + number_text(options.spindle_rpm) + ": must be a finite number ≥ 0"});
+  }
+  auto check_flag = [&](const char* flag, double value, bool zero_allowed) {
+    if (!(std::isfinite(value) && (value > 0.0 || (zero_allowed && value == 0.0)))) {
+      problems.push_back({flag, "= " + number_text(value) + ": must be a finite number > 0"});
+    }
+  };
+  check_flag("--max-accel", options.max_accel_mm_per_s2, true);
+  check_flag("--rapid", options.rapid_feed_mm_per_min, true);
+  check_flag("--max-feed", options.max_feed_mm_per_min, true);
+  check_flag("--log-rate", options.log_rate_hz, false);
+  if (!(std::isfinite(options.noise_n) && options.noise_n >= 0.0)) {
+    problems.push_back({"--noise-n", "= " + number_text(options.noise_n) + ": must be a finite number ≥ 0"});
+  }
+  std::vector<double> runout;
+  if (!options.runout_text.empty()) runout = parse_runout(options.runout_text, problems);
+  if (!options.cutting_test &&
+      (options.radial_depth_mm != 0.0 || options.axial_depth_mm != 0.0 || options.feed_mm_per_min != 0.0 || options.up_milling)) {
+    problems.push_back({"--radial-depth-mm/--axial-depth-mm/--feed-mm-per-min/--up", "only apply with --cutting-test"});
+  }
+  if (!problems.empty()) throw InputError(std::move(problems));
+
+  // 2. Material and machine.
+  const sim::MaterialLibrary materials =
+      sim::load_materials(options.materials_path.empty() ? bundled_materials_path() : options.materials_path);
+  const sim::Material& material = materials.get(material_name, options.material_name.empty() ? "spec.material" : "--material");
+  sim::SimulationRequest request;
+  request.tool = tool;
+  request.coefficients = material.coefficients;
+  if (spec) {
+    request.machine.max_accel_mm_per_s2 = spec->machine.max_accel_mm_per_s2;
+    request.machine.rapid_feed_mm_per_min = spec->machine.rapid_feed_mm_per_min;
+    request.machine.max_feed_mm_per_min = spec->machine.max_feed_mm_per_min;
+  }
+  if (options.max_accel_mm_per_s2 > 0.0) request.machine.max_accel_mm_per_s2 = options.max_accel_mm_per_s2;
+  if (options.rapid_feed_mm_per_min > 0.0) request.machine.rapid_feed_mm_per_min = options.rapid_feed_mm_per_min;
+  if (options.max_feed_mm_per_min > 0.0) request.machine.max_feed_mm_per_min = options.max_feed_mm_per_min;
+  request.sensors.dynamometer.noise_n = options.noise_n;
+  request.sensors.servo_current.enabled = options.currents;
+  request.sensors.seed = options.seed;
+  request.options.angle_step_deg = options.angle_step_deg;
+  request.options.layer_thickness_mm = options.layer_mm;
+  request.options.log_rate_hz = options.log_rate_hz;
+  request.options.runout_mm = runout;
+  request.options.default_spindle_rpm = rpm;
+
+  // 3. The program and the stock.
+  std::vector<std::string> notes;
+  std::string job;
+  if (options.cutting_test) {
+    sim::CuttingTest test;
+    test.radial_depth_mm = options.radial_depth_mm;
+    test.axial_depth_mm = options.axial_depth_mm;
+    test.feed_mm_per_min = options.feed_mm_per_min;
+    test.spindle_rpm = rpm;
+    test.cut_length_mm = options.cut_length_mm;
+    test.mode = options.up_milling ? sim::MillingMode::kUp : sim::MillingMode::kDown;
+    sim::CuttingTestSetup setup = sim::make_cutting_test(test, tool);
+    request.program = std::move(setup.program);
+    request.stock = std::move(setup.stock);
+    std::ostringstream name;
+    name << "cutting test: " << (options.up_milling ? "up" : "down") << " milling, a_e " << test.radial_depth_mm
+         << " mm, a_p " << test.axial_depth_mm << " mm, F " << test.feed_mm_per_min << " mm/min, S " << rpm << " rpm";
+    job = name.str();
+    request.log_metadata = {{"cutting_test", job},
+                            {"radial_depth_mm", number_text(test.radial_depth_mm)},
+                            {"axial_depth_mm", number_text(test.axial_depth_mm)},
+                            {"feed_per_tooth_mm", number_text(test.feed_mm_per_min / (rpm * tool.flutes))}};
+  } else {
+    request.program = gcode::load_program(options.program_path);
+    notes = request.program.notes;
+    job = options.program_path;
+    request.log_metadata = {{"program", options.program_path}};
+    if (!options.stock_path.empty()) {
+      request.stock = cycles::load_stock_spec(options.stock_path);
+    } else if (spec) {
+      request.stock = cycles::generate(*spec).stock;
+      notes.push_back("stock: the one " + options.spec_path + " implies");
+    } else {
+      request.stock = default_stock(request.program, tool.radius_mm());
+      notes.push_back("no --stock given: assuming a solid block around the program's feed moves below z = 0 "
+                      "(every feed move below z = 0 cuts full material)");
+    }
+  }
+  request.log_metadata.push_back({"material", material.name});
+
+  // 4. Run.
+  ProgressBar progress;
+  request.progress = [&progress](double fraction) { progress(fraction); };
+  const auto started = std::chrono::steady_clock::now();
+  const sim::SimulationResult result = sim::simulate(request);
+  const double wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+
+  // 5. Outputs, each complete or untouched.
+  if (const std::string error = sim::write_force_log(options.log_path, result.log); !error.empty()) {
+    std::cerr << "feedplan: " << error << "\n";
+    return 1;
+  }
+  if (!options.plot_path.empty()) {
+    const sim::ForcePlotData plot = sim::force_plot_data(result.log, job, result.revolutions);
+    if (const std::string error = sim::write_force_plot(options.plot_path, plot); !error.empty()) {
+      std::cerr << "feedplan: " << error << "\n";
+      return 1;
+    }
+  }
+
+  const auto& s = result.summary;
+  if (options.json) {
+    nlohmann::json out;
+    out["job"] = job;
+    out["tool"] = {{"name", tool.name}, {"diameter_mm", tool.diameter_mm}, {"flutes", tool.flutes}, {"helix_deg", tool.helix_deg}};
+    out["material"] = material.name;
+    out["cycle_time_s"] = s.cycle_time_s;
+    out["cutting_time_s"] = s.cutting_time_s;
+    out["air_time_s"] = s.air_time_s;
+    out["time_in_contact_s"] = s.time_in_contact_s;
+    out["max_revolution_peak_n"] = s.max_revolution_peak_n;
+    out["mean_force_in_contact_n"] = s.mean_force_in_contact_n;
+    out["max_force_z_n"] = s.max_force_z_n;
+    out["steps"] = s.steps;
+    out["step_s"] = s.step_s;
+    out["stock_layers"] = s.stock_layers;
+    out["engagement_bands"] = s.engagement_bands;
+    out["log"] = options.log_path;
+    out["log_rows"] = result.log.rows.size();
+    if (!options.plot_path.empty()) out["plot"] = options.plot_path;
+    out["wall_time_s"] = wall_s;
+    out["revolutions"] = nlohmann::json::array();
+    for (const auto& rev : result.revolutions) {
+      out["revolutions"].push_back({{"t_start_s", rev.t_start_s}, {"peak_xy_n", rev.peak_xy_n}, {"mean_xy_n", rev.mean_xy_n}});
+    }
+    out["notes"] = notes;
+    out["warnings"] = result.warnings;
+    std::cout << out.dump(2) << "\n";
+  } else {
+    std::printf("%s\n", job.c_str());
+    std::printf("tool %s (D%.4g mm, %d flutes, helix %.3g deg), material %s\n", tool.name.c_str(), tool.diameter_mm,
+                tool.flutes, tool.helix_deg, material.name.c_str());
+    std::printf("cycle time %.3f s: cutting moves %.3f s, air %.3f s; tool in contact %.3f s\n", s.cycle_time_s,
+                s.cutting_time_s, s.air_time_s, s.time_in_contact_s);
+    std::printf("force |F_xy|: max per-revolution peak %.1f N, mean in contact %.1f N; max |F_z| %.1f N\n",
+                s.max_revolution_peak_n, s.mean_force_in_contact_n, s.max_force_z_n);
+    std::printf("simulated %lld steps of %.1f us on %d stock layers (%d engagement computations) in %.2f s wall "
+                "(%.1f simulated s per wall s)\n",
+                s.steps, s.step_s * 1e6, s.stock_layers, s.engagement_bands, wall_s,
+                wall_s > 0 ? s.cycle_time_s / wall_s : 0.0);
+    std::printf("force log (%zu rows) written to %s\n", result.log.rows.size(), options.log_path.c_str());
+    if (!options.plot_path.empty()) std::printf("plot written to %s\n", options.plot_path.c_str());
+    for (const auto& note : notes) std::printf("note: %s\n", note.c_str());
+  }
+  for (const auto& warning : result.warnings) std::cerr << "feedplan: warning: " << warning << "\n";
+  return 0;
+}
+
+}  // namespace feedplan::cli

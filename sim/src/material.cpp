@@ -1,0 +1,477 @@
+#include "feedplan/sim/material.hpp"
+
+#include <yaml-cpp/yaml.h>
+
+#include <algorithm>
+#include <array>
+#include <cctype>
+#include <charconv>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <optional>
+#include <sstream>
+#include <system_error>
+
+namespace feedplan::sim {
+
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+// One coefficient field of the YAML `coefficients:` mapping and where it goes in CuttingCoefficients.
+struct CoefficientField {
+  const char* key;
+  double CuttingCoefficients::*member;
+  const char* unit;
+  const char* meaning;
+  bool must_be_positive;  // ktc: a material without a tangential cutting force cuts nothing
+};
+
+const std::array<CoefficientField, 6> kCoefficientFields = {{
+    {"ktc_n_per_mm2", &CuttingCoefficients::ktc_n_per_mm2, "N/mm²", "tangential cutting coefficient Ktc", true},
+    {"krc_n_per_mm2", &CuttingCoefficients::krc_n_per_mm2, "N/mm²", "radial cutting coefficient Krc", false},
+    {"kac_n_per_mm2", &CuttingCoefficients::kac_n_per_mm2, "N/mm²", "axial cutting coefficient Kac", false},
+    {"kte_n_per_mm", &CuttingCoefficients::kte_n_per_mm, "N/mm", "tangential edge coefficient Kte", false},
+    {"kre_n_per_mm", &CuttingCoefficients::kre_n_per_mm, "N/mm", "radial edge coefficient Kre", false},
+    {"kae_n_per_mm", &CuttingCoefficients::kae_n_per_mm, "N/mm", "axial edge coefficient Kae", false},
+}};
+
+const std::vector<std::string> kMaterialFields = {"name",        "aliases",     "description", "source",
+                                                  "coefficients", "size_effect", "sources"};
+const std::vector<std::string> kSizeEffectFields = {"exponent", "reference_chip_mm", "min_chip_mm"};
+
+std::string lower(std::string text) {
+  std::transform(text.begin(), text.end(), text.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return text;
+}
+
+std::string trim(const std::string& text) {
+  const auto first = text.find_first_not_of(" \t\r\n");
+  if (first == std::string::npos) return {};
+  const auto last = text.find_last_not_of(" \t\r\n");
+  return text.substr(first, last - first + 1);
+}
+
+std::string join(const std::vector<std::string>& items, const std::string& separator) {
+  std::string text;
+  for (const auto& item : items) {
+    if (!text.empty()) text += separator;
+    text += item;
+  }
+  return text;
+}
+
+// Levenshtein distance, for "did you mean".
+std::size_t edit_distance(const std::string& a, const std::string& b) {
+  std::vector<std::size_t> row(b.size() + 1);
+  for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
+  for (std::size_t i = 1; i <= a.size(); ++i) {
+    std::size_t diagonal = row[0];
+    row[0] = i;
+    for (std::size_t j = 1; j <= b.size(); ++j) {
+      const std::size_t above = row[j];
+      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] == b[j - 1] ? 0 : 1)});
+      diagonal = above;
+    }
+  }
+  return row[b.size()];
+}
+
+// The candidate closest to `word` (ignoring case) within 2 edits, or "" when none is that close.
+std::string closest(const std::string& word, const std::vector<std::string>& candidates) {
+  std::string best;
+  std::size_t best_distance = 3;
+  for (const auto& candidate : candidates) {
+    const std::size_t distance = edit_distance(lower(word), lower(candidate));
+    if (distance < best_distance) {
+      best_distance = distance;
+      best = candidate;
+    }
+  }
+  return best;
+}
+
+// Shortest text that reads back as the same double ("796", "0.1", "nan").
+std::string format_number(double value) {
+  if (std::isnan(value)) return "nan";
+  if (std::isinf(value)) return value > 0 ? "inf" : "-inf";
+  std::array<char, 32> buffer{};
+  const auto result = std::to_chars(buffer.data(), buffer.data() + buffer.size(), value, std::chars_format::general);
+  return std::string(buffer.data(), result.ptr);
+}
+
+// A YAML value as the user wrote it: quoted strings in quotes, lists and mappings in flow style.
+std::string display(const YAML::Node& node) {
+  switch (node.Type()) {
+    case YAML::NodeType::Scalar:
+      return node.Tag() == "!" ? "\"" + node.Scalar() + "\"" : node.Scalar();
+    case YAML::NodeType::Sequence: {
+      std::vector<std::string> items;
+      for (const auto& item : node) items.push_back(display(item));
+      return "[" + join(items, ", ") + "]";
+    }
+    case YAML::NodeType::Map: {
+      std::vector<std::string> items;
+      for (const auto& item : node) items.push_back(display(item.first) + ": " + display(item.second));
+      return "{" + join(items, ", ") + "}";
+    }
+    default:
+      return "null";
+  }
+}
+
+int line_of(const YAML::Node& node) {
+  const YAML::Mark mark = node.Mark();
+  return mark.is_null() ? 0 : mark.line + 1;
+}
+
+std::string with_line(const std::string& field, int line) {
+  return line > 0 ? field + " (line " + std::to_string(line) + ")" : field;
+}
+
+std::string child(const std::string& path, const std::string& key) { return path.empty() ? key : path + "." + key; }
+
+// Collects structural and value problems while walking the YAML tree.
+class Reader {
+ public:
+  std::vector<InputProblem> problems;
+
+  void add(const std::string& field, int line, const std::string& message) {
+    problems.push_back({with_line(field, line), message});
+  }
+
+  // Checks that `node` (the value of `path`) is a mapping with known keys only.
+  bool mapping(const YAML::Node& node, const std::string& path, const std::vector<std::string>& allowed,
+               const std::string& what) {
+    if (!node.IsMap()) {
+      type_problem(path, node, "must be a mapping — " + what + " with fields " + join(allowed, ", "));
+      return false;
+    }
+    // Suggest among the fields not given yet: "kte_n_per_mm2" is one edit from both ktc_n_per_mm2
+    // and kte_n_per_mm, but only the missing one is meant.
+    std::vector<std::string> unused;
+    for (const auto& name : allowed) {
+      if (!node[name]) unused.push_back(name);
+    }
+    for (const auto& item : node) {
+      const std::string key = item.first.IsScalar() ? item.first.Scalar() : display(item.first);
+      if (std::find(allowed.begin(), allowed.end(), key) != allowed.end()) continue;
+      std::string message = "is not a known field; expected one of " + join(allowed, ", ");
+      std::string best = closest(key, unused);
+      if (best.empty()) best = closest(key, allowed);
+      if (!best.empty()) message += " (did you mean " + best + "?)";
+      add(child(path, key), line_of(item.first), message);
+    }
+    return true;
+  }
+
+  // A number at map[key]; nullopt (and a problem) when missing or not a number. ".nan" and ".inf" are
+  // numbers here: the range checks report them with the allowed range.
+  std::optional<double> number(const YAML::Node& map, const std::string& path, const std::string& key,
+                               const std::string& meaning) {
+    const YAML::Node node = map[key];
+    if (!node) {
+      missing(map, path, key, meaning);
+      return std::nullopt;
+    }
+    double value = 0;
+    if (!node.IsScalar() || node.Tag() == "!" || !YAML::convert<double>::decode(node, value)) {
+      type_problem(child(path, key), node, "must be a number — " + meaning);
+      return std::nullopt;
+    }
+    return value;
+  }
+
+  // Text at map[key]; empty when missing (a problem only when required) or not text.
+  std::string text(const YAML::Node& map, const std::string& path, const std::string& key, bool required,
+                   const std::string& meaning) {
+    const YAML::Node node = map[key];
+    if (!node) {
+      if (required) missing(map, path, key, meaning);
+      return {};
+    }
+    if (!node.IsScalar()) {
+      type_problem(child(path, key), node, "must be text — " + meaning);
+      return {};
+    }
+    return node.Scalar();
+  }
+
+  // Appends `<field> = <value>: must be ≥ 0 N/mm² — ...` unless the value is finite and in range.
+  void check_range(const std::string& field, int line, double value, double low, bool low_closed,
+                   const std::string& unit, const std::string& why) {
+    if (std::isfinite(value) && (low_closed ? value >= low : value > low)) return;
+    const std::string range = (low_closed ? "≥ " : "> ") + format_number(low) + (unit.empty() ? "" : " " + unit);
+    add(field, line,
+        "= " + format_number(value) + ": must be " + (std::isfinite(value) ? "" : "a finite number ") + range + " — " +
+            why);
+  }
+
+  void missing(const YAML::Node& map, const std::string& path, const std::string& key, const std::string& meaning) {
+    const std::string where = path.empty() ? "" : " from " + path + " (line " + std::to_string(line_of(map)) + ")";
+    problems.push_back({child(path, key), "is missing" + where + ": required — " + meaning});
+  }
+
+  void type_problem(const std::string& field, const YAML::Node& node, const std::string& expected) {
+    const std::string value = node.IsNull() ? "has no value" : "= " + display(node);
+    add(field, line_of(node), value + ": " + expected);
+  }
+
+};
+
+// Where a name or alias was first used, to report duplicates.
+struct NameUse {
+  std::string field;
+  std::string material;
+};
+
+Material read_material(Reader& in, const YAML::Node& node, const std::string& path) {
+  Material m;
+  if (!in.mapping(node, path, kMaterialFields, "one material")) return m;
+  m.name = trim(in.text(node, path, "name", true, "the material's canonical name, e.g. S50C"));
+  if (node["name"] && node["name"].IsScalar() && m.name.empty()) {
+    in.add(child(path, "name"), line_of(node["name"]), "= \"\": must not be empty — the material's canonical name");
+  }
+  const std::string who = m.name.empty() ? path : m.name;
+
+  if (const YAML::Node aliases = node["aliases"]) {
+    const std::string field = child(path, "aliases");
+    if (!aliases.IsSequence()) {
+      in.type_problem(field, aliases, "must be a list of names, e.g. [\"1045\", C45]");
+    } else {
+      for (std::size_t i = 0; i < aliases.size(); ++i) {
+        const std::string item_field = field + "[" + std::to_string(i) + "]";
+        if (!aliases[i].IsScalar()) {
+          in.type_problem(item_field, aliases[i], "must be a name (text)");
+          continue;
+        }
+        const std::string alias = trim(aliases[i].Scalar());
+        if (alias.empty()) {
+          in.add(item_field, line_of(aliases[i]), "= \"\": must not be empty — an alias of " + who);
+          continue;
+        }
+        m.aliases.push_back(alias);
+      }
+    }
+  }
+  m.description = in.text(node, path, "description", false, "what the material is");
+  m.source = trim(in.text(node, path, "source", true,
+                          "where the coefficients come from (a book, a vendor table, a cutting test, or "
+                          "\"estimate\")"));
+  if (node["source"] && node["source"].IsScalar() && m.source.empty()) {
+    in.add(child(path, "source"), line_of(node["source"]),
+           "= \"\": must say where the coefficients of " + who + " come from (write \"estimate\" if nothing stands "
+           "behind them)");
+  }
+
+  const std::string coefficients_path = child(path, "coefficients");
+  if (const YAML::Node coefficients = node["coefficients"]) {
+    std::vector<std::string> keys;
+    for (const auto& f : kCoefficientFields) keys.emplace_back(f.key);
+    if (in.mapping(coefficients, coefficients_path, keys, "the mechanistic cutting coefficients")) {
+      for (const auto& f : kCoefficientFields) {
+        const std::string meaning = std::string(f.meaning) + " in " + f.unit;
+        const std::optional<double> value = in.number(coefficients, coefficients_path, f.key, meaning);
+        m.coefficients.*(f.member) = value.value_or(kNaN);
+        if (value) {
+          in.check_range(child(coefficients_path, f.key), line_of(coefficients[f.key]), *value, 0.0,
+                         !f.must_be_positive, f.unit, std::string(f.meaning) + " of " + who);
+        }
+      }
+    }
+  } else {
+    in.missing(node, path, "coefficients",
+               "the cutting coefficients {ktc_n_per_mm2, krc_n_per_mm2, kac_n_per_mm2, kte_n_per_mm, kre_n_per_mm, "
+               "kae_n_per_mm}");
+  }
+
+  if (const YAML::Node size = node["size_effect"]) {
+    const std::string size_path = child(path, "size_effect");
+    if (in.mapping(size, size_path, kSizeEffectFields, "the size effect k_c ∝ (h / reference_chip_mm)^(−exponent)")) {
+      CuttingCoefficients& c = m.coefficients;
+      const std::optional<double> exponent =
+          in.number(size, size_path, "exponent", "size-effect exponent m_c (DESIGN §6.2: ≈ 0.13 steel, 0 = off)");
+      const std::optional<double> reference =
+          in.number(size, size_path, "reference_chip_mm", "chip thickness in mm at which the K*c values hold");
+      std::optional<double> min_chip;
+      if (size["min_chip_mm"]) {
+        min_chip = in.number(size, size_path, "min_chip_mm",
+                             "smallest chip thickness in mm the size effect is evaluated at");
+      }
+      c.size_exponent = exponent.value_or(kNaN);
+      c.size_reference_chip_mm = reference.value_or(kNaN);
+      if (min_chip) c.size_min_chip_mm = *min_chip;
+      if (exponent && !(std::isfinite(*exponent) && *exponent >= 0.0 && *exponent < 1.0)) {
+        in.add(child(size_path, "exponent"), line_of(size["exponent"]),
+               "= " + format_number(*exponent) + ": must be in [0, 1) — size-effect exponent m_c of " + who +
+                   " (0 turns it off)");
+      }
+      if (reference) {
+        in.check_range(child(size_path, "reference_chip_mm"), line_of(size["reference_chip_mm"]), *reference, 0.0,
+                       false, "mm", "reference chip thickness of " + who);
+      }
+      if (min_chip) {
+        const bool reference_ok = reference && std::isfinite(*reference) && *reference > 0.0;
+        const bool ok = std::isfinite(*min_chip) && *min_chip > 0.0 && (!reference_ok || *min_chip <= *reference);
+        if (!ok) {
+          in.add(child(size_path, "min_chip_mm"), line_of(size["min_chip_mm"]),
+                 "= " + format_number(*min_chip) + ": must be in (0, " +
+                     (reference_ok ? format_number(*reference) : std::string("reference_chip_mm")) +
+                     "] mm — smallest chip thickness the size effect of " + who + " is evaluated at");
+        }
+      }
+    }
+  }
+
+  if (const YAML::Node sources = node["sources"]) {
+    const std::string sources_path = child(path, "sources");
+    std::vector<std::string> keys;
+    for (const auto& f : kCoefficientFields) keys.emplace_back(f.key);
+    keys.emplace_back("size_effect");
+    if (in.mapping(sources, sources_path, keys, "where single coefficients come from")) {
+      for (const auto& item : sources) {
+        const std::string key = item.first.IsScalar() ? item.first.Scalar() : display(item.first);
+        if (std::find(keys.begin(), keys.end(), key) == keys.end()) continue;  // reported by mapping()
+        if (!item.second.IsScalar() || trim(item.second.Scalar()).empty()) {
+          in.type_problem(child(sources_path, key), item.second, "must be text saying where " + key + " comes from");
+          continue;
+        }
+        m.coefficient_sources[key] = trim(item.second.Scalar());
+      }
+    }
+  }
+  return m;
+}
+
+std::string material_names(const Material& m) {
+  if (m.aliases.empty()) return m.name;
+  return m.name + " (" + join(m.aliases, ", ") + ")";
+}
+
+}  // namespace
+
+const Material* MaterialLibrary::find(const std::string& name) const {
+  const std::string wanted = lower(trim(name));
+  if (wanted.empty()) return nullptr;
+  for (const auto& m : materials) {
+    if (lower(m.name) == wanted) return &m;
+    for (const auto& alias : m.aliases) {
+      if (lower(alias) == wanted) return &m;
+    }
+  }
+  return nullptr;
+}
+
+const Material& MaterialLibrary::get(const std::string& name, const std::string& field) const {
+  if (const Material* m = find(name)) return *m;
+  throw InputError({unknown_material_problem(*this, name, field)});
+}
+
+InputProblem unknown_material_problem(const MaterialLibrary& library, const std::string& name,
+                                      const std::string& field) {
+  std::vector<std::string> known;
+  std::vector<std::string> all_names;
+  for (const auto& m : library.materials) {
+    known.push_back(material_names(m));
+    all_names.push_back(m.name);
+    all_names.insert(all_names.end(), m.aliases.begin(), m.aliases.end());
+  }
+  std::string message = "= \"" + name + "\": unknown material; known";
+  if (!library.source_name.empty()) message += " in " + library.source_name;
+  message += ": " + (known.empty() ? std::string("none") : join(known, ", "));
+  std::string best = closest(trim(name), all_names);
+  if (best.empty() && !trim(name).empty()) {
+    // "s50" → "S50C": a prefix is as good a hint as a typo.
+    for (const auto& candidate : all_names) {
+      if (lower(candidate).rfind(lower(trim(name)), 0) == 0) {
+        best = candidate;
+        break;
+      }
+    }
+  }
+  if (!best.empty()) {
+    const Material* m = library.find(best);
+    message += " (did you mean " + best + (m != nullptr && m->name != best ? " = " + m->name : "") + "?)";
+  }
+  return {field, message};
+}
+
+MaterialLibrary read_materials(const std::string& yaml_text, const std::string& source_name) {
+  YAML::Node loaded;
+  try {
+    loaded = YAML::Load(yaml_text);
+  } catch (const YAML::Exception& e) {
+    std::string where;
+    if (!e.mark.is_null()) {
+      where = " at line " + std::to_string(e.mark.line + 1) + ", column " + std::to_string(e.mark.column + 1);
+    }
+    throw InputError(source_name, "is not valid YAML" + where + ": " + e.msg);
+  }
+  // Const access only: a non-const operator[] may add the key it looks up.
+  const YAML::Node& root = loaded;
+  const std::string expected = "expected a material library: materials: [{name, aliases, description, source, "
+                               "coefficients: {ktc_n_per_mm2, ...}}, ...] (see data/materials.yaml)";
+  if (!root || root.IsNull()) throw InputError(source_name, "is empty: " + expected);
+  if (!root.IsMap()) {
+    throw InputError(source_name, "is not a YAML mapping (it is " +
+                                      std::string(root.IsSequence() ? "a list" : "a single value") + "): " + expected);
+  }
+
+  Reader in;
+  MaterialLibrary library;
+  library.source_name = source_name;
+  in.mapping(root, "", {"materials"}, "a material library");
+  const YAML::Node list = root["materials"];
+  if (!list) {
+    in.missing(root, "", "materials", "the list of materials");
+  } else if (!list.IsSequence() || list.size() == 0) {
+    in.type_problem("materials", list, "must be a non-empty list of materials, each {name, source, coefficients, ...}");
+  } else {
+    std::map<std::string, NameUse> used;  // lower-case name or alias → first use
+    for (std::size_t i = 0; i < list.size(); ++i) {
+      const std::string path = "materials[" + std::to_string(i) + "]";
+      Material m = read_material(in, list[i], path);
+      if (!list[i].IsMap()) continue;
+      // Names and aliases share one namespace: find() must never be ambiguous.
+      auto claim = [&](const std::string& name, const std::string& field, const YAML::Node& node) {
+        if (name.empty()) return;
+        const auto [it, inserted] = used.emplace(lower(name), NameUse{with_line(field, line_of(node)), m.name});
+        if (inserted) return;
+        in.add(field, line_of(node),
+               "= \"" + name + "\": already used by " + it->second.field +
+                   (it->second.material.empty() || it->second.material == m.name ? "" : " (" + it->second.material + ")") +
+                   " — names and aliases must be unique, ignoring case");
+      };
+      if (list[i]["name"]) claim(m.name, child(path, "name"), list[i]["name"]);
+      const YAML::Node aliases = list[i]["aliases"];
+      if (aliases && aliases.IsSequence()) {
+        for (std::size_t a = 0; a < aliases.size(); ++a) {
+          if (aliases[a].IsScalar()) {
+            claim(trim(aliases[a].Scalar()), child(path, "aliases") + "[" + std::to_string(a) + "]", aliases[a]);
+          }
+        }
+      }
+      library.materials.push_back(std::move(m));
+    }
+  }
+  if (!in.problems.empty()) throw InputError(std::move(in.problems));
+  return library;
+}
+
+MaterialLibrary load_materials(const std::string& path) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  if (!fs::exists(path, ec)) throw InputError(path, "cannot be read: no such file (expected a material library)");
+  if (fs::is_directory(path, ec)) throw InputError(path, "cannot be read: it is a directory, not a material library");
+  std::ifstream file(path, std::ios::binary);
+  if (!file) throw InputError(path, "cannot be read: permission denied or I/O error");
+  std::ostringstream text;
+  text << file.rdbuf();
+  if (file.bad()) throw InputError(path, "cannot be read: I/O error");
+  return read_materials(text.str(), path);
+}
+
+}  // namespace feedplan::sim

@@ -1,0 +1,128 @@
+// End-to-end tests of `feedplan simulate`: a cutting test and a G-code program run and write a force
+// log; bad programs, materials, stocks and flags exit 2 naming the line or field and leave an
+// existing log exactly as it was.
+
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "run_feedplan.hpp"
+
+namespace {
+
+using namespace feedplan::cli_test;
+
+const std::string kTool = "--tool diameter_mm=10,flutes=4,helix_deg=30";
+
+const std::string kProgram =
+    "%\n"
+    "O0100 (side cut along a block)\n"
+    "G21 G17 G90\n"
+    "M3 S6000\n"
+    "G0 X-10 Y0 Z5\n"
+    "G0 Z-3\n"
+    "G1 X20 F600\n"
+    "G2 X30 Y-10 I0 J-10\n"
+    "G0 Z5\n"
+    "M5\n"
+    "M30\n"
+    "%\n";
+
+const std::string kStock =
+    "stock:\n"
+    "  z_bottom_mm: -10\n"
+    "  z_top_mm: 0\n"
+    "  regions:\n"
+    "    - outer: {polygon: [[0, -40], [40, -40], [40, -3.5], [0, -3.5]]}\n";
+
+class SimulateCliTest : public CliTest {
+ protected:
+  // Runs `feedplan simulate <arguments> --log <existing log>` and checks that it exits 2 with
+  // `fragment` in its message and the log untouched.
+  void expect_bad_input(const std::string& arguments, const std::string& fragment) {
+    const fs::path log = dir_ / "existing.csv";
+    std::ofstream(log) << "previous log\n";
+    const RunResult r = run_feedplan("simulate " + arguments + " --log " + log.string());
+    EXPECT_EQ(r.exit_code, 2) << arguments << "\n" << r.output;
+    EXPECT_NE(r.output.find(fragment), std::string::npos) << "expected '" << fragment << "' in:\n" << r.output;
+    EXPECT_EQ(read_text(log), "previous log\n") << arguments;
+  }
+};
+
+TEST_F(SimulateCliTest, CuttingTestWritesALogAndASummary) {
+  const fs::path log = dir_ / "test.csv";
+  const fs::path plot = dir_ / "test.svg";
+  const RunResult r = run_feedplan("simulate --cutting-test " + kTool +
+                                   " --material Al7075-T6 --radial-depth-mm 1.5 --axial-depth-mm 10"
+                                   " --feed-mm-per-min 1120 --spindle-rpm 2800 --log-rate 5000 --json --log " +
+                                   log.string() + " --plot " + plot.string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("\"max_revolution_peak_n\""), std::string::npos) << r.output;
+  const std::string text = read_text(log);
+  EXPECT_NE(text.find("# sample_rate_hz: 5000"), std::string::npos);
+  EXPECT_NE(text.find("# material: Al7075-T6"), std::string::npos);
+  EXPECT_NE(text.find("t_s,x_mm,y_mm,z_mm,fx_n,fy_n,fz_n,feed_mm_per_min,spindle_rpm\n"), std::string::npos);
+  EXPECT_NE(read_text(plot).find("<svg"), std::string::npos);
+}
+
+TEST_F(SimulateCliTest, ProgramRunsOnAGivenStock) {
+  const fs::path program = write_spec("side.ngc", kProgram);
+  const fs::path stock = write_spec("stock.yaml", kStock);
+  const fs::path log = dir_ / "side.csv";
+  const RunResult r = run_feedplan("simulate " + program.string() + " " + kTool + " --material S50C --stock " +
+                                   stock.string() + " --currents --log " + log.string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("cycle time"), std::string::npos) << r.output;
+  EXPECT_NE(read_text(log).find(",ix_a,iy_a,iz_a\n"), std::string::npos);
+}
+
+TEST_F(SimulateCliTest, BadProgramsNameTheLineAndWord) {
+  const fs::path stock = write_spec("stock.yaml", kStock);
+  const std::string common = kTool + " --material S50C --stock " + stock.string();
+  auto program_with = [&](const std::string& name, const std::string& from, const std::string& to) {
+    std::string text = kProgram;
+    text.replace(text.find(from), from.size(), to);
+    return write_spec(name, text).string();
+  };
+  expect_bad_input(program_with("q.ngc", "G1 X20 F600", "G1 X20 F600 Q5") + " " + common, "line 7");
+  expect_bad_input(program_with("nof.ngc", "G1 X20 F600", "G1 X20") + " " + common, "line 7");
+  expect_bad_input(program_with("arc.ngc", "I0 J-10", "I0 J-12") + " " + common, "line 8");
+  expect_bad_input(program_with("nan.ngc", "G1 X20 F600", "G1 Xnan F600") + " " + common, "line 7");
+  expect_bad_input((dir_ / "missing.ngc").string() + " " + common, "missing.ngc");
+}
+
+TEST_F(SimulateCliTest, BadMaterialsStocksAndFlagsNameTheField) {
+  const fs::path program = write_spec("side.ngc", kProgram);
+  const fs::path stock = write_spec("stock.yaml", kStock);
+  const std::string run = program.string() + " " + kTool + " --stock " + stock.string();
+  expect_bad_input(run + " --material S55C", "did you mean S50C");
+  const fs::path materials = write_spec("materials.yaml",
+                                        "materials:\n"
+                                        "  - name: Foo\n"
+                                        "    source: test\n"
+                                        "    coefficients: {ktc_n_per_mm2: -5, krc_n_per_mm2: 1, kac_n_per_mm2: 1,"
+                                        " kte_n_per_mm: 1, kre_n_per_mm: 1, kae_n_per_mm: 1}\n");
+  expect_bad_input(run + " --material Foo --materials " + materials.string(), "ktc_n_per_mm2");
+  const fs::path bad_stock = write_spec("bad_stock.yaml",
+                                        "stock:\n  z_bottom_mm: -10\n  z_top_mm: 0\n  regions:\n"
+                                        "    - outer: {circle: {center: [0, 0], radius_mm: -4}}\n");
+  expect_bad_input(program.string() + " " + kTool + " --material S50C --stock " + bad_stock.string(),
+                   "stock.regions[0].outer.circle.radius_mm (line 5)");
+  expect_bad_input(program.string() + " --tool diameter_mm=ten --material S50C", "--tool diameter_mm");
+  expect_bad_input(program.string() + " --tool diameter_mm=10,flutez=4 --material S50C", "flutez");
+  expect_bad_input(run + " --material S50C --runout-mm 0.01,0.02", "options.runout_mm");
+  expect_bad_input(run + " --material S50C --noise-n -1", "--noise-n");
+  expect_bad_input(run + " --material S50C --cutting-test", "not both");
+  expect_bad_input("--cutting-test " + kTool + " --material S50C --radial-depth-mm 12 --axial-depth-mm 10"
+                   " --feed-mm-per-min 500 --spindle-rpm 3000",
+                   "cutting_test.radial_depth_mm");
+}
+
+TEST_F(SimulateCliTest, UnwritableLogFailsWithExitOne) {
+  const RunResult r = run_feedplan("simulate --cutting-test " + kTool +
+                                   " --material S50C --radial-depth-mm 1 --axial-depth-mm 5 --feed-mm-per-min 500"
+                                   " --spindle-rpm 3000 --log /nonexistent-dir/x.csv");
+  EXPECT_EQ(r.exit_code, 1) << r.output;
+}
+
+}  // namespace
