@@ -34,11 +34,23 @@ LayeredEngagement::LayeredEngagement(const geometry::ToolPath& path, const geome
   //    up with its depth); nothing below the stock bottom can be cut.
   double lowest = std::numeric_limits<double>::infinity();
   std::vector<ZRange> ranges;
+  // A vertical move (no XY travel) removes the same disc from every layer between its ends: only its
+  // two end heights can separate layers. A move with XY travel and a z change (helix, ramp) can make
+  // every layer it spans different.
+  auto add_range = [&ranges](const geometry::Move& move) {
+    const ZRange range = z_range_of(move);
+    if (geometry::xy_length_mm(move) <= 1e-9) {
+      ranges.push_back({range.lo, range.lo});
+      ranges.push_back({range.hi, range.hi});
+    } else {
+      ranges.push_back(range);
+    }
+  };
   for (const auto& move : path.moves) {
-    ranges.push_back(z_range_of(move));
-    if (move.kind != geometry::MoveKind::kRapid) lowest = std::min(lowest, ranges.back().lo);
+    add_range(move);
+    if (move.kind != geometry::MoveKind::kRapid) lowest = std::min(lowest, z_range_of(move).lo);
   }
-  for (const auto& swept : stock.removed) ranges.push_back(z_range_of(swept.move));
+  for (const auto& swept : stock.removed) add_range(swept.move);
   if (!std::isfinite(lowest) || lowest >= stock.z_top_mm) return;  // no feed move reaches the stock
   z_base_mm_ = std::max(lowest, stock.z_bottom_mm);
   const int count = std::max(1, static_cast<int>(std::ceil((stock.z_top_mm - z_base_mm_) / thickness_mm_ - 1e-9)));

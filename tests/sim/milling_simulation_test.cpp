@@ -138,6 +138,26 @@ double peak_spread(const SimulationResult& result, double t_lo, double t_hi, int
   return count > 0 ? (hi - lo) / (sum / count) : 1.0;
 }
 
+TEST(MillingSimulation, DesignMagnitudeCheckForSteel) {
+  // DESIGN.md §6.2: S50C-like Ktc 2000, Krc 0.3 Ktc (no edge forces), D10 Z4, 2800 rpm, a_p 10, a_e 1.5,
+  // 1000 mm/min → mean |F| ≈ 350 N, peak ≈ 480–490 N, the magnitude seed 003 reports.
+  SimulationRequest request = cutting_test_request(1.5, MillingMode::kDown, 1000.0 / (4 * 2800), 2800);
+  request.coefficients = CuttingCoefficients{};
+  request.coefficients.ktc_n_per_mm2 = 2000;
+  request.coefficients.krc_n_per_mm2 = 600;
+  const SimulationResult result = simulate(request);
+  const double c = 1000.0 / (4 * 2800);
+  const Mean truth = closed_form_mean(4, 10, c, kPi - std::acos(0.7), kPi, request.coefficients);
+  const Mean sim = steady_mean(result, 1000, 60.0 / (4 * 2800), 7.0, 33.0);
+  std::printf("S50C-like check: |mean F| %.1f N (closed form %.1f N), max per-revolution peak %.1f N\n",
+              std::hypot(sim.fx_n, sim.fy_n), std::hypot(truth.fx_n, truth.fy_n), result.summary.max_revolution_peak_n);
+  EXPECT_NEAR(std::hypot(sim.fx_n, sim.fy_n), std::hypot(truth.fx_n, truth.fy_n), 0.01 * std::hypot(truth.fx_n, truth.fy_n));
+  EXPECT_NEAR(std::hypot(truth.fx_n, truth.fy_n), 350, 5);
+  EXPECT_GT(result.summary.max_revolution_peak_n, 470);
+  EXPECT_LT(result.summary.max_revolution_peak_n, 500);
+  EXPECT_EQ(result.summary.engagement_bands, 1);  // a 2.5D cut: one engagement computation for all layers
+}
+
 TEST(MillingSimulation, PeaksAreSteadyOnAStraightCut) {
   const SimulationRequest request = cutting_test_request(1.5, MillingMode::kDown, 0.1, 2800);
   const SimulationResult result = simulate(request);
