@@ -47,7 +47,11 @@ AngleIntervals inside_angles(const Contour& contour, Vec2 p, double r) {
     }
   }
   if (crossings.empty()) {
-    if (inside_contour(contour, p + r * unit_at(0.0))) result.push_back({0.0, kTwoPi});
+    // Wholly inside or wholly outside, possibly touching the boundary at tangent points (a circle
+    // tangent to an edge at θ = 0 is the common case: the tool beside a block face). Classify by a
+    // point at a generic angle, never one of the round angles a tangency tends to sit at.
+    constexpr double kGenericAngleRad = 1.2345678;
+    if (inside_contour(contour, p + r * unit_at(kGenericAngleRad))) result.push_back({0.0, kTwoPi});
     return result;
   }
   std::sort(crossings.begin(), crossings.end());
