@@ -14,6 +14,7 @@
 
 #include "feedplan/core/atomic_file.hpp"
 #include "feedplan/core/input_error.hpp"
+#include "feedplan/core/number_text.hpp"
 #include "feedplan/cycles/cycle.hpp"
 #include "feedplan/cycles/spec_reader.hpp"
 #include "feedplan/gcode/reader.hpp"
@@ -27,12 +28,6 @@
 namespace feedplan::cli {
 
 namespace {
-
-std::string number_text(double value) {
-  std::ostringstream out;
-  out << value;
-  return out.str();
-}
 
 // "diameter_mm=10,flutes=4,helix_deg=30,name=SC EM D10 Z4" → Tool, every problem named "--tool".
 geometry::Tool parse_tool(const std::string& text, std::vector<InputProblem>& problems) {
@@ -78,7 +73,7 @@ geometry::Tool parse_tool(const std::string& text, std::vector<InputProblem>& pr
     }
   }
   if (!have_diameter) problems.push_back({"--tool", "= '" + text + "': diameter_mm is required, e.g. diameter_mm=10,flutes=4"});
-  if (tool.name.empty()) tool.name = "D" + number_text(tool.diameter_mm) + " Z" + std::to_string(tool.flutes);
+  if (tool.name.empty()) tool.name = "D" + six_digit_number_text(tool.diameter_mm) + " Z" + std::to_string(tool.flutes);
   return tool;
 }
 
@@ -219,11 +214,12 @@ int run_simulate_command(const SimulateOptions& options) {
   double rpm = options.spindle_rpm;
   if (rpm == 0.0 && spec) rpm = spec->spindle_rpm;
   if (!(std::isfinite(rpm) && rpm >= 0.0)) {
-    problems.push_back({"--spindle-rpm", "= " + number_text(options.spindle_rpm) + ": must be a finite number ≥ 0"});
+    problems.push_back(
+        {"--spindle-rpm", "= " + six_digit_number_text(options.spindle_rpm) + ": must be a finite number ≥ 0"});
   }
   auto check_flag = [&](const char* flag, double value, bool zero_allowed) {
     if (!(std::isfinite(value) && (value > 0.0 || (zero_allowed && value == 0.0)))) {
-      problems.push_back({flag, "= " + number_text(value) + ": must be a finite number > 0"});
+      problems.push_back({flag, "= " + six_digit_number_text(value) + ": must be a finite number > 0"});
     }
   };
   check_flag("--max-accel", options.max_accel_mm_per_s2, true);
@@ -231,7 +227,7 @@ int run_simulate_command(const SimulateOptions& options) {
   check_flag("--max-feed", options.max_feed_mm_per_min, true);
   check_flag("--log-rate", options.log_rate_hz, false);
   if (!(std::isfinite(options.noise_n) && options.noise_n >= 0.0)) {
-    problems.push_back({"--noise-n", "= " + number_text(options.noise_n) + ": must be a finite number ≥ 0"});
+    problems.push_back({"--noise-n", "= " + six_digit_number_text(options.noise_n) + ": must be a finite number ≥ 0"});
   }
   std::vector<double> runout;
   if (!options.runout_text.empty()) runout = parse_runout(options.runout_text, problems);
@@ -284,9 +280,9 @@ int run_simulate_command(const SimulateOptions& options) {
          << " mm, a_p " << test.axial_depth_mm << " mm, F " << test.feed_mm_per_min << " mm/min, S " << rpm << " rpm";
     job = name.str();
     request.log_metadata = {{"cutting_test", job},
-                            {"radial_depth_mm", number_text(test.radial_depth_mm)},
-                            {"axial_depth_mm", number_text(test.axial_depth_mm)},
-                            {"feed_per_tooth_mm", number_text(test.feed_mm_per_min / (rpm * tool.flutes))}};
+                            {"radial_depth_mm", six_digit_number_text(test.radial_depth_mm)},
+                            {"axial_depth_mm", six_digit_number_text(test.axial_depth_mm)},
+                            {"feed_per_tooth_mm", six_digit_number_text(test.feed_mm_per_min / (rpm * tool.flutes))}};
   } else {
     request.program = gcode::load_program(options.program_path);
     notes = request.program.notes;

@@ -1,16 +1,15 @@
 #include "problems.hpp"
 
 #include <cmath>
-#include <sstream>
+
+#include "feedplan/core/number_text.hpp"
 
 namespace feedplan::cycles::detail {
 
 std::string format_number(double value) {
+  // Unlike six_digit_number_text, a NaN with its sign bit set (0.0 / 0.0 on x86) is "nan" too.
   if (std::isnan(value)) return "nan";
-  if (std::isinf(value)) return value > 0 ? "inf" : "-inf";
-  std::ostringstream out;
-  out << value;
-  return out.str();
+  return six_digit_number_text(value);
 }
 
 std::string format_point(const geometry::Point2& point) {

@@ -14,7 +14,9 @@
 #include <vector>
 
 #include "common_checks.hpp"
+#include "feedplan/core/did_you_mean.hpp"
 #include "feedplan/core/input_error.hpp"
+#include "feedplan/core/yaml_text.hpp"
 #include "feedplan/cycles/cycle.hpp"
 #include "problems.hpp"
 
@@ -37,51 +39,6 @@ std::string join(const std::vector<std::string>& items, const std::string& separ
   return text;
 }
 
-// Levenshtein distance, for "did you mean" on unknown fields.
-std::size_t edit_distance(const std::string& a, const std::string& b) {
-  std::vector<std::size_t> row(b.size() + 1);
-  for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
-  for (std::size_t i = 1; i <= a.size(); ++i) {
-    std::size_t diagonal = row[0];
-    row[0] = i;
-    for (std::size_t j = 1; j <= b.size(); ++j) {
-      const std::size_t above = row[j];
-      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] == b[j - 1] ? 0 : 1)});
-      diagonal = above;
-    }
-  }
-  return row[b.size()];
-}
-
-// A YAML value as the user wrote it: quoted strings in quotes, lists and mappings in flow style.
-std::string display(const YAML::Node& node) {
-  switch (node.Type()) {
-    case YAML::NodeType::Scalar:
-      return node.Tag() == "!" ? "\"" + node.Scalar() + "\"" : node.Scalar();
-    case YAML::NodeType::Sequence: {
-      std::vector<std::string> items;
-      for (const auto& item : node) items.push_back(display(item));
-      return "[" + join(items, ", ") + "]";
-    }
-    case YAML::NodeType::Map: {
-      std::vector<std::string> items;
-      for (const auto& item : node) items.push_back(display(item.first) + ": " + display(item.second));
-      return "{" + join(items, ", ") + "}";
-    }
-    default:
-      return "null";
-  }
-}
-
-int line_of(const YAML::Node& node) {
-  const YAML::Mark mark = node.Mark();
-  return mark.is_null() ? 0 : mark.line + 1;
-}
-
-std::string with_line(const std::string& field, int line) {
-  return line > 0 ? field + " (line " + std::to_string(line) + ")" : field;
-}
-
 // Reads one document into a CycleSpec, collecting structural problems (types, unknown and missing
 // fields) and the YAML line of every field it visits.
 class SpecReader {
@@ -97,22 +54,14 @@ class SpecReader {
       return false;
     }
     for (const auto& item : node) {
-      const std::string key = item.first.IsScalar() ? item.first.Scalar() : display(item.first);
+      const std::string key = item.first.IsScalar() ? item.first.Scalar() : yaml_value_text(item.first);
       const std::string field = child(path, key);
-      lines[field] = line_of(item.first);
+      lines[field] = yaml_line(item.first);
       if (std::find(allowed.begin(), allowed.end(), key) != allowed.end()) continue;
       std::string message = "is not a known field; expected one of " + join(allowed, ", ");
-      std::string best;
-      std::size_t best_distance = 3;
-      for (const auto& name : allowed) {
-        const std::size_t distance = edit_distance(key, name);
-        if (distance < best_distance) {
-          best_distance = distance;
-          best = name;
-        }
-      }
+      const std::string best = closest_name(key, allowed, LetterCase::kSensitive);
       if (!best.empty()) message += " (did you mean " + best + "?)";
-      add(field, line_of(item.first), message);
+      add(field, yaml_line(item.first), message);
     }
     return true;
   }
@@ -146,7 +95,7 @@ class SpecReader {
     if (!map[key]) return 0.0;
     const double value = number(map, path, key, false, 0.0, meaning);
     const std::string field = child(path, key);
-    if (reported.count(field) == 0 && !detail::check(problems, with_line(field, lines[field]), value,
+    if (reported.count(field) == 0 && !detail::check(problems, with_yaml_line(field, lines[field]), value,
                                                      detail::above(0), meaning + "; leave it out when unknown")) {
       reported.insert(field);
     }
@@ -214,7 +163,7 @@ class SpecReader {
     const bool has_polygon = static_cast<bool>(node["polygon"]);
     const bool has_circle = static_cast<bool>(node["circle"]);
     if (has_polygon == has_circle) {
-      add(path, line_of(node), has_polygon ? "has both polygon and circle: give exactly one"
+      add(path, yaml_line(node), has_polygon ? "has both polygon and circle: give exactly one"
                                            : "is empty: give polygon: [[x, y], ...] or circle: {center: [x, y], "
                                              "radius_mm: R}");
       return result;
@@ -237,18 +186,19 @@ class SpecReader {
     result = geometry::Contour::polygon({});
     for (std::size_t i = 0; i < polygon.size(); ++i) {
       const std::string vertex_path = polygon_path + "[" + std::to_string(i) + "]";
-      lines[vertex_path] = line_of(polygon[i]);
+      lines[vertex_path] = yaml_line(polygon[i]);
       Point2 p{kNaN, kNaN};
       if (!polygon[i].IsSequence() || polygon[i].size() != 2 || !coordinate(polygon[i][0], p.x_mm) ||
           !coordinate(polygon[i][1], p.y_mm)) {
         type_problem(vertex_path, polygon[i], "must be [x, y], two numbers in mm");
       } else if (!std::isfinite(p.x_mm) || !std::isfinite(p.y_mm)) {
-        add(vertex_path, line_of(polygon[i]), "= " + display(polygon[i]) + ": coordinates must be finite numbers");
+        add(vertex_path, yaml_line(polygon[i]),
+            "= " + yaml_value_text(polygon[i]) + ": coordinates must be finite numbers");
       }
       result.vertices.push_back(p);
     }
     if (polygon.size() < 3) {
-      add(polygon_path, line_of(polygon),
+      add(polygon_path, yaml_line(polygon),
           "has " + std::to_string(polygon.size()) + " vertices: a polygon needs at least 3");
     }
     return result;
@@ -273,7 +223,7 @@ class SpecReader {
     }
     for (std::size_t i = 0; i < regions.size(); ++i) {
       const std::string region_path = regions_path + "[" + std::to_string(i) + "]";
-      lines[region_path] = line_of(regions[i]);
+      lines[region_path] = yaml_line(regions[i]);
       geometry::StockRegion region;
       if (!mapping(regions[i], region_path, {"outer", "holes"})) continue;
       if (!regions[i]["outer"]) {
@@ -288,7 +238,7 @@ class SpecReader {
         } else {
           for (std::size_t h = 0; h < holes.size(); ++h) {
             const std::string hole_path = holes_path + "[" + std::to_string(h) + "]";
-            lines[hole_path] = line_of(holes[h]);
+            lines[hole_path] = yaml_line(holes[h]);
             region.holes.push_back(contour(holes[h], hole_path));
           }
         }
@@ -299,7 +249,7 @@ class SpecReader {
   }
 
   void add(const std::string& field, int line, const std::string& message) {
-    problems.push_back({with_line(field, line), message});
+    problems.push_back({with_yaml_line(field, line), message});
     reported.insert(field);
   }
 
@@ -320,14 +270,15 @@ class SpecReader {
   }
 
   void missing(const YAML::Node& map, const std::string& path, const std::string& key, const std::string& meaning) {
-    const std::string where = path.empty() ? "" : " from the " + path + " section (line " + std::to_string(line_of(map)) + ")";
+    const std::string where =
+        path.empty() ? "" : " from the " + path + " section (line " + std::to_string(yaml_line(map)) + ")";
     problems.push_back({child(path, key), "is missing" + where + ": required — " + meaning});
     reported.insert(child(path, key));
   }
 
   void type_problem(const std::string& field, const YAML::Node& node, const std::string& expected) {
-    const std::string value = node.IsNull() ? "has no value" : "= " + display(node);
-    add(field, line_of(node), value + ": " + expected);
+    const std::string value = node.IsNull() ? "has no value" : "= " + yaml_value_text(node);
+    add(field, yaml_line(node), value + ": " + expected);
   }
 };
 
@@ -484,8 +435,8 @@ CycleSpec read_cycle_spec(const std::string& yaml_text, const std::string& sourc
   spec.cycle = in.text(root, "", "cycle", true, "one of " + join(kCycleNames, ", "));
   const bool cycle_known = std::find(kCycleNames.begin(), kCycleNames.end(), spec.cycle) != kCycleNames.end();
   if (!cycle_known && in.reported.count("cycle") == 0) {
-    in.add("cycle", line_of(root["cycle"]),
-           "= " + display(root["cycle"]) + ": unknown cycle; expected one of " + join(kCycleNames, ", "));
+    in.add("cycle", yaml_line(root["cycle"]),
+           "= " + yaml_value_text(root["cycle"]) + ": unknown cycle; expected one of " + join(kCycleNames, ", "));
   }
 
   if (const YAML::Node tool = root["tool"]) {
@@ -523,7 +474,7 @@ CycleSpec read_cycle_spec(const std::string& yaml_text, const std::string& sourc
 
   for (const auto& name : kCycleNames) {
     if (name == spec.cycle || !root[name]) continue;
-    in.add(name, line_of(root[name]),
+    in.add(name, yaml_line(root[name]),
            "is a section for cycle " + name + ", but cycle is " + (spec.cycle.empty() ? "not given" : spec.cycle) +
                ": remove it or change cycle");
   }
@@ -570,7 +521,7 @@ CycleSpec read_cycle_spec(const std::string& yaml_text, const std::string& sourc
   std::vector<InputProblem> problems = std::move(in.problems);
   for (auto& problem : semantic) {
     if (in.reported.count(problem.field) != 0) continue;
-    problem.field = with_line(problem.field, line_for(in.lines, problem.field));
+    problem.field = with_yaml_line(problem.field, line_for(in.lines, problem.field));
     problems.push_back(std::move(problem));
   }
   if (!problems.empty()) throw InputError(std::move(problems));
@@ -609,7 +560,7 @@ geometry::Stock read_stock_spec(const std::string& yaml_text, const std::string&
       const bool repeats = std::any_of(bad_stock_parts.begin(), bad_stock_parts.end(),
                                        [&](const std::string& part) { return is_within(problem.field, part); });
       if (repeats || in.reported.count(problem.field) != 0) continue;
-      problem.field = with_line(problem.field, line_for(in.lines, problem.field));
+      problem.field = with_yaml_line(problem.field, line_for(in.lines, problem.field));
       problems.push_back(std::move(problem));
     }
   }

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <sstream>
 
+#include "feedplan/core/number_text.hpp"
 #include "stock_section.hpp"
 #include "vec2.hpp"
 
@@ -15,12 +16,6 @@ namespace {
 
 using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
 using Polygon = CGAL::Polygon_2<Kernel>;
-
-std::string fmt_num(double value) {
-  std::ostringstream out;
-  out << value;
-  return out.str();
-}
 
 bool finite(const Point2& p) { return std::isfinite(p.x_mm) && std::isfinite(p.y_mm); }
 
@@ -45,7 +40,7 @@ bool check_contour(const Contour& contour, const std::string& field, std::vector
       return false;
     }
     if (!(contour.radius_mm > 0.0) || !std::isfinite(contour.radius_mm)) {
-      problems.push_back({field + ".radius_mm", "= " + fmt_num(contour.radius_mm) + ": must be a finite number > 0"});
+      problems.push_back({field + ".radius_mm", "= " + six_digit_number_text(contour.radius_mm) + ": must be a finite number > 0"});
       return false;
     }
     return true;
@@ -150,13 +145,13 @@ bool contours_disjoint(const Contour& a, const Contour& b) {
 std::vector<InputProblem> validate(const Stock& stock, const std::string& field) {
   std::vector<InputProblem> problems;
   if (!std::isfinite(stock.z_bottom_mm)) {
-    problems.push_back({field + ".z_bottom_mm", "= " + fmt_num(stock.z_bottom_mm) + ": must be a finite number"});
+    problems.push_back({field + ".z_bottom_mm", "= " + six_digit_number_text(stock.z_bottom_mm) + ": must be a finite number"});
   }
   if (!std::isfinite(stock.z_top_mm)) {
-    problems.push_back({field + ".z_top_mm", "= " + fmt_num(stock.z_top_mm) + ": must be a finite number"});
+    problems.push_back({field + ".z_top_mm", "= " + six_digit_number_text(stock.z_top_mm) + ": must be a finite number"});
   }
   if (std::isfinite(stock.z_bottom_mm) && std::isfinite(stock.z_top_mm) && !(stock.z_top_mm > stock.z_bottom_mm)) {
-    problems.push_back({field + ".z_top_mm", "= " + fmt_num(stock.z_top_mm) + ": must be > z_bottom_mm = " + fmt_num(stock.z_bottom_mm)});
+    problems.push_back({field + ".z_top_mm", "= " + six_digit_number_text(stock.z_top_mm) + ": must be > z_bottom_mm = " + six_digit_number_text(stock.z_bottom_mm)});
   }
   if (stock.regions.empty()) {
     problems.push_back({field + ".regions", "is empty: the stock needs at least one region of material"});

@@ -4,17 +4,13 @@
 #include <cmath>
 #include <sstream>
 
+#include "feedplan/core/number_text.hpp"
+
 namespace feedplan::sim {
 
 namespace {
 
 constexpr double kClearanceMm = 5.0;
-
-std::string number_text(double value) {
-  std::ostringstream out;
-  out << value;
-  return out.str();
-}
 
 void check(std::vector<InputProblem>& problems, const std::string& field, double value, double low, double high,
            const std::string& why) {
@@ -52,7 +48,8 @@ std::vector<InputProblem> validate(const CuttingTest& test, const geometry::Tool
   check(problems, "spindle_rpm", test.spindle_rpm, 0, INFINITY, "spindle speed S");
   if (std::isfinite(d) && !(std::isfinite(test.cut_length_mm) && test.cut_length_mm >= 2.0 * d)) {
     problems.push_back({"cutting_test.cut_length_mm",
-                        "= " + number_text(test.cut_length_mm) + ": must be ≥ " + number_text(2.0 * d) +
+                        "= " + six_digit_number_text(test.cut_length_mm) + ": must be ≥ " +
+                            six_digit_number_text(2.0 * d) +
                             " (two tool diameters) — the cut needs a steady stretch between entry and exit"});
   }
   return problems;

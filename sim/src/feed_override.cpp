@@ -3,8 +3,9 @@
 #include <algorithm>
 #include <cassert>
 #include <cmath>
-#include <sstream>
 #include <string>
+
+#include "feedplan/core/number_text.hpp"
 
 namespace feedplan::sim {
 
@@ -13,16 +14,10 @@ namespace {
 // The delay line holds dead_time / step + 2 commands; more than this many is a mistake in the step.
 constexpr double kMaxDelaySteps = 1e7;
 
-std::string format_number(double value) {
-  std::ostringstream out;
-  out << value;
-  return out.str();
-}
-
 // Appends "<field> = <value>: must be <rule>" unless `ok`.
 void require(std::vector<InputProblem>& problems, bool ok, const std::string& field, double value,
              const std::string& rule) {
-  if (!ok) problems.push_back({field, "= " + format_number(value) + ": must be " + rule});
+  if (!ok) problems.push_back({field, "= " + six_digit_number_text(value) + ": must be " + rule});
 }
 
 }  // namespace
@@ -39,13 +34,14 @@ std::vector<InputProblem> validate(const FeedOverrideOptions& options, double st
   require(problems, max_ok, "feed_override.max_ratio", max_ratio, "> 0 (1.5 = 150 %)");
   if (max_ok) {
     require(problems, initial >= 0.0 && initial <= max_ratio, "feed_override.initial_ratio", initial,
-            "in [0, max_ratio = " + format_number(max_ratio) + "]");
+            "in [0, max_ratio = " + six_digit_number_text(max_ratio) + "]");
   }
   const bool step_ok = std::isfinite(step_s) && step_s > 0.0;
   require(problems, step_ok, "feed_override.step_s", step_s, "> 0 s");
   if (step_ok && std::isfinite(dead) && dead / step_s > kMaxDelaySteps) {
     require(problems, false, "feed_override.step_s", step_s,
-            "≥ dead_time_s / 1e7 = " + format_number(dead / kMaxDelaySteps) + " s (the delay line would be too long)");
+            "≥ dead_time_s / 1e7 = " + six_digit_number_text(dead / kMaxDelaySteps) +
+                " s (the delay line would be too long)");
   }
   return problems;
 }

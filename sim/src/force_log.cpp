@@ -14,7 +14,9 @@
 #include <system_error>
 
 #include "feedplan/core/atomic_file.hpp"
+#include "feedplan/core/did_you_mean.hpp"
 #include "feedplan/core/input_error.hpp"
+#include "feedplan/core/number_text.hpp"
 
 namespace feedplan::sim {
 
@@ -90,21 +92,6 @@ std::vector<std::string_view> lines_of(std::string_view text) {
   return lines;
 }
 
-std::size_t edit_distance(const std::string& a, const std::string& b) {
-  std::vector<std::size_t> row(b.size() + 1);
-  for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
-  for (std::size_t i = 1; i <= a.size(); ++i) {
-    std::size_t diagonal = row[0];
-    row[0] = i;
-    for (std::size_t j = 1; j <= b.size(); ++j) {
-      const std::size_t above = row[j];
-      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] == b[j - 1] ? 0 : 1)});
-      diagonal = above;
-    }
-  }
-  return row[b.size()];
-}
-
 // A cell as a number: nullopt when it is not one (the whole cell must be the number).
 std::optional<double> parse_number(std::string_view cell) {
   if (!cell.empty() && cell.front() == '+') cell.remove_prefix(1);
@@ -122,12 +109,6 @@ void append_fixed(std::string& out, double value, int decimals) {
   std::string_view text(buffer.data(), static_cast<std::size_t>(result.ptr - buffer.data()));
   if (text.front() == '-' && text.find_first_not_of("-0.") == std::string_view::npos) text.remove_prefix(1);
   out += text;
-}
-
-std::string number_text(double value) {
-  std::array<char, 32> buffer{};
-  const auto result = std::to_chars(buffer.data(), buffer.data() + buffer.size(), value, std::chars_format::general);
-  return std::string(buffer.data(), result.ptr);
 }
 
 // Metadata text on one line: line breaks become spaces.
@@ -200,8 +181,9 @@ bool read_cell(Problems& problems, std::size_t line, std::size_t index, const st
 void check_time_order(Problems& problems, const std::vector<ForceLogRow>& rows, const std::vector<std::size_t>& lines) {
   for (std::size_t i = 1; i < rows.size(); ++i) {
     if (std::isnan(rows[i].t_s) || std::isnan(rows[i - 1].t_s) || rows[i].t_s > rows[i - 1].t_s) continue;
-    problems.add(lines[i], "t_s", "= " + number_text(rows[i].t_s) + ": must be after " + number_text(rows[i - 1].t_s) +
-                                      " on line " + std::to_string(lines[i - 1]) + " — time must increase from row to row");
+    problems.add(lines[i], "t_s",
+                 "= " + shortest_number_text(rows[i].t_s) + ": must be after " + shortest_number_text(rows[i - 1].t_s) +
+                     " on line " + std::to_string(lines[i - 1]) + " — time must increase from row to row");
   }
 }
 
@@ -351,15 +333,7 @@ ForceLog read_ours(const std::vector<std::string_view>& lines, const std::string
         if (it == known.end()) {
           std::string message = "= \"" + name + "\": unknown column; expected " + std::string(kColumnNames[0]);
           for (int k = 1; k < kColumnCount; ++k) message += std::string(", ") + kColumnNames[k];
-          std::string best;
-          std::size_t best_distance = 3;
-          for (const auto& candidate : known) {
-            const std::size_t distance = edit_distance(lower(name), candidate);
-            if (distance < best_distance) {
-              best_distance = distance;
-              best = candidate;
-            }
-          }
+          const std::string best = closest_name(name, known, LetterCase::kIgnored);
           if (!best.empty()) message += " (did you mean " + best + "?)";
           problems.add(i + 1, "column " + std::to_string(c + 1), message);
           columns.push_back(-1);

@@ -5,7 +5,6 @@
 #include <algorithm>
 #include <array>
 #include <cctype>
-#include <charconv>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -13,6 +12,10 @@
 #include <optional>
 #include <sstream>
 #include <system_error>
+
+#include "feedplan/core/did_you_mean.hpp"
+#include "feedplan/core/number_text.hpp"
+#include "feedplan/core/yaml_text.hpp"
 
 namespace feedplan::sim {
 
@@ -64,74 +67,6 @@ std::string join(const std::vector<std::string>& items, const std::string& separ
   return text;
 }
 
-// Levenshtein distance, for "did you mean".
-std::size_t edit_distance(const std::string& a, const std::string& b) {
-  std::vector<std::size_t> row(b.size() + 1);
-  for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
-  for (std::size_t i = 1; i <= a.size(); ++i) {
-    std::size_t diagonal = row[0];
-    row[0] = i;
-    for (std::size_t j = 1; j <= b.size(); ++j) {
-      const std::size_t above = row[j];
-      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] == b[j - 1] ? 0 : 1)});
-      diagonal = above;
-    }
-  }
-  return row[b.size()];
-}
-
-// The candidate closest to `word` (ignoring case) within 2 edits, or "" when none is that close.
-std::string closest(const std::string& word, const std::vector<std::string>& candidates) {
-  std::string best;
-  std::size_t best_distance = 3;
-  for (const auto& candidate : candidates) {
-    const std::size_t distance = edit_distance(lower(word), lower(candidate));
-    if (distance < best_distance) {
-      best_distance = distance;
-      best = candidate;
-    }
-  }
-  return best;
-}
-
-// Shortest text that reads back as the same double ("796", "0.1", "nan").
-std::string format_number(double value) {
-  if (std::isnan(value)) return "nan";
-  if (std::isinf(value)) return value > 0 ? "inf" : "-inf";
-  std::array<char, 32> buffer{};
-  const auto result = std::to_chars(buffer.data(), buffer.data() + buffer.size(), value, std::chars_format::general);
-  return std::string(buffer.data(), result.ptr);
-}
-
-// A YAML value as the user wrote it: quoted strings in quotes, lists and mappings in flow style.
-std::string display(const YAML::Node& node) {
-  switch (node.Type()) {
-    case YAML::NodeType::Scalar:
-      return node.Tag() == "!" ? "\"" + node.Scalar() + "\"" : node.Scalar();
-    case YAML::NodeType::Sequence: {
-      std::vector<std::string> items;
-      for (const auto& item : node) items.push_back(display(item));
-      return "[" + join(items, ", ") + "]";
-    }
-    case YAML::NodeType::Map: {
-      std::vector<std::string> items;
-      for (const auto& item : node) items.push_back(display(item.first) + ": " + display(item.second));
-      return "{" + join(items, ", ") + "}";
-    }
-    default:
-      return "null";
-  }
-}
-
-int line_of(const YAML::Node& node) {
-  const YAML::Mark mark = node.Mark();
-  return mark.is_null() ? 0 : mark.line + 1;
-}
-
-std::string with_line(const std::string& field, int line) {
-  return line > 0 ? field + " (line " + std::to_string(line) + ")" : field;
-}
-
 std::string child(const std::string& path, const std::string& key) { return path.empty() ? key : path + "." + key; }
 
 // Collects structural and value problems while walking the YAML tree.
@@ -140,7 +75,7 @@ class Reader {
   std::vector<InputProblem> problems;
 
   void add(const std::string& field, int line, const std::string& message) {
-    problems.push_back({with_line(field, line), message});
+    problems.push_back({with_yaml_line(field, line), message});
   }
 
   // Checks that `node` (the value of `path`) is a mapping with known keys only.
@@ -157,13 +92,13 @@ class Reader {
       if (!node[name]) unused.push_back(name);
     }
     for (const auto& item : node) {
-      const std::string key = item.first.IsScalar() ? item.first.Scalar() : display(item.first);
+      const std::string key = item.first.IsScalar() ? item.first.Scalar() : yaml_value_text(item.first);
       if (std::find(allowed.begin(), allowed.end(), key) != allowed.end()) continue;
       std::string message = "is not a known field; expected one of " + join(allowed, ", ");
-      std::string best = closest(key, unused);
-      if (best.empty()) best = closest(key, allowed);
+      std::string best = closest_name(key, unused, LetterCase::kIgnored);
+      if (best.empty()) best = closest_name(key, allowed, LetterCase::kIgnored);
       if (!best.empty()) message += " (did you mean " + best + "?)";
-      add(child(path, key), line_of(item.first), message);
+      add(child(path, key), yaml_line(item.first), message);
     }
     return true;
   }
@@ -204,20 +139,20 @@ class Reader {
   void check_range(const std::string& field, int line, double value, double low, bool low_closed,
                    const std::string& unit, const std::string& why) {
     if (std::isfinite(value) && (low_closed ? value >= low : value > low)) return;
-    const std::string range = (low_closed ? "≥ " : "> ") + format_number(low) + (unit.empty() ? "" : " " + unit);
+    const std::string range = (low_closed ? "≥ " : "> ") + shortest_number_text(low) + (unit.empty() ? "" : " " + unit);
     add(field, line,
-        "= " + format_number(value) + ": must be " + (std::isfinite(value) ? "" : "a finite number ") + range + " — " +
-            why);
+        "= " + shortest_number_text(value) + ": must be " + (std::isfinite(value) ? "" : "a finite number ") + range +
+            " — " + why);
   }
 
   void missing(const YAML::Node& map, const std::string& path, const std::string& key, const std::string& meaning) {
-    const std::string where = path.empty() ? "" : " from " + path + " (line " + std::to_string(line_of(map)) + ")";
+    const std::string where = path.empty() ? "" : " from " + path + " (line " + std::to_string(yaml_line(map)) + ")";
     problems.push_back({child(path, key), "is missing" + where + ": required — " + meaning});
   }
 
   void type_problem(const std::string& field, const YAML::Node& node, const std::string& expected) {
-    const std::string value = node.IsNull() ? "has no value" : "= " + display(node);
-    add(field, line_of(node), value + ": " + expected);
+    const std::string value = node.IsNull() ? "has no value" : "= " + yaml_value_text(node);
+    add(field, yaml_line(node), value + ": " + expected);
   }
 
 };
@@ -233,7 +168,7 @@ Material read_material(Reader& in, const YAML::Node& node, const std::string& pa
   if (!in.mapping(node, path, kMaterialFields, "one material")) return m;
   m.name = trim(in.text(node, path, "name", true, "the material's canonical name, e.g. S50C"));
   if (node["name"] && node["name"].IsScalar() && m.name.empty()) {
-    in.add(child(path, "name"), line_of(node["name"]), "= \"\": must not be empty — the material's canonical name");
+    in.add(child(path, "name"), yaml_line(node["name"]), "= \"\": must not be empty — the material's canonical name");
   }
   const std::string who = m.name.empty() ? path : m.name;
 
@@ -250,7 +185,7 @@ Material read_material(Reader& in, const YAML::Node& node, const std::string& pa
         }
         const std::string alias = trim(aliases[i].Scalar());
         if (alias.empty()) {
-          in.add(item_field, line_of(aliases[i]), "= \"\": must not be empty — an alias of " + who);
+          in.add(item_field, yaml_line(aliases[i]), "= \"\": must not be empty — an alias of " + who);
           continue;
         }
         m.aliases.push_back(alias);
@@ -262,7 +197,7 @@ Material read_material(Reader& in, const YAML::Node& node, const std::string& pa
                           "where the coefficients come from (a book, a vendor table, a cutting test, or "
                           "\"estimate\")"));
   if (node["source"] && node["source"].IsScalar() && m.source.empty()) {
-    in.add(child(path, "source"), line_of(node["source"]),
+    in.add(child(path, "source"), yaml_line(node["source"]),
            "= \"\": must say where the coefficients of " + who + " come from (write \"estimate\" if nothing stands "
            "behind them)");
   }
@@ -277,7 +212,7 @@ Material read_material(Reader& in, const YAML::Node& node, const std::string& pa
         const std::optional<double> value = in.number(coefficients, coefficients_path, f.key, meaning);
         m.coefficients.*(f.member) = value.value_or(kNaN);
         if (value) {
-          in.check_range(child(coefficients_path, f.key), line_of(coefficients[f.key]), *value, 0.0,
+          in.check_range(child(coefficients_path, f.key), yaml_line(coefficients[f.key]), *value, 0.0,
                          !f.must_be_positive, f.unit, std::string(f.meaning) + " of " + who);
         }
       }
@@ -305,21 +240,21 @@ Material read_material(Reader& in, const YAML::Node& node, const std::string& pa
       c.size_reference_chip_mm = reference.value_or(kNaN);
       if (min_chip) c.size_min_chip_mm = *min_chip;
       if (exponent && !(std::isfinite(*exponent) && *exponent >= 0.0 && *exponent < 1.0)) {
-        in.add(child(size_path, "exponent"), line_of(size["exponent"]),
-               "= " + format_number(*exponent) + ": must be in [0, 1) — size-effect exponent m_c of " + who +
+        in.add(child(size_path, "exponent"), yaml_line(size["exponent"]),
+               "= " + shortest_number_text(*exponent) + ": must be in [0, 1) — size-effect exponent m_c of " + who +
                    " (0 turns it off)");
       }
       if (reference) {
-        in.check_range(child(size_path, "reference_chip_mm"), line_of(size["reference_chip_mm"]), *reference, 0.0,
+        in.check_range(child(size_path, "reference_chip_mm"), yaml_line(size["reference_chip_mm"]), *reference, 0.0,
                        false, "mm", "reference chip thickness of " + who);
       }
       if (min_chip) {
         const bool reference_ok = reference && std::isfinite(*reference) && *reference > 0.0;
         const bool ok = std::isfinite(*min_chip) && *min_chip > 0.0 && (!reference_ok || *min_chip <= *reference);
         if (!ok) {
-          in.add(child(size_path, "min_chip_mm"), line_of(size["min_chip_mm"]),
-                 "= " + format_number(*min_chip) + ": must be in (0, " +
-                     (reference_ok ? format_number(*reference) : std::string("reference_chip_mm")) +
+          in.add(child(size_path, "min_chip_mm"), yaml_line(size["min_chip_mm"]),
+                 "= " + shortest_number_text(*min_chip) + ": must be in (0, " +
+                     (reference_ok ? shortest_number_text(*reference) : std::string("reference_chip_mm")) +
                      "] mm — smallest chip thickness the size effect of " + who + " is evaluated at");
         }
       }
@@ -333,7 +268,7 @@ Material read_material(Reader& in, const YAML::Node& node, const std::string& pa
     keys.emplace_back("size_effect");
     if (in.mapping(sources, sources_path, keys, "where single coefficients come from")) {
       for (const auto& item : sources) {
-        const std::string key = item.first.IsScalar() ? item.first.Scalar() : display(item.first);
+        const std::string key = item.first.IsScalar() ? item.first.Scalar() : yaml_value_text(item.first);
         if (std::find(keys.begin(), keys.end(), key) == keys.end()) continue;  // reported by mapping()
         if (!item.second.IsScalar() || trim(item.second.Scalar()).empty()) {
           in.type_problem(child(sources_path, key), item.second, "must be text saying where " + key + " comes from");
@@ -382,7 +317,7 @@ InputProblem unknown_material_problem(const MaterialLibrary& library, const std:
   std::string message = "= \"" + name + "\": unknown material; known";
   if (!library.source_name.empty()) message += " in " + library.source_name;
   message += ": " + (known.empty() ? std::string("none") : join(known, ", "));
-  std::string best = closest(trim(name), all_names);
+  std::string best = closest_name(trim(name), all_names, LetterCase::kIgnored);
   if (best.empty() && !trim(name).empty()) {
     // "s50" → "S50C": a prefix is as good a hint as a typo.
     for (const auto& candidate : all_names) {
@@ -438,9 +373,9 @@ MaterialLibrary read_materials(const std::string& yaml_text, const std::string& 
       // Names and aliases share one namespace: find() must never be ambiguous.
       auto claim = [&](const std::string& name, const std::string& field, const YAML::Node& node) {
         if (name.empty()) return;
-        const auto [it, inserted] = used.emplace(lower(name), NameUse{with_line(field, line_of(node)), m.name});
+        const auto [it, inserted] = used.emplace(lower(name), NameUse{with_yaml_line(field, yaml_line(node)), m.name});
         if (inserted) return;
-        in.add(field, line_of(node),
+        in.add(field, yaml_line(node),
                "= \"" + name + "\": already used by " + it->second.field +
                    (it->second.material.empty() || it->second.material == m.name ? "" : " (" + it->second.material + ")") +
                    " — names and aliases must be unique, ignoring case");

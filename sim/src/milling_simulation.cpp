@@ -4,9 +4,9 @@
 #include <cassert>
 #include <cmath>
 #include <optional>
-#include <sstream>
 
 #include "feedplan/core/angle.hpp"
+#include "feedplan/core/number_text.hpp"
 #include "feedplan/geometry/tool_path.hpp"
 #include "feedplan/sim/layered_engagement.hpp"
 #include "feedplan/sim/milling_forces.hpp"
@@ -19,22 +19,16 @@ namespace {
 // (4 layers per pitch: 30 %).
 constexpr double kLayersPerHelixPitch = 20.0;
 
-std::string number_text(double value) {
-  std::ostringstream out;
-  out << value;
-  return out.str();
-}
-
 void check_positive(std::vector<InputProblem>& problems, const std::string& field, double value, const std::string& why) {
   if (!(std::isfinite(value) && value > 0.0)) {
-    problems.push_back({field, "= " + number_text(value) + ": must be a finite number > 0 — " + why});
+    problems.push_back({field, "= " + six_digit_number_text(value) + ": must be a finite number > 0 — " + why});
   }
 }
 
 void check_non_negative(std::vector<InputProblem>& problems, const std::string& field, double value,
                         const std::string& why) {
   if (!(std::isfinite(value) && value >= 0.0)) {
-    problems.push_back({field, "= " + number_text(value) + ": must be a finite number ≥ 0 — " + why});
+    problems.push_back({field, "= " + six_digit_number_text(value) + ": must be a finite number ≥ 0 — " + why});
   }
 }
 
@@ -105,7 +99,8 @@ std::vector<InputProblem> validate(const SimulationRequest& request) {
     problems.push_back({"tool.flutes", "= " + std::to_string(tool.flutes) + ": must be in [1, 32] — number of teeth"});
   }
   if (!(std::isfinite(tool.helix_deg) && tool.helix_deg >= 0.0 && tool.helix_deg < 70.0)) {
-    problems.push_back({"tool.helix_deg", "= " + number_text(tool.helix_deg) + ": must be in [0, 70) — helix angle"});
+    problems.push_back(
+        {"tool.helix_deg", "= " + six_digit_number_text(tool.helix_deg) + ": must be in [0, 70) — helix angle"});
   }
   const auto& k = request.coefficients;
   check_positive(problems, "material.ktc_n_per_mm2", k.ktc_n_per_mm2, "tangential cutting coefficient");
@@ -115,8 +110,8 @@ std::vector<InputProblem> validate(const SimulationRequest& request) {
   check_non_negative(problems, "material.kre_n_per_mm", k.kre_n_per_mm, "radial edge coefficient");
   check_non_negative(problems, "material.kae_n_per_mm", k.kae_n_per_mm, "axial edge coefficient");
   if (!(std::isfinite(k.size_exponent) && k.size_exponent >= 0.0 && k.size_exponent < 1.0)) {
-    problems.push_back({"material.size_effect.exponent",
-                        "= " + number_text(k.size_exponent) + ": must be in [0, 1) — m_c of k_c = k_1 h^(−m_c)"});
+    problems.push_back({"material.size_effect.exponent", "= " + six_digit_number_text(k.size_exponent) +
+                                                             ": must be in [0, 1) — m_c of k_c = k_1 h^(−m_c)"});
   }
   if (k.size_exponent > 0.0) {
     check_positive(problems, "material.size_effect.reference_chip_mm", k.size_reference_chip_mm,
@@ -125,16 +120,18 @@ std::vector<InputProblem> validate(const SimulationRequest& request) {
   }
   const auto& o = request.options;
   if (!(std::isfinite(o.angle_step_deg) && o.angle_step_deg > 0.0 && o.angle_step_deg <= 10.0)) {
-    problems.push_back({"options.angle_step_deg",
-                        "= " + number_text(o.angle_step_deg) + ": must be in (0, 10] — spindle rotation per step"});
+    problems.push_back({"options.angle_step_deg", "= " + six_digit_number_text(o.angle_step_deg) +
+                                                      ": must be in (0, 10] — spindle rotation per step"});
   }
   check_positive(problems, "options.layer_thickness_mm", o.layer_thickness_mm, "axial slice thickness");
   if (std::isfinite(o.layer_thickness_mm) && o.layer_thickness_mm > 0.0 && o.layer_thickness_mm < 0.005) {
-    problems.push_back({"options.layer_thickness_mm", "= " + number_text(o.layer_thickness_mm) + ": must be ≥ 0.005"});
+    problems.push_back(
+        {"options.layer_thickness_mm", "= " + six_digit_number_text(o.layer_thickness_mm) + ": must be ≥ 0.005"});
   }
   check_positive(problems, "options.engagement_ds_mm", o.engagement_ds_mm, "engagement sample spacing");
   if (std::isfinite(o.engagement_ds_mm) && o.engagement_ds_mm > 0.0 && o.engagement_ds_mm < 0.001) {
-    problems.push_back({"options.engagement_ds_mm", "= " + number_text(o.engagement_ds_mm) + ": must be ≥ 0.001"});
+    problems.push_back(
+        {"options.engagement_ds_mm", "= " + six_digit_number_text(o.engagement_ds_mm) + ": must be ≥ 0.001"});
   }
   check_positive(problems, "options.log_rate_hz", o.log_rate_hz, "force log sample rate");
   check_non_negative(problems, "options.flute_length_mm", o.flute_length_mm, "0 means longer than any cut");
@@ -145,8 +142,9 @@ std::vector<InputProblem> validate(const SimulationRequest& request) {
   }
   for (std::size_t j = 0; j < o.runout_mm.size(); ++j) {
     if (!(std::isfinite(o.runout_mm[j]) && std::abs(o.runout_mm[j]) < 0.5 * std::max(tool.diameter_mm, 0.0))) {
-      problems.push_back({"options.runout_mm[" + std::to_string(j) + "]",
-                          "= " + number_text(o.runout_mm[j]) + ": must be finite and smaller than the tool radius"});
+      problems.push_back(
+          {"options.runout_mm[" + std::to_string(j) + "]",
+           "= " + six_digit_number_text(o.runout_mm[j]) + ": must be finite and smaller than the tool radius"});
     }
   }
   for (auto& p : validate(request.machine)) problems.push_back(std::move(p));
@@ -252,12 +250,13 @@ SimulationResult simulate(const SimulationRequest& request) {
   ForceLog& log = result.log;
   log.has_currents = request.sensors.servo_current.enabled;
   log.metadata = {{"source", "feedplan simulate (virtual machine, mechanistic forces)"},
-                  {"sample_rate_hz", number_text(options.log_rate_hz)},
-                  {"tool", request.tool.name.empty() ? "D" + number_text(request.tool.diameter_mm) : request.tool.name},
-                  {"tool_diameter_mm", number_text(request.tool.diameter_mm)},
+                  {"sample_rate_hz", six_digit_number_text(options.log_rate_hz)},
+                  {"tool", request.tool.name.empty() ? "D" + six_digit_number_text(request.tool.diameter_mm)
+                                                     : request.tool.name},
+                  {"tool_diameter_mm", six_digit_number_text(request.tool.diameter_mm)},
                   {"flutes", std::to_string(n)},
-                  {"helix_deg", number_text(request.tool.helix_deg)},
-                  {"spindle_rpm", number_text(max_rpm)}};
+                  {"helix_deg", six_digit_number_text(request.tool.helix_deg)},
+                  {"spindle_rpm", six_digit_number_text(max_rpm)}};
   for (const auto& entry : request.log_metadata) log.metadata.push_back(entry);
   const double log_dt = 1.0 / options.log_rate_hz;
   long long next_log = 0;
@@ -417,7 +416,7 @@ SimulationResult simulate(const SimulationRequest& request) {
     if (tau >= motion.duration_s()) break;
     if (step == max_steps) {
       result.warnings.push_back("the feed override held the machine back for over 100 times the planned cycle "
-                                "time; the run was stopped at s = " + number_text(state.s_mm) + " mm");
+                                "time; the run was stopped at s = " + six_digit_number_text(state.s_mm) + " mm");
     }
   }
   if (rev_steps > 0) {

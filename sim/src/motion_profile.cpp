@@ -5,10 +5,10 @@
 #include <cassert>
 #include <cmath>
 #include <limits>
-#include <sstream>
 #include <string>
 
 #include "feedplan/core/angle.hpp"
+#include "feedplan/core/number_text.hpp"
 #include "feedplan/geometry/tool_path.hpp"
 
 namespace feedplan::sim {
@@ -22,16 +22,10 @@ using Vec3 = std::array<double, 3>;
 constexpr double kInfinity = std::numeric_limits<double>::infinity();
 constexpr std::size_t kMaxReportedMoves = 20;
 
-std::string format_number(double value) {
-  std::ostringstream out;
-  out << value;
-  return out.str();
-}
-
 // Appends "<field> = <value>: must be <rule>" unless `ok`.
 void require(std::vector<InputProblem>& problems, bool ok, const std::string& field, double value,
              const std::string& rule) {
-  if (!ok) problems.push_back({field, "= " + format_number(value) + ": must be " + rule});
+  if (!ok) problems.push_back({field, "= " + six_digit_number_text(value) + ": must be " + rule});
 }
 
 // Unit tangent in space at the start (fraction 0) or end (fraction 1) of a move of length `length`.

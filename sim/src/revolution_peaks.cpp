@@ -1,12 +1,11 @@
 #include "feedplan/sim/revolution_peaks.hpp"
 
-#include <array>
 #include <cassert>
-#include <charconv>
 #include <cmath>
 #include <string>
 
 #include "feedplan/core/input_error.hpp"
+#include "feedplan/core/number_text.hpp"
 
 namespace feedplan::sim {
 
@@ -15,23 +14,15 @@ namespace {
 // Samples within this many turns before a boundary count in the next revolution (rounding of t).
 constexpr double kBoundaryTolerance_turns = 1e-6;
 
-std::string format_number(double value) {
-  if (std::isnan(value)) return "nan";
-  if (std::isinf(value)) return value > 0 ? "inf" : "-inf";
-  std::array<char, 32> buffer{};
-  const auto result = std::to_chars(buffer.data(), buffer.data() + buffer.size(), value, std::chars_format::general);
-  return std::string(buffer.data(), result.ptr);
-}
-
 void check_times(const std::vector<double>& t_s) {
   std::vector<InputProblem> problems;
   for (std::size_t i = 0; i < t_s.size(); ++i) {
     const std::string field = "t_s[" + std::to_string(i) + "]";
     if (!std::isfinite(t_s[i])) {
-      problems.push_back({field, "= " + format_number(t_s[i]) + ": must be a finite time in s"});
+      problems.push_back({field, "= " + shortest_number_text(t_s[i]) + ": must be a finite time in s"});
     } else if (i > 0 && std::isfinite(t_s[i - 1]) && !(t_s[i] > t_s[i - 1])) {
-      problems.push_back({field, "= " + format_number(t_s[i]) + ": must be after t_s[" + std::to_string(i - 1) +
-                                     "] = " + format_number(t_s[i - 1]) + " — times must increase"});
+      problems.push_back({field, "= " + shortest_number_text(t_s[i]) + ": must be after t_s[" + std::to_string(i - 1) +
+                                     "] = " + shortest_number_text(t_s[i - 1]) + " — times must increase"});
     }
     if (problems.size() >= 20) break;
   }
@@ -42,13 +33,14 @@ void check_forces(const std::vector<double>& f_n, const char* name) {
   for (std::size_t i = 0; i < f_n.size(); ++i) {
     if (std::isfinite(f_n[i])) continue;
     throw InputError(std::string(name) + "[" + std::to_string(i) + "]",
-                     "= " + format_number(f_n[i]) + ": must be a finite force in N — was the force recorded?");
+                     "= " + shortest_number_text(f_n[i]) + ": must be a finite force in N — was the force recorded?");
   }
 }
 
 void check_rpm(double rpm, const std::string& field) {
   if (std::isfinite(rpm) && rpm > 0.0) return;
-  throw InputError(field, "= " + format_number(rpm) + ": must be a finite number > 0 rev/min — the spindle speed");
+  throw InputError(field,
+                   "= " + shortest_number_text(rpm) + ": must be a finite number > 0 rev/min — the spindle speed");
 }
 
 // The peaks given each sample's spindle angle in turns since the first sample (non-decreasing).

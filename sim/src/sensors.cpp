@@ -1,12 +1,13 @@
 #include "feedplan/sim/sensors.hpp"
 
 #include <array>
-#include <charconv>
 #include <cmath>
 #include <limits>
 #include <numbers>
 #include <string>
 #include <utility>
+
+#include "feedplan/core/number_text.hpp"
 
 namespace feedplan::sim {
 
@@ -14,31 +15,23 @@ namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
-std::string format_number(double value) {
-  if (std::isnan(value)) return "nan";
-  if (std::isinf(value)) return value > 0 ? "inf" : "-inf";
-  std::array<char, 32> buffer{};
-  const auto result = std::to_chars(buffer.data(), buffer.data() + buffer.size(), value, std::chars_format::general);
-  return std::string(buffer.data(), result.ptr);
-}
-
 void check_positive(std::vector<InputProblem>& problems, const std::string& field, double value,
                     const std::string& unit, const std::string& why) {
   if (std::isfinite(value) && value > 0.0) return;
-  problems.push_back({field, "= " + format_number(value) + ": must be " + (std::isfinite(value) ? "" : "a finite number ") +
-                                 "> 0 " + unit + " — " + why});
+  problems.push_back({field, "= " + shortest_number_text(value) + ": must be " +
+                                 (std::isfinite(value) ? "" : "a finite number ") + "> 0 " + unit + " — " + why});
 }
 
 void check_non_negative(std::vector<InputProblem>& problems, const std::string& field, double value,
                         const std::string& unit, const std::string& why) {
   if (std::isfinite(value) && value >= 0.0) return;
-  problems.push_back({field, "= " + format_number(value) + ": must be " + (std::isfinite(value) ? "" : "a finite number ") +
-                                 "≥ 0 " + unit + " — " + why});
+  problems.push_back({field, "= " + shortest_number_text(value) + ": must be " +
+                                 (std::isfinite(value) ? "" : "a finite number ") + "≥ 0 " + unit + " — " + why});
 }
 
 void check_damping(std::vector<InputProblem>& problems, const std::string& field, double value) {
   if (std::isfinite(value) && value > 0.0 && value <= 2.0) return;
-  problems.push_back({field, "= " + format_number(value) +
+  problems.push_back({field, "= " + shortest_number_text(value) +
                                  ": must be in (0, 2] — damping ratio of the sensor's second-order low pass "
                                  "(0.707 flat, below that a resonance)"});
 }
@@ -106,7 +99,7 @@ std::vector<InputProblem> validate(const SensorOptions& options) {
 std::vector<InputProblem> validate(const SensorOptions& options, double step_s) {
   std::vector<InputProblem> problems = validate(options);
   if (!(std::isfinite(step_s) && step_s > 0.0)) {
-    problems.push_back({"sensors step_s", "= " + format_number(step_s) +
+    problems.push_back({"sensors step_s", "= " + shortest_number_text(step_s) +
                                               ": must be a finite number > 0 s — the simulation step"});
     return problems;
   }
@@ -115,9 +108,9 @@ std::vector<InputProblem> validate(const SensorOptions& options, double step_s) 
     if (!(std::isfinite(filter.bandwidth_hz) && filter.bandwidth_hz > 0.0)) continue;  // reported above
     if (filter.bandwidth_hz < nyquist_hz) continue;
     problems.push_back({filter.path + ".bandwidth_hz",
-                        "= " + format_number(filter.bandwidth_hz) + ": must be < " + format_number(nyquist_hz) +
-                            " Hz, the Nyquist frequency of the simulation step " + format_number(step_s) +
-                            " s — lower the bandwidth or the step"});
+                        "= " + shortest_number_text(filter.bandwidth_hz) + ": must be < " +
+                            shortest_number_text(nyquist_hz) + " Hz, the Nyquist frequency of the simulation step " +
+                            shortest_number_text(step_s) + " s — lower the bandwidth or the step"});
   }
   return problems;
 }

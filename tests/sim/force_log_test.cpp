@@ -14,6 +14,7 @@
 #include <string>
 
 #include "feedplan/core/input_error.hpp"
+#include "has_problem.hpp"
 
 namespace feedplan::sim {
 namespace {
@@ -29,16 +30,6 @@ std::vector<InputProblem> problems_of(const std::string& text) {
   }
   ADD_FAILURE() << "read_force_log accepted:\n" << text;
   return {};
-}
-
-::testing::AssertionResult has_problem(const std::vector<InputProblem>& problems, const std::string& field,
-                                       const std::string& message_part) {
-  std::string all;
-  for (const auto& p : problems) {
-    if (p.field == field && p.message.find(message_part) != std::string::npos) return ::testing::AssertionSuccess();
-    all += "\n  " + to_string(p);
-  }
-  return ::testing::AssertionFailure() << "no problem '" << field << "' with '" << message_part << "' among:" << all;
 }
 
 ForceLog sample_log() {

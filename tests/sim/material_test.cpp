@@ -9,6 +9,7 @@
 #include <string>
 
 #include "feedplan/core/input_error.hpp"
+#include "has_problem.hpp"
 
 namespace feedplan::sim {
 namespace {
@@ -51,17 +52,6 @@ std::vector<InputProblem> problems_of(const std::string& yaml) {
   }
   ADD_FAILURE() << "read_materials accepted:\n" << yaml;
   return {};
-}
-
-// True when some problem's field and message contain the given parts.
-::testing::AssertionResult has_problem(const std::vector<InputProblem>& problems, const std::string& field,
-                                       const std::string& message_part) {
-  std::string all;
-  for (const auto& p : problems) {
-    if (p.field == field && p.message.find(message_part) != std::string::npos) return ::testing::AssertionSuccess();
-    all += "\n  " + to_string(p);
-  }
-  return ::testing::AssertionFailure() << "no problem '" << field << "' with '" << message_part << "' among:" << all;
 }
 
 TEST(MaterialLibrary, ShippedFileHasDesignValuesForAl7075) {

@@ -1,5 +1,6 @@
 // Instantaneous mechanistic forces against the closed-form mean forces of a straight cut (Altintas,
-// Manufacturing Automation ch. 2; DESIGN.md §6.1), written here independently of the code.
+// Manufacturing Automation ch. 2; DESIGN.md §6.1), written independently of the code in
+// closed_form_forces.hpp.
 
 #include <gtest/gtest.h>
 
@@ -8,41 +9,13 @@
 #include <numbers>
 #include <vector>
 
+#include "closed_form_forces.hpp"
 #include "feedplan/sim/milling_forces.hpp"
 
 namespace feedplan::sim {
 namespace {
 
 constexpr double kPi = std::numbers::pi;
-
-struct MeanForce {
-  double fx_n = 0.0;
-  double fy_n = 0.0;
-};
-
-// F̄x, F̄y of DESIGN.md §6.1, integrated from φ_st to φ_ex, for feed along +x.
-MeanForce closed_form_mean(int n, double a_mm, double c_mm, double phi_st, double phi_ex, const CuttingCoefficients& k) {
-  auto fx = [&](double p) {
-    return n * a_mm * c_mm / (8 * kPi) * (k.ktc_n_per_mm2 * std::cos(2 * p) - k.krc_n_per_mm2 * (2 * p - std::sin(2 * p))) +
-           n * a_mm / (2 * kPi) * (-k.kte_n_per_mm * std::sin(p) + k.kre_n_per_mm * std::cos(p));
-  };
-  auto fy = [&](double p) {
-    return n * a_mm * c_mm / (8 * kPi) * (k.ktc_n_per_mm2 * (2 * p - std::sin(2 * p)) + k.krc_n_per_mm2 * std::cos(2 * p)) -
-           n * a_mm / (2 * kPi) * (k.kte_n_per_mm * std::cos(p) + k.kre_n_per_mm * std::sin(p));
-  };
-  return {fx(phi_ex) - fx(phi_st), fy(phi_ex) - fy(phi_st)};
-}
-
-CuttingCoefficients al7075() {
-  CuttingCoefficients k;
-  k.ktc_n_per_mm2 = 796;
-  k.krc_n_per_mm2 = 169;
-  k.kac_n_per_mm2 = 222;
-  k.kte_n_per_mm = 27.7;
-  k.kre_n_per_mm = 30.8;
-  k.kae_n_per_mm = 1.4;
-  return k;
-}
 
 // Mean of milling_force over one revolution of a straight cut along `feed_direction`, the tool
 // advancing f_z per tooth, engaged over [φ_st, φ_ex] on every slice.

@@ -1,5 +1,5 @@
 // The virtual machine end to end: cutting tests against the closed-form mean forces (DESIGN.md
-// §6.1, written here independently), steady per-revolution peaks on straight cuts and internal arcs,
+// §6.1, closed_form_forces.hpp), steady per-revolution peaks on straight cuts and internal arcs,
 // a helix cutting layer by layer, determinism, the feed override loop and bad requests.
 
 #include <gtest/gtest.h>
@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "closed_form_forces.hpp"
 #include "feedplan/core/input_error.hpp"
 #include "feedplan/sim/cutting_test.hpp"
 #include "feedplan/sim/milling_simulation.hpp"
@@ -19,34 +20,6 @@ namespace feedplan::sim {
 namespace {
 
 constexpr double kPi = std::numbers::pi;
-
-CuttingCoefficients al7075() {
-  CuttingCoefficients k;
-  k.ktc_n_per_mm2 = 796;
-  k.krc_n_per_mm2 = 169;
-  k.kac_n_per_mm2 = 222;
-  k.kte_n_per_mm = 27.7;
-  k.kre_n_per_mm = 30.8;
-  k.kae_n_per_mm = 1.4;
-  return k;
-}
-
-struct Mean {
-  double fx_n = 0.0;
-  double fy_n = 0.0;
-};
-
-Mean closed_form_mean(int n, double a_mm, double c_mm, double phi_st, double phi_ex, const CuttingCoefficients& k) {
-  auto fx = [&](double p) {
-    return n * a_mm * c_mm / (8 * kPi) * (k.ktc_n_per_mm2 * std::cos(2 * p) - k.krc_n_per_mm2 * (2 * p - std::sin(2 * p))) +
-           n * a_mm / (2 * kPi) * (-k.kte_n_per_mm * std::sin(p) + k.kre_n_per_mm * std::cos(p));
-  };
-  auto fy = [&](double p) {
-    return n * a_mm * c_mm / (8 * kPi) * (k.ktc_n_per_mm2 * (2 * p - std::sin(2 * p)) + k.krc_n_per_mm2 * std::cos(2 * p)) -
-           n * a_mm / (2 * kPi) * (k.kte_n_per_mm * std::cos(p) + k.kre_n_per_mm * std::sin(p));
-  };
-  return {fx(phi_ex) - fx(phi_st), fy(phi_ex) - fy(phi_st)};
-}
 
 SimulationRequest cutting_test_request(double ae_mm, MillingMode mode, double fz_mm, double rpm) {
   const geometry::Tool tool{"D10 Z4", 10.0, 4, 30.0};
@@ -69,7 +42,8 @@ SimulationRequest cutting_test_request(double ae_mm, MillingMode mode, double fz
 
 // Mean of the logged dynamometer force over whole tooth periods while the tool is fully in the cut
 // at full speed (x of the centre in [r + 2, L − r − 2]).
-Mean steady_mean(const SimulationResult& result, double feed_mm_per_min, double tooth_period_s, double x_lo, double x_hi) {
+MeanForce steady_mean(const SimulationResult& result, double feed_mm_per_min, double tooth_period_s, double x_lo,
+                      double x_hi) {
   double t0 = -1.0, t1 = -1.0;
   for (const auto& row : result.log.rows) {
     if (row.x_mm >= x_lo && row.x_mm <= x_hi && std::abs(row.feed_mm_per_min - feed_mm_per_min) < 1e-6 * feed_mm_per_min) {
@@ -80,7 +54,7 @@ Mean steady_mean(const SimulationResult& result, double feed_mm_per_min, double 
   EXPECT_GT(t1 - t0, 20 * tooth_period_s);
   const double periods = std::floor((t1 - t0) / tooth_period_s);
   t1 = t0 + periods * tooth_period_s;
-  Mean mean;
+  MeanForce mean;
   int count = 0;
   for (const auto& row : result.log.rows) {
     if (row.t_s < t0 || row.t_s >= t1) continue;
@@ -113,8 +87,8 @@ TEST(MillingSimulation, CuttingTestsMatchTheClosedFormMeanForces) {
     const bool down = c.mode == MillingMode::kDown;
     const double st = c.ae_mm >= 10 ? 0.0 : (down ? kPi - alpha : 0.0);
     const double ex = c.ae_mm >= 10 ? kPi : (down ? kPi : alpha);
-    const Mean truth = closed_form_mean(4, 10, fz, st, ex, al7075());
-    const Mean sim = steady_mean(result, fz * 4 * rpm, 60.0 / (4 * rpm), 7.0, 33.0);
+    const MeanForce truth = closed_form_mean(4, 10, fz, st, ex, al7075());
+    const MeanForce sim = steady_mean(result, fz * 4 * rpm, 60.0 / (4 * rpm), 7.0, 33.0);
     std::printf("%-36s simulated Fx %8.2f Fy %8.2f N | closed form %8.2f %8.2f N | deviation %.3f%% %.3f%%\n", c.name,
                 sim.fx_n, sim.fy_n, truth.fx_n, truth.fy_n, 100 * (sim.fx_n - truth.fx_n) / std::abs(truth.fx_n),
                 100 * (sim.fy_n - truth.fy_n) / std::abs(truth.fy_n));
@@ -147,8 +121,8 @@ TEST(MillingSimulation, DesignMagnitudeCheckForSteel) {
   request.coefficients.krc_n_per_mm2 = 600;
   const SimulationResult result = simulate(request);
   const double c = 1000.0 / (4 * 2800);
-  const Mean truth = closed_form_mean(4, 10, c, kPi - std::acos(0.7), kPi, request.coefficients);
-  const Mean sim = steady_mean(result, 1000, 60.0 / (4 * 2800), 7.0, 33.0);
+  const MeanForce truth = closed_form_mean(4, 10, c, kPi - std::acos(0.7), kPi, request.coefficients);
+  const MeanForce sim = steady_mean(result, 1000, 60.0 / (4 * 2800), 7.0, 33.0);
   std::printf("S50C-like check: |mean F| %.1f N (closed form %.1f N), max per-revolution peak %.1f N\n",
               std::hypot(sim.fx_n, sim.fy_n), std::hypot(truth.fx_n, truth.fy_n), result.summary.max_revolution_peak_n);
   EXPECT_NEAR(std::hypot(sim.fx_n, sim.fy_n), std::hypot(truth.fx_n, truth.fy_n), 0.01 * std::hypot(truth.fx_n, truth.fy_n));
