@@ -169,6 +169,7 @@ void add_simulate_command(CLI::App& app, SimulateOptions& options) {
                   "solid block around the program below z = 0");
   cmd->add_option("--log", options.log_path, "Force log to write (CSV, DESIGN.md §4)")->required();
   cmd->add_option("--plot", options.plot_path, "Plot of the force to write (SVG)");
+  cmd->add_option("--peaks", options.peaks_path, "Per-revolution peak and mean |F_xy| to write (CSV, true force)");
   cmd->add_flag("--json", options.json, "Print the summary as JSON");
   cmd->add_option("--spindle-rpm", options.spindle_rpm, "Spindle speed for blocks without S; the cutting test's S");
   cmd->add_option("--max-accel", options.max_accel_mm_per_s2, "Path acceleration limit, mm/s²");
@@ -313,6 +314,12 @@ int run_simulate_command(const SimulateOptions& options) {
     std::cerr << "feedplan: " << error << "\n";
     return 1;
   }
+  if (!options.peaks_path.empty()) {
+    if (const std::string error = sim::write_revolution_peaks(options.peaks_path, result.revolutions); !error.empty()) {
+      std::cerr << "feedplan: " << error << "\n";
+      return 1;
+    }
+  }
   if (!options.plot_path.empty()) {
     const sim::ForcePlotData plot = sim::force_plot_data(result.log, job, result.revolutions);
     if (const std::string error = sim::write_force_plot(options.plot_path, plot); !error.empty()) {
@@ -341,6 +348,7 @@ int run_simulate_command(const SimulateOptions& options) {
     out["log"] = options.log_path;
     out["log_rows"] = result.log.rows.size();
     if (!options.plot_path.empty()) out["plot"] = options.plot_path;
+    if (!options.peaks_path.empty()) out["peaks"] = options.peaks_path;
     out["wall_time_s"] = wall_s;
     out["revolutions"] = nlohmann::json::array();
     for (const auto& rev : result.revolutions) {
@@ -362,6 +370,9 @@ int run_simulate_command(const SimulateOptions& options) {
                 s.steps, s.step_s * 1e6, s.stock_layers, s.engagement_bands, wall_s,
                 wall_s > 0 ? s.cycle_time_s / wall_s : 0.0);
     std::printf("force log (%zu rows) written to %s\n", result.log.rows.size(), options.log_path.c_str());
+    if (!options.peaks_path.empty()) {
+      std::printf("per-revolution peaks (%zu) written to %s\n", result.revolutions.size(), options.peaks_path.c_str());
+    }
     if (!options.plot_path.empty()) std::printf("plot written to %s\n", options.plot_path.c_str());
     for (const auto& note : notes) std::printf("note: %s\n", note.c_str());
   }

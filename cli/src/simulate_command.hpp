@@ -18,6 +18,7 @@ struct SimulateOptions {
   std::string stock_path;          //!< stock YAML (or a cycle spec); empty: a block around the program
   std::string log_path;            //!< force log CSV to write
   std::string plot_path;           //!< SVG plot to write; empty: none
+  std::string peaks_path;          //!< per-revolution peaks CSV to write; empty: none
   bool json = false;               //!< summary as JSON
   double spindle_rpm = 0.0;        //!< spindle speed for blocks without S (and the cutting test's S)
   double max_accel_mm_per_s2 = 0.0;     //!< 0: the spec's or the default

@@ -1,9 +1,12 @@
 #include "feedplan/sim/revolution_peaks.hpp"
 
+#include <array>
 #include <cassert>
+#include <charconv>
 #include <cmath>
 #include <string>
 
+#include "feedplan/core/atomic_file.hpp"
 #include "feedplan/core/input_error.hpp"
 #include "feedplan/core/number_text.hpp"
 
@@ -127,6 +130,34 @@ std::vector<RevolutionPeak> revolution_peaks(const std::vector<double>& t_s, con
     return t_s[lo] + share * (t_s[hi] - t_s[lo]);
   };
   return peaks_from_angles(t_s, fx_n, fy_n, angle_turns, time_at);
+}
+
+namespace {
+
+void append_fixed(std::string& out, double value, int decimals) {
+  std::array<char, 64> buffer{};
+  const auto result = std::to_chars(buffer.data(), buffer.data() + buffer.size(), value, std::chars_format::fixed, decimals);
+  out.append(buffer.data(), result.ptr);
+}
+
+}  // namespace
+
+std::string format_revolution_peaks(const std::vector<RevolutionPeak>& peaks) {
+  std::string out = "revolution,t_start_s,t_end_s,t_peak_s,peak_xy_n,mean_xy_n\n";
+  for (const auto& peak : peaks) {
+    out += std::to_string(peak.revolution);
+    for (const auto& [value, decimals] : {std::pair{peak.t_start_s, 6}, std::pair{peak.t_end_s, 6}, std::pair{peak.t_peak_s, 6},
+                                          std::pair{peak.peak_xy_n, 3}, std::pair{peak.mean_xy_n, 3}}) {
+      out += ',';
+      append_fixed(out, value, decimals);
+    }
+    out += '\n';
+  }
+  return out;
+}
+
+std::string write_revolution_peaks(const std::string& path, const std::vector<RevolutionPeak>& peaks) {
+  return write_file_atomically(path, format_revolution_peaks(peaks));
 }
 
 }  // namespace feedplan::sim

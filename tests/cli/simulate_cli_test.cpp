@@ -52,10 +52,12 @@ class SimulateCliTest : public CliTest {
 TEST_F(SimulateCliTest, CuttingTestWritesALogAndASummary) {
   const fs::path log = dir_ / "test.csv";
   const fs::path plot = dir_ / "test.svg";
+  const fs::path peaks = dir_ / "peaks.csv";
   const RunResult r = run_feedplan("simulate --cutting-test " + kTool +
                                    " --material Al7075-T6 --radial-depth-mm 1.5 --axial-depth-mm 10"
                                    " --feed-mm-per-min 1120 --spindle-rpm 2800 --log-rate 5000 --json --log " +
-                                   log.string() + " --plot " + plot.string());
+                                   log.string() + " --plot " + plot.string() +
+                                   " --peaks " + peaks.string());
   ASSERT_EQ(r.exit_code, 0) << r.output;
   EXPECT_NE(r.output.find("\"max_revolution_peak_n\""), std::string::npos) << r.output;
   const std::string text = read_text(log);
@@ -63,6 +65,17 @@ TEST_F(SimulateCliTest, CuttingTestWritesALogAndASummary) {
   EXPECT_NE(text.find("# material: Al7075-T6"), std::string::npos);
   EXPECT_NE(text.find("t_s,x_mm,y_mm,z_mm,fx_n,fy_n,fz_n,feed_mm_per_min,spindle_rpm\n"), std::string::npos);
   EXPECT_NE(read_text(plot).find("<svg"), std::string::npos);
+  const std::string peak_text = read_text(peaks);
+  EXPECT_EQ(peak_text.rfind("revolution,t_start_s,t_end_s,t_peak_s,peak_xy_n,mean_xy_n\n0,", 0), 0u) << peak_text.substr(0, 200);
+}
+
+TEST_F(SimulateCliTest, TheSampleProgramRunsWithItsSpec) {
+  const fs::path log = dir_ / "trochoid.csv";
+  const RunResult r = run_feedplan("simulate " + std::string(FEEDPLAN_SAMPLES_DIR) + "/trochoid_constant_feed.ngc --spec " +
+                                   std::string(FEEDPLAN_SAMPLES_DIR) + "/trochoid.yaml --log-rate 1000 --log " + log.string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("material S50C"), std::string::npos) << r.output;
+  EXPECT_EQ(r.output.find("warning"), std::string::npos) << r.output;
 }
 
 TEST_F(SimulateCliTest, ProgramRunsOnAGivenStock) {

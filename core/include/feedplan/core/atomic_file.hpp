@@ -19,7 +19,10 @@ inline std::string write_file_atomically(const std::filesystem::path& path, std:
   const fs::path directory = path.has_parent_path() ? path.parent_path() : fs::path(".");
   std::error_code ec;
   if (!fs::is_directory(directory, ec)) return "cannot write " + path.string() + ": directory " + directory.string() + " does not exist";
-  const fs::path temporary = directory / ("." + path.filename().string() + ".tmp" + std::to_string(::getpid()));
+  // Built with append: GCC 12 warns falsely (-Wrestrict) on "." + std::string when inlined.
+  std::string temporary_name = ".";
+  temporary_name.append(path.filename().string()).append(".tmp").append(std::to_string(::getpid()));
+  const fs::path temporary = directory / temporary_name;
   {
     std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
     if (!out) return "cannot write " + path.string() + ": cannot create " + temporary.string();

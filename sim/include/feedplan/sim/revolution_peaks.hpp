@@ -13,6 +13,7 @@
 // so revolution numbers may jump.
 
 #include <cstddef>
+#include <string>
 #include <vector>
 
 namespace feedplan::sim {
@@ -39,5 +40,13 @@ std::vector<RevolutionPeak> revolution_peaks(const std::vector<double>& t_s, con
 //! a bad one is an InputError naming "spindle_rpm[i]").
 std::vector<RevolutionPeak> revolution_peaks(const std::vector<double>& t_s, const std::vector<double>& fx_n,
                                              const std::vector<double>& fy_n, const std::vector<double>& spindle_rpm);
+
+//! The peaks as CSV: header `revolution,t_start_s,t_end_s,t_peak_s,peak_xy_n,mean_xy_n`, one row per
+//! revolution; times to 1 µs, forces to 1 mN, '.' as the decimal point whatever the locale.
+std::string format_revolution_peaks(const std::vector<RevolutionPeak>& peaks);
+
+//! Writes format_revolution_peaks(peaks) to `path` atomically. Returns "" on success, otherwise a
+//! message naming the path and the reason; the target is then left as it was.
+std::string write_revolution_peaks(const std::string& path, const std::vector<RevolutionPeak>& peaks);
 
 }  // namespace feedplan::sim
