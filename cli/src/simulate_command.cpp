@@ -52,13 +52,13 @@ geometry::Tool parse_tool(const std::string& text, std::vector<InputProblem>& pr
     const double number = std::strtod(value.c_str(), &end);
     const bool numeric = !value.empty() && end && *end == '\0' && std::isfinite(number);
     if (key == "diameter_mm" || key == "flutes" || key == "helix_deg") {
+      have_diameter = have_diameter || key == "diameter_mm";
       if (!numeric) {
         problems.push_back({"--tool " + key, "= " + value + ": must be a finite number"});
         continue;
       }
       if (key == "diameter_mm") {
         tool.diameter_mm = number;
-        have_diameter = true;
       } else if (key == "flutes") {
         if (number != std::floor(number)) {
           problems.push_back({"--tool flutes", "= " + value + ": must be a whole number of teeth"});

@@ -493,6 +493,7 @@ geometry::Program read_program(const std::string& text, const std::string& sourc
   interpreter.run(text);
   problems.throw_if_any();
   geometry::Program program = interpreter.take_program();
+  program.source_name = source_name;
   // The reader builds each move from the previous end: a defect here is a reader bug, not bad input.
   [[maybe_unused]] const std::vector<std::string> defects = geometry::consistency_defects(program.path);
   assert(defects.empty());

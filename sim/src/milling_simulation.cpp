@@ -32,9 +32,11 @@ void check_non_negative(std::vector<InputProblem>& problems, const std::string& 
   }
 }
 
+// "prog.ngc line 12:" (the reader's way of naming a place in a program), or "move 3:" for generated programs.
 std::string line_of(const geometry::Program& program, std::size_t move) {
   const int line = move < program.blocks.size() ? program.blocks[move].source_line : 0;
-  return line > 0 ? "line " + std::to_string(line) : "move " + std::to_string(move);
+  const std::string where = line > 0 ? "line " + std::to_string(line) : "move " + std::to_string(move);
+  return (program.source_name.empty() ? where : program.source_name + " " + where) + ":";
 }
 
 double spindle_rpm_of(const geometry::BlockCommand& block, double default_rpm) {
@@ -168,11 +170,12 @@ std::vector<InputProblem> validate(const SimulationRequest& request) {
     if (move.kind == geometry::MoveKind::kRapid) continue;
     const double rpm = spindle_rpm_of(program.blocks[i], o.default_spindle_rpm);
     if (!(rpm > 0.0) && spindle_problems++ < 5) {
-      problems.push_back({line_of(program, i), "feed move with the spindle " +
-                                                   std::string(program.blocks[i].spindle == geometry::SpindleDirection::kOff
-                                                                   ? "stopped (no M3/M4 in effect)"
-                                                                   : "speed not given (no S word)") +
-                                                   ": start the spindle with M3 S… before feeding, or give a default spindle speed"});
+      const bool stopped = program.blocks[i].spindle == geometry::SpindleDirection::kOff;
+      problems.push_back({line_of(program, i),
+                          stopped ? std::string("feed move with the spindle stopped (no M3/M4 in effect): start the "
+                                                "spindle with M3 S… before feeding")
+                                  : std::string("feed move with no spindle speed (no S word): give S with M3, or a "
+                                                "default spindle speed (--spindle-rpm)")});
     }
   }
   return problems;
@@ -211,7 +214,7 @@ SimulationResult simulate(const SimulationRequest& request) {
         program.path.moves[i].kind != geometry::MoveKind::kRapid) {
       warned_m4 = true;
       result.warnings.push_back(line_of(program, i) +
-                                ": M4 (counter-clockwise spindle) on a feed move; simulated as a right-hand cutter "
+                                " M4 (counter-clockwise spindle) on a feed move; simulated as a right-hand cutter "
                                 "turning clockwise (M3)");
     }
   }

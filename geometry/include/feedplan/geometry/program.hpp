@@ -32,6 +32,7 @@ struct Program {
   std::vector<BlockCommand> blocks;   //!< one per path.moves entry
   double dwell_at_end_s = 0.0;        //!< G4 dwell after the last move, s
   std::vector<std::string> notes;     //!< what a reader or planner wants the user to know (not errors)
+  std::string source_name;            //!< where the program came from (a file name), for messages; may be empty
 };
 
 }  // namespace feedplan::geometry
