@@ -355,6 +355,9 @@ class Interpreter {
   // Checks that a feed move has a positive F; reports once until the next F word.
   bool feed_ok(int line, int motion) {
     if (feed_mm_per_min_ > 0.0) return true;
+    // After a rejected block the missing F is most likely that block's own F word: reporting it again
+    // would only send the user after a consequence.
+    if (feed_line_ == 0 && !problems_.empty()) feed_problem_reported_ = true;
     if (!feed_problem_reported_) {
       const std::string name = detail::g_code_name(motion);
       if (feed_line_ == 0) {
