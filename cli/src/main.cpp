@@ -7,6 +7,7 @@
 #include <iostream>
 
 #include "cycle_command.hpp"
+#include "db_command.hpp"
 #include "simulate_command.hpp"
 #include "feedplan/core/input_error.hpp"
 
@@ -29,6 +30,8 @@ int main(int argc, char** argv) {
   feedplan::cli::add_cycle_command(app, cycle_options);
   feedplan::cli::SimulateOptions simulate_options;
   feedplan::cli::add_simulate_command(app, simulate_options);
+  feedplan::cli::DbOptions db_options;
+  feedplan::cli::add_db_command(app, db_options);
 
   try {
     app.parse(argc, argv);
@@ -46,6 +49,7 @@ int main(int argc, char** argv) {
   try {
     if (app.got_subcommand("cycle")) return feedplan::cli::run_cycle_command(cycle_options);
     if (app.got_subcommand("simulate")) return feedplan::cli::run_simulate_command(simulate_options);
+    if (app.got_subcommand("db")) return feedplan::cli::run_db_command(app, db_options);
   } catch (const feedplan::InputError& e) {
     std::cerr << "feedplan: bad input:\n";
     for (const auto& problem : e.problems()) std::cerr << "  " << feedplan::to_string(problem) << "\n";

@@ -6,6 +6,9 @@
 
 #include <array>
 #include <string>
+#include <vector>
+
+#include "feedplan/core/input_error.hpp"
 
 namespace feedplan::model_db {
 
@@ -33,5 +36,11 @@ struct ResponseSurfaceModel {
   //! What F̂ is: always the peak XY resultant force per spindle revolution, N.
   std::string quantity = "peak_xy_force_per_revolution_n";
 };
+
+//! Every problem with a model's numbers, each naming its field ("model.beta[3] = nan: must be finite"):
+//! finite β; finite centres; finite scales > 0; a finite range with non-negative values and min ≤ max for
+//! t_m and for L; finite, non-negative axial depth and spindle speed; and the quantity F̂ stands for must
+//! be the one this project models ("peak_xy_force_per_revolution_n"). Empty when the model is usable.
+std::vector<InputProblem> validate(const ResponseSurfaceModel& model);
 
 }  // namespace feedplan::model_db

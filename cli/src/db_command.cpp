@@ -1,0 +1,547 @@
+#include "db_command.hpp"
+
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <iostream>
+#include <map>
+#include <sstream>
+
+#include "feedplan/core/angle.hpp"
+#include "feedplan/core/atomic_file.hpp"
+#include "feedplan/core/input_error.hpp"
+#include "feedplan/geometry/analytic_engagement.hpp"
+#include "feedplan/model_db/closest_model.hpp"
+#include "feedplan/model_db/cutting_test_import.hpp"
+#include "feedplan/model_db/model_exchange.hpp"
+#include "feedplan/model_db/model_fit.hpp"
+#include "feedplan/model_db/model_prediction.hpp"
+#include "feedplan/model_db/store.hpp"
+
+namespace feedplan::cli {
+
+namespace {
+
+using nlohmann::json;
+namespace mdb = model_db;
+
+std::string database_path(const DbOptions& options) {
+  if (!options.db_path.empty()) return options.db_path;
+  if (const char* env = std::getenv("FEEDPLAN_DB"); env && *env) return env;
+  return FEEDPLAN_SAMPLE_DB;
+}
+
+mdb::Store open_store(const DbOptions& options, mdb::OpenMode mode = mdb::OpenMode::kExisting) {
+  return mdb::Store::open(database_path(options), mode);
+}
+
+geometry::Tool geometry_tool(const mdb::ToolRecord& tool) {
+  return geometry::Tool{tool.name, tool.diameter_mm, tool.flutes, tool.helix_deg};
+}
+
+const mdb::ToolRecord require_tool(const mdb::Store& store, const std::string& name) {
+  if (name.empty()) throw InputError("--tool", "is required: the tool's name in the database (see feedplan db list)");
+  auto tool = store.find_tool(name);
+  if (!tool) throw InputError("--tool", "= '" + name + "': no such tool in " + store.path().string() + " (see feedplan db list)");
+  return *tool;
+}
+
+void require_material(const mdb::Store& store, const std::string& name) {
+  if (name.empty()) throw InputError("--material", "is required: the material's name in the database");
+  if (!store.find_material(name)) {
+    throw InputError("--material", "= '" + name + "': no such material in " + store.path().string() + " (see feedplan db list)");
+  }
+}
+
+json model_json(const mdb::ModelRecord& m) {
+  const auto& r = m.model;
+  json out = {{"id", m.id},
+              {"tool", m.tool_name},
+              {"material", m.material_name},
+              {"version", m.version},
+              {"active", m.active},
+              {"source", mdb::to_string(m.source)},
+              {"created_at", m.created_at},
+              {"note", m.note},
+              {"beta_n", r.beta},
+              {"standard_errors_n", m.fit.standard_errors},
+              {"chip_center_mm", r.chip_center_mm},
+              {"chip_scale_mm", r.chip_scale_mm},
+              {"contact_length_center_mm", r.contact_length_center_mm},
+              {"contact_length_scale_mm", r.contact_length_scale_mm},
+              {"fitted_range",
+               {{"chip_min_mm", r.range.chip_min_mm},
+                {"chip_max_mm", r.range.chip_max_mm},
+                {"contact_length_min_mm", r.range.contact_length_min_mm},
+                {"contact_length_max_mm", r.range.contact_length_max_mm}}},
+              {"axial_depth_mm", r.axial_depth_mm},
+              {"spindle_rpm", r.spindle_rpm},
+              {"n", m.fit.n},
+              {"rmse_n", m.fit.rmse_n},
+              {"r_squared", m.fit.r_squared},
+              {"loo_rmse_n", m.fit.loo_rmse_n}};
+  if (m.parent_version) out["parent_version"] = *m.parent_version;
+  return out;
+}
+
+void print_model(const mdb::ModelRecord& m) {
+  const auto& r = m.model;
+  std::printf("model %s in %s, version %d%s (%s, %s)%s%s\n", m.tool_name.c_str(), m.material_name.c_str(), m.version,
+              m.active ? " [active]" : "", mdb::to_string(m.source).c_str(), m.created_at.c_str(),
+              m.note.empty() ? "" : ": ", m.note.c_str());
+  static const char* names[6] = {"beta0", "beta1", "beta2", "beta11", "beta22", "beta12"};
+  for (int i = 0; i < 6; ++i) {
+    std::printf("  %-7s %12.3f N  ± %.3f\n", names[i], r.beta[i], m.fit.standard_errors[i]);
+  }
+  std::printf("  X1 = (t_m - %.5g) / %.5g mm, X2 = (L - %.5g) / %.5g mm\n", r.chip_center_mm, r.chip_scale_mm,
+              r.contact_length_center_mm, r.contact_length_scale_mm);
+  std::printf("  fitted on t_m %.4g–%.4g mm, L %.4g–%.4g mm, a_p %.4g mm, %.0f rpm\n", r.range.chip_min_mm,
+              r.range.chip_max_mm, r.range.contact_length_min_mm, r.range.contact_length_max_mm, r.axial_depth_mm,
+              r.spindle_rpm);
+  std::printf("  n %d, RMSE %.2f N, R² %.4f, leave-one-out RMSE %.2f N\n", m.fit.n, m.fit.rmse_n, m.fit.r_squared,
+              m.fit.loo_rmse_n);
+}
+
+// Straight-cut model inputs for radial depth a_e and feed per tooth f_z (DESIGN.md §5.1).
+std::pair<double, double> straight_cut_inputs(double tool_radius_mm, double radial_depth_mm, double feed_per_tooth_mm) {
+  const double engagement = radial_depth_mm >= 2.0 * tool_radius_mm
+                                ? kPi
+                                : geometry::straight_engagement_rad(tool_radius_mm, radial_depth_mm);
+  return {feed_per_tooth_mm * geometry::steady_chip_factor(engagement), tool_radius_mm * engagement};
+}
+
+mdb::CutMode parse_mode(const std::string& text) {
+  if (text == "down") return mdb::CutMode::kDown;
+  if (text == "up") return mdb::CutMode::kUp;
+  if (text == "slot") return mdb::CutMode::kSlot;
+  throw InputError("--mode", "= '" + text + "': must be down, up or slot");
+}
+
+std::string mode_text(mdb::CutMode mode) {
+  return mode == mdb::CutMode::kDown ? "down" : mode == mdb::CutMode::kUp ? "up" : "slot";
+}
+
+int run_init(const DbOptions& o) {
+  const mdb::Store store = open_store(o, mdb::OpenMode::kCreate);
+  if (o.json) {
+    std::cout << json{{"db", store.path().string()}, {"schema_version", store.schema_version()}}.dump(2) << "\n";
+  } else {
+    std::printf("database %s ready (schema version %d)\n", store.path().string().c_str(), store.schema_version());
+  }
+  return 0;
+}
+
+int run_list(const DbOptions& o) {
+  const mdb::Store store = open_store(o, mdb::OpenMode::kReadOnly);
+  const auto tools = store.tools();
+  const auto materials = store.materials();
+  const auto models = store.active_models();
+  if (o.json) {
+    json out = {{"db", store.path().string()}, {"tools", json::array()}, {"materials", json::array()}, {"models", json::array()}};
+    for (const auto& t : tools) {
+      out["tools"].push_back({{"name", t.name}, {"diameter_mm", t.diameter_mm}, {"flutes", t.flutes}, {"helix_deg", t.helix_deg},
+                              {"tool_material", t.tool_material}, {"coating", t.coating}});
+    }
+    for (const auto& m : materials) {
+      out["materials"].push_back({{"name", m.name}, {"iso_group", mdb::to_string(m.iso_group)},
+                                  {"hardness", m.hardness_value}, {"hardness_scale", m.hardness_scale}});
+    }
+    for (const auto& m : models) out["models"].push_back(model_json(m));
+    std::cout << out.dump(2) << "\n";
+    return 0;
+  }
+  std::printf("%s\n\ntools\n", store.path().string().c_str());
+  for (const auto& t : tools) {
+    std::printf("  %-20s D%-6.4g %d flutes, helix %.3g deg, %s %s\n", t.name.c_str(), t.diameter_mm, t.flutes, t.helix_deg,
+                t.tool_material.c_str(), t.coating.c_str());
+  }
+  std::printf("\nmaterials\n");
+  for (const auto& m : materials) {
+    std::printf("  %-20s ISO %s, %.4g %s\n", m.name.c_str(), mdb::to_string(m.iso_group).c_str(), m.hardness_value,
+                m.hardness_scale.c_str());
+  }
+  std::printf("\nactive models\n");
+  std::printf("  %-20s %-12s %4s %-13s %6s %9s %8s\n", "tool", "material", "ver", "source", "n", "rmse_n", "r2");
+  for (const auto& m : models) {
+    std::printf("  %-20s %-12s %4d %-13s %6d %9.2f %8.4f\n", m.tool_name.c_str(), m.material_name.c_str(), m.version,
+                mdb::to_string(m.source).c_str(), m.fit.n, m.fit.rmse_n, m.fit.r_squared);
+  }
+  return 0;
+}
+
+int run_show(const DbOptions& o) {
+  const mdb::Store store = open_store(o, mdb::OpenMode::kReadOnly);
+  require_tool(store, o.tool);
+  require_material(store, o.material);
+  const auto versions = store.models_for(o.tool, o.material);
+  const mdb::ModelRecord* chosen = nullptr;
+  for (const auto& m : versions) {
+    if ((o.version == 0 && m.active) || (o.version != 0 && m.version == o.version)) chosen = &m;
+  }
+  if (!chosen) {
+    throw InputError(o.version ? "--version" : "--tool/--material",
+                     o.version ? "= " + std::to_string(o.version) + ": no such version of " + o.tool + " in " + o.material
+                               : "no model for " + o.tool + " in " + o.material + " (fit one: feedplan db fit)");
+  }
+  const auto tests = store.cutting_tests(o.tool, o.material);
+  if (o.json) {
+    json out = model_json(*chosen);
+    out["covariance_n2"] = chosen->fit.covariance;
+    out["cutting_tests"] = tests.size();
+    std::cout << out.dump(2) << "\n";
+  } else {
+    print_model(*chosen);
+    std::printf("  %zu cutting tests stored; %zu versions\n", tests.size(), versions.size());
+  }
+  return 0;
+}
+
+int run_add_tool(const DbOptions& o) {
+  mdb::Store store = open_store(o);
+  mdb::ToolRecord tool;
+  tool.name = o.name;
+  tool.diameter_mm = o.diameter_mm;
+  tool.flutes = o.flutes;
+  tool.helix_deg = o.helix_deg;
+  tool.tool_material = o.tool_material;
+  tool.coating = o.coating;
+  tool.notes = o.notes;
+  const auto added = store.add_tool(tool);
+  if (o.json) {
+    std::cout << json{{"tool", added.name}, {"id", added.id}}.dump(2) << "\n";
+  } else {
+    std::printf("tool %s added\n", added.name.c_str());
+  }
+  return 0;
+}
+
+int run_add_material(const DbOptions& o) {
+  mdb::Store store = open_store(o);
+  mdb::MaterialRecord material;
+  material.name = o.name;
+  const auto group = mdb::parse_iso_group(o.iso_group);
+  if (!group) throw InputError("--iso-group", "= '" + o.iso_group + "': must be one of P, M, K, N, S, H (ISO 513)");
+  material.iso_group = *group;
+  std::istringstream hardness(o.hardness);
+  if (!(hardness >> material.hardness_value)) {
+    throw InputError("--hardness", "= '" + o.hardness + "': expected a number and a scale, e.g. \"200 HB\"");
+  }
+  hardness >> material.hardness_scale;
+  if (material.hardness_scale.empty()) material.hardness_scale = "HB";
+  material.notes = o.notes;
+  const auto added = store.add_material(material);
+  if (o.json) {
+    std::cout << json{{"material", added.name}, {"id", added.id}}.dump(2) << "\n";
+  } else {
+    std::printf("material %s added\n", added.name.c_str());
+  }
+  return 0;
+}
+
+int run_import_test(const DbOptions& o) {
+  mdb::Store store = open_store(o);
+  const mdb::ToolRecord tool = require_tool(store, o.tool);
+  require_material(store, o.material);
+  mdb::CuttingTestConditions conditions;
+  conditions.tool_name = o.tool;
+  conditions.material_name = o.material;
+  conditions.spindle_rpm = o.spindle_rpm;
+  conditions.feed_mm_per_min = o.feed_mm_per_min;
+  conditions.radial_depth_mm = o.radial_depth_mm;
+  conditions.axial_depth_mm = o.axial_depth_mm;
+  conditions.mode = parse_mode(o.mode);
+  const mdb::CuttingTestRecord record = mdb::import_cutting_test(o.log_path, conditions, geometry_tool(tool));
+  if (!o.no_store) store.add_cutting_test(record);
+  if (o.json) {
+    std::cout << json{{"log", o.log_path},
+                      {"stored", !o.no_store},
+                      {"feed_per_tooth_mm", record.feed_per_tooth_mm},
+                      {"chip_mm", record.chip_mm},
+                      {"contact_length_mm", record.contact_length_mm},
+                      {"peak_mean_n", record.peak_mean_n},
+                      {"peak_std_n", record.peak_std_n},
+                      {"peak_min_n", record.peak_min_n},
+                      {"peak_max_n", record.peak_max_n},
+                      {"revolutions_total", record.revolutions_total},
+                      {"revolutions_used", record.revolutions_used},
+                      {"notes", record.notes}}
+                     .dump(2)
+              << "\n";
+  } else {
+    std::printf("%s: %s milling, f_z %.4g mm, t_m %.4g mm, L %.4g mm\n", o.log_path.c_str(), mode_text(conditions.mode).c_str(),
+                record.feed_per_tooth_mm, record.chip_mm, record.contact_length_mm);
+    std::printf("steady per-revolution peak %.1f N ± %.1f N (min %.1f, max %.1f) over %d of %d revolutions%s\n",
+                record.peak_mean_n, record.peak_std_n, record.peak_min_n, record.peak_max_n, record.revolutions_used,
+                record.revolutions_total, o.no_store ? " (not stored)" : "");
+    for (const auto& note : record.notes) std::printf("note: %s\n", note.c_str());
+  }
+  return 0;
+}
+
+mdb::FitOptions fit_options(const DbOptions& o) {
+  mdb::FitOptions options;
+  if (o.loss == "huber") {
+    options.loss = mdb::FitOptions::kHuber;
+  } else if (o.loss == "cauchy") {
+    options.loss = mdb::FitOptions::kCauchy;
+  } else if (o.loss == "squared") {
+    options.loss = mdb::FitOptions::kSquared;
+  } else {
+    throw InputError("--loss", "= '" + o.loss + "': must be huber, cauchy or squared");
+  }
+  return options;
+}
+
+int run_fit(const DbOptions& o) {
+  mdb::Store store = open_store(o);
+  require_tool(store, o.tool);
+  require_material(store, o.material);
+  const mdb::FitOptions options = fit_options(o);
+  const auto tests = store.cutting_tests(o.tool, o.material);
+  std::vector<mdb::FitSample> samples;
+  std::map<double, int> axial_depths, speeds;
+  for (const auto& stored : tests) {
+    const auto& t = stored.test;
+    samples.push_back({t.chip_mm, t.contact_length_mm, t.peak_mean_n});
+    ++axial_depths[t.conditions.axial_depth_mm];
+    ++speeds[t.conditions.spindle_rpm];
+  }
+  const mdb::FitResult fit = mdb::fit_model(samples, options);
+  if (fit.status == mdb::FitStatus::kInsufficientData || fit.status == mdb::FitStatus::kNotConverged) {
+    std::cerr << "feedplan: no model stored: " << fit.message << "\n";
+    return 1;
+  }
+  mdb::ModelRecord record;
+  record.tool_name = o.tool;
+  record.material_name = o.material;
+  record.model = fit.model;
+  record.model.axial_depth_mm = axial_depths.size() == 1 ? axial_depths.begin()->first : 0.0;
+  record.model.spindle_rpm = speeds.size() == 1 ? speeds.begin()->first : 0.0;
+  record.fit.n = fit.n;
+  record.fit.rmse_n = fit.rmse_n;
+  record.fit.r_squared = fit.r_squared;
+  record.fit.covariance = fit.covariance;
+  record.fit.standard_errors = fit.standard_error_n;
+  record.fit.loo_rmse_n = fit.loo_rmse_n;
+  record.source = mdb::ModelSource::kCuttingTests;
+  record.note = o.note.empty() ? fit.message : o.note + (fit.status == mdb::FitStatus::kOk ? "" : "; " + fit.message);
+  const mdb::ModelRecord stored = store.add_model(record);
+  if (o.json) {
+    json out = model_json(stored);
+    out["status"] = fit.status == mdb::FitStatus::kOk ? "ok" : "reduced_model";
+    out["message"] = fit.message;
+    std::cout << out.dump(2) << "\n";
+  } else {
+    print_model(stored);
+    if (fit.status != mdb::FitStatus::kOk) std::printf("note: %s\n", fit.message.c_str());
+  }
+  return 0;
+}
+
+int run_predict(const DbOptions& o) {
+  const mdb::Store store = open_store(o, mdb::OpenMode::kReadOnly);
+  const mdb::ToolRecord tool = require_tool(store, o.tool);
+  require_material(store, o.material);
+  const mdb::ClosestModel closest = mdb::closest_model(store, o.tool, o.material);
+  if (closest.status != mdb::ClosestModelStatus::kFound || !closest.model) throw InputError("--tool/--material", "no model in " + store.path().string() + ": " + closest.explanation);
+  if (!(std::isfinite(o.radial_depth_mm) && o.radial_depth_mm > 0 && o.radial_depth_mm <= tool.diameter_mm)) {
+    throw InputError("--radial-depth-mm", "= " + std::to_string(o.radial_depth_mm) + ": must be in (0, tool diameter]");
+  }
+  if (!(std::isfinite(o.feed_per_tooth_mm) && o.feed_per_tooth_mm > 0)) {
+    throw InputError("--feed-per-tooth-mm", "= " + std::to_string(o.feed_per_tooth_mm) + ": must be a finite number > 0");
+  }
+  if (closest.match != mdb::ModelMatch::kExact) {
+    std::cerr << "feedplan: warning: no model for " << o.tool << " in " << o.material << "; " << closest.explanation << "\n";
+  }
+  const auto [chip, contact] = straight_cut_inputs(0.5 * tool.diameter_mm, o.radial_depth_mm, o.feed_per_tooth_mm);
+  const mdb::ForcePrediction p = mdb::predict(closest.model->model, chip, contact);
+  if (o.json) {
+    std::cout << json{{"model", model_json(*closest.model)},
+                      {"match", closest.explanation},
+                      {"chip_mm", chip},
+                      {"contact_length_mm", contact},
+                      {"force_n", p.force_n},
+                      {"chip_outside_fitted_range", p.chip_outside},
+                      {"contact_length_outside_fitted_range", p.contact_length_outside}}
+                     .dump(2)
+              << "\n";
+  } else {
+    std::printf("model: %s\n", closest.explanation.c_str());
+    std::printf("t_m %.4g mm, L %.4g mm: predicted per-revolution peak %.1f N%s\n", chip, contact, p.force_n,
+                p.chip_outside || p.contact_length_outside ? " (outside the fitted range: extrapolated)" : "");
+  }
+  return 0;
+}
+
+int run_history(const DbOptions& o) {
+  const mdb::Store store = open_store(o, mdb::OpenMode::kReadOnly);
+  require_tool(store, o.tool);
+  require_material(store, o.material);
+  const auto versions = store.models_for(o.tool, o.material);
+  const auto events = store.activation_history(o.tool, o.material);
+  const auto learning = store.learning_history(o.tool, o.material);
+  if (o.json) {
+    json out = {{"versions", json::array()}, {"activations", json::array()}, {"learning", json::array()}};
+    for (const auto& m : versions) out["versions"].push_back(model_json(m));
+    for (const auto& e : events) {
+      out["activations"].push_back({{"version", e.version}, {"created_at", e.created_at},
+                                    {"previous_version", e.previous_version ? json(*e.previous_version) : json(nullptr)}});
+    }
+    for (const auto& l : learning) {
+      out["learning"].push_back({{"part", l.part_name}, {"n_samples", l.n_samples}, {"error_before_n", l.error_before_n},
+                                 {"error_after_n", l.error_after_n}, {"created_at", l.created_at}});
+    }
+    std::cout << out.dump(2) << "\n";
+    return 0;
+  }
+  std::printf("%s in %s: %zu versions\n", o.tool.c_str(), o.material.c_str(), versions.size());
+  for (const auto& m : versions) {
+    std::printf("  v%-3d %s %-13s n %-4d RMSE %7.2f N %s%s\n", m.version, m.created_at.c_str(), mdb::to_string(m.source).c_str(),
+                m.fit.n, m.fit.rmse_n, m.active ? "[active] " : "", m.note.c_str());
+  }
+  for (const auto& e : events) {
+    std::printf("  %s: version %d made active%s\n", e.created_at.c_str(), e.version,
+                e.previous_version ? (" (was " + std::to_string(*e.previous_version) + ")").c_str() : "");
+  }
+  for (const auto& l : learning) {
+    std::printf("  %s: learned from %s, %d samples, RMS error %.1f → %.1f N\n", l.created_at.c_str(), l.part_name.c_str(),
+                l.n_samples, l.error_before_n, l.error_after_n);
+  }
+  return 0;
+}
+
+int run_rollback(const DbOptions& o) {
+  mdb::Store store = open_store(o);
+  require_tool(store, o.tool);
+  require_material(store, o.material);
+  const mdb::ModelRecord active = store.rollback(o.tool, o.material, o.version);
+  if (o.json) {
+    std::cout << model_json(active).dump(2) << "\n";
+  } else {
+    std::printf("%s in %s: version %d is active again\n", o.tool.c_str(), o.material.c_str(), active.version);
+  }
+  return 0;
+}
+
+int run_export(const DbOptions& o) {
+  const mdb::Store store = open_store(o, mdb::OpenMode::kReadOnly);
+  mdb::ExportOptions options;
+  options.active_models_only = !o.all_versions;
+  const std::string text = mdb::export_json(store, options);
+  if (const std::string error = write_file_atomically(o.file, text); !error.empty()) {
+    std::cerr << "feedplan: " << error << "\n";
+    return 1;
+  }
+  if (!o.json) std::printf("exported %s to %s\n", store.path().string().c_str(), o.file.c_str());
+  return 0;
+}
+
+int run_import(const DbOptions& o) {
+  mdb::Store store = open_store(o, mdb::OpenMode::kCreate);
+  const mdb::ImportSummary s = mdb::import_from_file(store, o.file);
+  std::ostringstream text;
+  text << s.tools_added << " tools, " << s.materials_added << " materials, " << s.models_added << " model versions, "
+       << s.cutting_tests_added << " cutting tests, " << s.learning_entries_added << " learning entries added; "
+       << s.tools_skipped + s.materials_skipped + s.models_skipped + s.cutting_tests_skipped + s.learning_entries_skipped
+       << " identical records skipped";
+  if (o.json) {
+    std::cout << json{{"imported", o.file}, {"summary", text.str()}, {"messages", s.messages}}.dump(2) << "\n";
+  } else {
+    std::printf("imported %s into %s: %s\n", o.file.c_str(), store.path().string().c_str(), text.str().c_str());
+    for (const auto& message : s.messages) std::printf("  %s\n", message.c_str());
+  }
+  return 0;
+}
+
+}  // namespace
+
+void add_db_command(CLI::App& app, DbOptions& o) {
+  auto* db = app.add_subcommand("db", "Maintain the model database: tools, materials, cutting tests, fitted models");
+  db->require_subcommand(1);
+  auto common = [&o](CLI::App* cmd) {
+    cmd->add_option("--db", o.db_path, "Database file (default: $FEEDPLAN_DB, else the bundled sample database)");
+    cmd->add_flag("--json", o.json, "Print the result as JSON");
+  };
+  auto tool_material = [&o](CLI::App* cmd) {
+    cmd->add_option("--tool", o.tool, "Tool name")->required();
+    cmd->add_option("--material", o.material, "Material name")->required();
+  };
+  common(db->add_subcommand("init", "Create a database (or migrate an older one)"));
+  common(db->add_subcommand("list", "List tools, materials and active models"));
+  auto* show = db->add_subcommand("show", "Show a model: coefficients with standard errors, range, fit statistics");
+  common(show);
+  tool_material(show);
+  show->add_option("--version", o.version, "Model version (default: the active one)");
+  auto* add_tool = db->add_subcommand("add-tool", "Register a tool");
+  common(add_tool);
+  add_tool->add_option("name", o.name, "Unique tool name")->required();
+  add_tool->add_option("--diameter-mm", o.diameter_mm, "Cutting diameter, mm")->required();
+  add_tool->add_option("--flutes", o.flutes, "Number of flutes")->required();
+  add_tool->add_option("--helix-deg", o.helix_deg, "Helix angle, deg");
+  add_tool->add_option("--tool-material", o.tool_material, "Substrate, e.g. \"solid carbide\"");
+  add_tool->add_option("--coating", o.coating, "Coating, e.g. TiAlN");
+  add_tool->add_option("--notes", o.notes, "Free text");
+  auto* add_material = db->add_subcommand("add-material", "Register a workpiece material");
+  common(add_material);
+  add_material->add_option("name", o.name, "Unique material name")->required();
+  add_material->add_option("--iso-group", o.iso_group, "ISO 513 group: P, M, K, N, S or H")->required();
+  add_material->add_option("--hardness", o.hardness, "Hardness with its scale, e.g. \"200 HB\"")->required();
+  add_material->add_option("--notes", o.notes, "Free text");
+  auto* import_test = db->add_subcommand("import-test", "Import a cutting test: a force log and its conditions");
+  common(import_test);
+  import_test->add_option("log", o.log_path, "Force log (feedplan CSV or Kistler DynoWare export)")->required();
+  tool_material(import_test);
+  import_test->add_option("--spindle-rpm", o.spindle_rpm, "Spindle speed, rev/min")->required();
+  import_test->add_option("--feed-mm-per-min", o.feed_mm_per_min, "Feed, mm/min")->required();
+  import_test->add_option("--radial-depth-mm", o.radial_depth_mm, "Radial depth a_e, mm")->required();
+  import_test->add_option("--axial-depth-mm", o.axial_depth_mm, "Axial depth a_p, mm")->required();
+  import_test->add_option("--mode", o.mode, "down, up or slot");
+  import_test->add_flag("--no-store", o.no_store, "Only measure the steady peak; do not store the test");
+  auto* fit = db->add_subcommand("fit", "Fit a new model version from the stored cutting tests (Ceres, robust loss)");
+  common(fit);
+  tool_material(fit);
+  fit->add_option("--loss", o.loss, "huber (default), cauchy or squared");
+  fit->add_option("--note", o.note, "Free text stored with the version");
+  auto* predict = db->add_subcommand("predict", "Predict the per-revolution peak force of a straight cut");
+  common(predict);
+  tool_material(predict);
+  predict->add_option("--radial-depth-mm", o.radial_depth_mm, "Radial depth a_e, mm")->required();
+  predict->add_option("--feed-per-tooth-mm", o.feed_per_tooth_mm, "Feed per tooth f_z, mm")->required();
+  auto* export_cmd = db->add_subcommand("export", "Export tools, materials, models and cutting tests as JSON");
+  common(export_cmd);
+  export_cmd->add_option("file", o.file, "JSON file to write")->required();
+  export_cmd->add_flag("--all-versions", o.all_versions, "Every model version, not only the active ones");
+  auto* import_cmd = db->add_subcommand("import", "Import an exported JSON file (one transaction)");
+  common(import_cmd);
+  import_cmd->add_option("file", o.file, "JSON file to read")->required();
+  auto* history = db->add_subcommand("history", "Versions, activations and learning steps of a model");
+  common(history);
+  tool_material(history);
+  auto* rollback = db->add_subcommand("rollback", "Make an older model version active again");
+  common(rollback);
+  tool_material(rollback);
+  rollback->add_option("--version", o.version, "Version to make active")->required();
+}
+
+int run_db_command(const CLI::App& app, const DbOptions& o) {
+  const CLI::App* db = app.get_subcommand("db");
+  const auto given = [db](const char* name) { return db->got_subcommand(name); };
+  if (given("init")) return run_init(o);
+  if (given("list")) return run_list(o);
+  if (given("show")) return run_show(o);
+  if (given("add-tool")) return run_add_tool(o);
+  if (given("add-material")) return run_add_material(o);
+  if (given("import-test")) return run_import_test(o);
+  if (given("fit")) return run_fit(o);
+  if (given("predict")) return run_predict(o);
+  if (given("export")) return run_export(o);
+  if (given("import")) return run_import(o);
+  if (given("history")) return run_history(o);
+  if (given("rollback")) return run_rollback(o);
+  return 1;
+}
+
+}  // namespace feedplan::cli

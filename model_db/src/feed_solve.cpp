@@ -1,0 +1,172 @@
+#include "feedplan/model_db/feed_solve.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <vector>
+
+#include "feedplan/core/input_error.hpp"
+#include "feedplan/core/number_text.hpp"
+#include "feedplan/model_db/model_prediction.hpp"
+
+namespace feedplan::model_db {
+namespace {
+
+//! 6 significant digits, as six_digit_number_text() writes finite numbers, without an ostringstream: the
+//! messages of off-range samples are built once per path sample.
+std::string number(double value) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%g", value);
+  return text;
+}
+
+//! The numbers solve_feed() relies on are usable; cheap, so the full validate() (which builds strings)
+//! runs only when this fails.
+bool usable(const ResponseSurfaceModel& model) {
+  for (double b : model.beta) {
+    if (!std::isfinite(b)) return false;
+  }
+  const FittedRange& r = model.range;
+  return std::isfinite(model.chip_center_mm) && std::isfinite(model.contact_length_center_mm) &&
+         std::isfinite(model.chip_scale_mm) && model.chip_scale_mm > 0.0 &&
+         std::isfinite(model.contact_length_scale_mm) && model.contact_length_scale_mm > 0.0 &&
+         std::isfinite(r.chip_min_mm) && std::isfinite(r.chip_max_mm) && r.chip_min_mm >= 0.0 &&
+         r.chip_min_mm <= r.chip_max_mm && std::isfinite(r.contact_length_min_mm) &&
+         std::isfinite(r.contact_length_max_mm) && r.contact_length_min_mm >= 0.0 &&
+         r.contact_length_min_mm <= r.contact_length_max_mm;
+}
+
+void check_arguments(const ResponseSurfaceModel& model, double chip_factor, double contact_length_mm,
+                     double target_force_n) {
+  const bool factor_ok = std::isfinite(chip_factor) && chip_factor > 0.0 && chip_factor <= 1.0;
+  const bool length_ok = std::isfinite(contact_length_mm) && contact_length_mm >= 0.0;
+  const bool target_ok = std::isfinite(target_force_n) && target_force_n > 0.0;
+  if (factor_ok && length_ok && target_ok && usable(model)) return;
+  std::vector<InputProblem> problems;
+  if (!factor_ok) {
+    problems.push_back({"chip_factor", "= " + shortest_number_text(chip_factor) +
+                                           ": must be in (0, 1] — t_m / f_z = sin(min(α_en, π/2)) of a cutting sample"});
+  }
+  if (!length_ok) {
+    problems.push_back({"contact_length_mm", "= " + shortest_number_text(contact_length_mm) + ": must be finite and ≥ 0"});
+  }
+  if (!target_ok) {
+    problems.push_back({"target_force_n", "= " + shortest_number_text(target_force_n) + ": must be finite and > 0"});
+  }
+  for (InputProblem& problem : validate(model)) problems.push_back(std::move(problem));
+  throw InputError(std::move(problems));
+}
+
+//! F̂ as the quadratic A + B X1 + C X1² in X1 at a fixed L (file comment of feed_solve.hpp).
+struct QuadraticInChip {
+  double a = 0.0;
+  double b = 0.0;
+  double c = 0.0;
+  double at(double x1) const { return a + x1 * (b + x1 * c); }
+};
+
+}  // namespace
+
+std::string to_string(FeedSolveStatus status) {
+  switch (status) {
+    case FeedSolveStatus::kOk: return "ok";
+    case FeedSolveStatus::kClampedToRange: return "clamped to range";
+    case FeedSolveStatus::kTargetBelowModel: return "target below model";
+    case FeedSolveStatus::kUnreachable: return "unreachable";
+  }
+  return "?";
+}
+
+FeedSolution solve_feed(const ResponseSurfaceModel& model, double chip_factor, double contact_length_mm,
+                        double target_force_n) {
+  check_arguments(model, chip_factor, contact_length_mm, target_force_n);
+  const auto& beta = model.beta;
+  const double c1 = model.chip_center_mm;
+  const double s1 = model.chip_scale_mm;
+  const double x2 = (contact_length_mm - model.contact_length_center_mm) / model.contact_length_scale_mm;
+  const QuadraticInChip f_hat{beta[kBeta0] + x2 * (beta[kBeta2] + x2 * beta[kBeta22]), beta[kBeta1] + beta[kBeta12] * x2,
+                              beta[kBeta11]};
+  const auto x1_of = [&](double chip_mm) { return (chip_mm - c1) / s1; };
+  const auto chip_of = [&](double x1) { return c1 + s1 * x1; };
+  const double chip_min_mm = model.range.chip_min_mm;
+  const double chip_max_mm = model.range.chip_max_mm;
+
+  // The one root on the rising branch, where dF̂/dX1 = +√D (file comment of feed_solve.hpp).
+  std::optional<double> rising_x1;
+  const double a0 = f_hat.a - target_force_n;
+  const double discriminant = f_hat.b * f_hat.b - 4.0 * f_hat.c * a0;
+  if (discriminant >= 0.0) {
+    const double root_d = std::sqrt(discriminant);
+    if (f_hat.b >= 0.0) {
+      const double denominator = f_hat.b + root_d;
+      if (denominator > 0.0) {
+        rising_x1 = -2.0 * a0 / denominator;
+      } else if (f_hat.c != 0.0) {
+        rising_x1 = 0.0;  // B = 0 and D = 0: a double root at the vertex
+      }
+    } else if (f_hat.c != 0.0) {
+      rising_x1 = (-f_hat.b + root_d) / (2.0 * f_hat.c);
+    }
+  }
+  std::optional<double> root_chip_mm;
+  if (rising_x1 && std::isfinite(*rising_x1) && chip_of(*rising_x1) > 0.0) root_chip_mm = chip_of(*rising_x1);
+
+  FeedSolution solution;
+  double chip_mm = 0.0;
+  if (root_chip_mm) {
+    solution.root_feed_per_tooth_mm = *root_chip_mm / chip_factor;
+    if (!chip_outside(model.range, *root_chip_mm)) {
+      solution.status = FeedSolveStatus::kOk;
+      chip_mm = *root_chip_mm;
+    } else {
+      solution.status = FeedSolveStatus::kClampedToRange;
+      chip_mm = *root_chip_mm > chip_max_mm ? chip_max_mm : chip_min_mm;
+    }
+  } else if (f_hat.at(x1_of(0.0)) >= target_force_n) {
+    solution.status = FeedSolveStatus::kTargetBelowModel;
+    chip_mm = chip_min_mm;
+  } else {
+    solution.status = FeedSolveStatus::kUnreachable;
+    // The largest F̂ over [t_min, t_max]: the vertex of a concave F̂ when inside, else the better edge.
+    const double x_min = x1_of(chip_min_mm);
+    const double x_max = x1_of(chip_max_mm);
+    double best_x = x_min;
+    if (f_hat.at(x_max) > f_hat.at(x_min)) best_x = x_max;
+    if (f_hat.c < 0.0) {
+      const double vertex = -f_hat.b / (2.0 * f_hat.c);
+      if (vertex > x_min && vertex < x_max && f_hat.at(vertex) > f_hat.at(best_x)) best_x = vertex;
+    }
+    chip_mm = best_x == x_min ? chip_min_mm : best_x == x_max ? chip_max_mm : chip_of(best_x);
+  }
+  solution.chip_mm = chip_mm;
+  solution.feed_per_tooth_mm = chip_mm / chip_factor;
+  solution.predicted_force_n = f_hat.at(x1_of(chip_mm));
+  solution.contact_length_outside = contact_length_outside(model.range, contact_length_mm);
+
+  if (solution.status != FeedSolveStatus::kOk) {  // messages only off the common path: the planner calls this per sample
+    const std::string target = number(target_force_n) + " N";
+    const std::string range_text = "the fitted t_m range " + number(chip_min_mm) + "–" + number(chip_max_mm) + " mm";
+    const std::string here = "f_z = " + number(solution.feed_per_tooth_mm) + " mm (t_m = " + number(chip_mm) +
+                             " mm), where the model predicts " + number(solution.predicted_force_n) + " N";
+    if (solution.status == FeedSolveStatus::kClampedToRange) {
+      solution.message = "the target " + target + " needs t_m = " + number(*root_chip_mm) + " mm (f_z = " +
+                         number(*solution.root_feed_per_tooth_mm) + " mm), " +
+                         (*root_chip_mm > chip_max_mm ? "above " : "below ") + range_text + ": clamped to " + here;
+    } else if (solution.status == FeedSolveStatus::kTargetBelowModel) {
+      solution.message = "the model predicts " + number(f_hat.at(x1_of(0.0))) + " N as f_z → 0, already above the target " +
+                         target + ": using the smallest feed in " + range_text + ", " + here;
+    } else {
+      solution.message = "the model never reaches the target " + target +
+                         " on its rising branch: using the feed of its largest value in " + range_text + ", " + here;
+    }
+  }
+  if (solution.contact_length_outside) {
+    if (!solution.message.empty()) solution.message += "; ";
+    solution.message += "L = " + number(contact_length_mm) + " mm lies outside the fitted L range " +
+                        number(model.range.contact_length_min_mm) + "–" + number(model.range.contact_length_max_mm) +
+                        " mm: the model extrapolates";
+  }
+  return solution;
+}
+
+}  // namespace feedplan::model_db

@@ -1,0 +1,186 @@
+#include "feedplan/model_db/store_records.hpp"
+
+#include <cctype>
+#include <cmath>
+#include <string>
+
+#include "feedplan/core/number_text.hpp"
+
+namespace feedplan::model_db {
+namespace {
+
+std::string quoted(const std::string& text) { return "'" + text + "'"; }
+
+//! Collects problems as "<table>.<field> = <value>: <rule>".
+class Problems {
+ public:
+  explicit Problems(std::string table) : table_(std::move(table)) {}
+
+  void add(const std::string& field, const std::string& value_text, const std::string& rule) {
+    list_.push_back({table_ + "." + field, "= " + value_text + ": " + rule});
+  }
+  void finite(const std::string& field, double value) {
+    if (!std::isfinite(value)) add(field, shortest_number_text(value), "must be finite");
+  }
+  void positive(const std::string& field, double value) {
+    if (!std::isfinite(value) || value <= 0.0) add(field, shortest_number_text(value), "must be finite and > 0");
+  }
+  void non_negative(const std::string& field, double value) {
+    if (!std::isfinite(value) || value < 0.0) add(field, shortest_number_text(value), "must be finite and ≥ 0");
+  }
+  void name(const std::string& field, const std::string& value) {
+    if (value.empty() || std::isspace(static_cast<unsigned char>(value.front())) != 0 ||
+        std::isspace(static_cast<unsigned char>(value.back())) != 0) {
+      add(field, quoted(value), "must be a non-empty name without leading or trailing blanks");
+    }
+  }
+  std::vector<InputProblem> take() { return std::move(list_); }
+
+ private:
+  std::string table_;
+  std::vector<InputProblem> list_;
+};
+
+}  // namespace
+
+std::string to_string(IsoGroup group) {
+  switch (group) {
+    case IsoGroup::kP: return "P";
+    case IsoGroup::kM: return "M";
+    case IsoGroup::kK: return "K";
+    case IsoGroup::kN: return "N";
+    case IsoGroup::kS: return "S";
+    case IsoGroup::kH: return "H";
+  }
+  return "?";
+}
+
+std::optional<IsoGroup> parse_iso_group(std::string_view text) {
+  if (text.size() != 1) return std::nullopt;
+  switch (std::toupper(static_cast<unsigned char>(text.front()))) {
+    case 'P': return IsoGroup::kP;
+    case 'M': return IsoGroup::kM;
+    case 'K': return IsoGroup::kK;
+    case 'N': return IsoGroup::kN;
+    case 'S': return IsoGroup::kS;
+    case 'H': return IsoGroup::kH;
+    default: return std::nullopt;
+  }
+}
+
+std::string to_string(ModelSource source) {
+  switch (source) {
+    case ModelSource::kCuttingTests: return "cutting_tests";
+    case ModelSource::kLearned: return "learned";
+    case ModelSource::kImported: return "imported";
+  }
+  return "?";
+}
+
+std::optional<ModelSource> parse_model_source(std::string_view text) {
+  if (text == "cutting_tests") return ModelSource::kCuttingTests;
+  if (text == "learned") return ModelSource::kLearned;
+  if (text == "imported") return ModelSource::kImported;
+  return std::nullopt;
+}
+
+std::vector<InputProblem> validate(const ToolRecord& tool) {
+  Problems problems("tools");
+  problems.name("name", tool.name);
+  problems.positive("diameter_mm", tool.diameter_mm);
+  if (tool.flutes < 1) problems.add("flutes", std::to_string(tool.flutes), "must be ≥ 1");
+  if (!std::isfinite(tool.helix_deg) || tool.helix_deg < 0.0 || tool.helix_deg >= 90.0) {
+    problems.add("helix_deg", shortest_number_text(tool.helix_deg), "must be in [0, 90)");
+  }
+  return problems.take();
+}
+
+std::vector<InputProblem> validate(const MaterialRecord& material) {
+  Problems problems("materials");
+  problems.name("name", material.name);
+  problems.positive("hardness_value", material.hardness_value);
+  const std::string& scale = material.hardness_scale;
+  if (scale != "HB" && scale != "HV" && scale != "HRC" && scale != "HRB") {
+    problems.add("hardness_scale", quoted(scale), "must be one of HB, HV, HRC, HRB");
+  }
+  return problems.take();
+}
+
+std::vector<InputProblem> validate(const ModelRecord& record) {
+  Problems problems("models");
+  const ResponseSurfaceModel& model = record.model;
+  for (std::size_t i = 0; i < model.beta.size(); ++i) problems.finite("beta[" + std::to_string(i) + "]", model.beta[i]);
+  problems.finite("chip_center_mm", model.chip_center_mm);
+  problems.positive("chip_scale_mm", model.chip_scale_mm);
+  problems.finite("contact_length_center_mm", model.contact_length_center_mm);
+  problems.positive("contact_length_scale_mm", model.contact_length_scale_mm);
+  const FittedRange& range = model.range;
+  problems.non_negative("range.chip_min_mm", range.chip_min_mm);
+  problems.non_negative("range.chip_max_mm", range.chip_max_mm);
+  problems.non_negative("range.contact_length_min_mm", range.contact_length_min_mm);
+  problems.non_negative("range.contact_length_max_mm", range.contact_length_max_mm);
+  if (range.chip_min_mm > range.chip_max_mm) {
+    problems.add("range.chip_min_mm", shortest_number_text(range.chip_min_mm),
+                 "must be ≤ range.chip_max_mm = " + shortest_number_text(range.chip_max_mm));
+  }
+  if (range.contact_length_min_mm > range.contact_length_max_mm) {
+    problems.add("range.contact_length_min_mm", shortest_number_text(range.contact_length_min_mm),
+                 "must be ≤ range.contact_length_max_mm = " + shortest_number_text(range.contact_length_max_mm));
+  }
+  problems.non_negative("axial_depth_mm", model.axial_depth_mm);
+  problems.non_negative("spindle_rpm", model.spindle_rpm);
+  if (model.quantity.empty()) problems.add("quantity", "''", "must name what the model predicts");
+  const ModelFitStatistics& fit = record.fit;
+  if (fit.n < 0) problems.add("fit.n", std::to_string(fit.n), "must be ≥ 0");
+  problems.non_negative("fit.rmse_n", fit.rmse_n);
+  problems.finite("fit.r_squared", fit.r_squared);
+  problems.non_negative("fit.loo_rmse_n", fit.loo_rmse_n);
+  for (std::size_t i = 0; i < fit.covariance.size(); ++i) {
+    problems.finite("fit.covariance[" + std::to_string(i) + "]", fit.covariance[i]);
+  }
+  for (std::size_t i = 0; i < fit.standard_errors.size(); ++i) {
+    problems.non_negative("fit.standard_errors[" + std::to_string(i) + "]", fit.standard_errors[i]);
+  }
+  return problems.take();
+}
+
+std::vector<InputProblem> validate(const CuttingTestRecord& test) {
+  Problems problems("cutting_tests");
+  const CuttingTestConditions& conditions = test.conditions;
+  problems.name("tool_name", conditions.tool_name);
+  problems.name("material_name", conditions.material_name);
+  problems.positive("spindle_rpm", conditions.spindle_rpm);
+  problems.positive("feed_mm_per_min", conditions.feed_mm_per_min);
+  problems.positive("radial_depth_mm", conditions.radial_depth_mm);
+  problems.positive("axial_depth_mm", conditions.axial_depth_mm);
+  problems.non_negative("feed_per_tooth_mm", test.feed_per_tooth_mm);
+  problems.non_negative("chip_mm", test.chip_mm);
+  problems.non_negative("contact_length_mm", test.contact_length_mm);
+  problems.non_negative("peak_mean_n", test.peak_mean_n);
+  problems.non_negative("peak_std_n", test.peak_std_n);
+  problems.non_negative("peak_min_n", test.peak_min_n);
+  problems.non_negative("peak_max_n", test.peak_max_n);
+  if (test.revolutions_total < 0) problems.add("revolutions_total", std::to_string(test.revolutions_total), "must be ≥ 0");
+  if (test.revolutions_used < 0 || test.revolutions_used > test.revolutions_total) {
+    problems.add("revolutions_used", std::to_string(test.revolutions_used),
+                 "must be in [0, revolutions_total = " + std::to_string(test.revolutions_total) + "]");
+  }
+  for (std::size_t i = 0; i < test.steady_peaks_n.size(); ++i) {
+    problems.non_negative("steady_peaks_n[" + std::to_string(i) + "]", test.steady_peaks_n[i]);
+  }
+  return problems.take();
+}
+
+std::vector<InputProblem> validate(const LearningEntry& entry) {
+  Problems problems("learning_history");
+  if (entry.model_id_before <= 0) {
+    problems.add("model_id_before", std::to_string(entry.model_id_before), "must name a stored model version");
+  }
+  if (entry.model_id_after < 0) problems.add("model_id_after", std::to_string(entry.model_id_after), "must be ≥ 0");
+  if (entry.n_samples < 0) problems.add("n_samples", std::to_string(entry.n_samples), "must be ≥ 0");
+  problems.non_negative("error_before_n", entry.error_before_n);
+  problems.non_negative("error_after_n", entry.error_after_n);
+  return problems.take();
+}
+
+}  // namespace feedplan::model_db
