@@ -305,7 +305,11 @@ int run_fit(const DbOptions& o) {
   std::map<double, int> axial_depths, speeds;
   for (const auto& stored : tests) {
     const auto& t = stored.test;
-    samples.push_back({t.chip_mm, t.contact_length_mm, t.peak_mean_n});
+    if (o.per_revolution) {
+      for (const double peak : t.steady_peaks_n) samples.push_back({t.chip_mm, t.contact_length_mm, peak});
+    } else {
+      samples.push_back({t.chip_mm, t.contact_length_mm, t.peak_mean_n});
+    }
     ++axial_depths[t.conditions.axial_depth_mm];
     ++speeds[t.conditions.spindle_rpm];
   }
@@ -505,6 +509,8 @@ void add_db_command(CLI::App& app, DbOptions& o) {
   tool_material(fit);
   fit->add_option("--loss", o.loss, "huber (default), cauchy or squared");
   fit->add_option("--note", o.note, "Free text stored with the version");
+  fit->add_flag("--per-revolution", o.per_revolution,
+                "Fit every steady per-revolution peak (the scatter then sets the uncertainty), not one mean per test");
   auto* predict = db->add_subcommand("predict", "Predict the per-revolution peak force of a straight cut");
   common(predict);
   tool_material(predict);

@@ -31,6 +31,7 @@ struct DbOptions {
   bool no_store = false;        //!< import-test: only measure
   std::string loss = "huber";   //!< fit
   std::string note;             //!< fit
+  bool per_revolution = false;  //!< fit: every steady per-revolution peak is a sample (else one per test)
   double feed_per_tooth_mm = 0.0;  //!< predict
   std::string file;             //!< export / import
   bool all_versions = false;    //!< export
