@@ -626,10 +626,17 @@ class Importer {
     const auto& conditions = incoming.stored.test.conditions;
     const auto ids = pair(conditions.tool_name, conditions.material_name, incoming.path);
     if (!ids) return;
+    // Stored tests of the pair by time stamp: an identical test has the same created_at.
     auto& stored = tests_by_pair_[{ids->tool_id, ids->material_id}];
-    if (!stored) stored = detail::select_cutting_tests(db_, ids->tool_id, ids->material_id);
-    for (const auto& existing : *stored) {
-      if (same_content(existing, incoming.stored)) {
+    if (!stored) {
+      stored.emplace();
+      for (auto& test : detail::select_cutting_tests(db_, ids->tool_id, ids->material_id)) {
+        stored->emplace(test.created_at, std::move(test));
+      }
+    }
+    const auto [first, last] = stored->equal_range(incoming.stored.created_at);
+    for (auto existing = first; existing != last; ++existing) {
+      if (same_content(existing->second, incoming.stored)) {
         ++summary_.cutting_tests_skipped;
         return;
       }
@@ -686,7 +693,7 @@ class Importer {
   std::map<std::string, std::string> tool_names_;      // document name → stored name (renames)
   std::map<std::string, std::string> material_names_;  // document name → stored name (renames)
   std::map<ModelKey, RowId> written_models_;           // document key → stored id
-  std::map<std::pair<RowId, RowId>, std::optional<std::vector<StoredCuttingTest>>> tests_by_pair_;
+  std::map<std::pair<RowId, RowId>, std::optional<std::multimap<std::string, StoredCuttingTest>>> tests_by_pair_;
   std::optional<std::vector<LearningEntry>> stored_entries_;
 };
 

@@ -14,6 +14,8 @@
 //   feedplan database). Opening a file of an older version migrates it in one transaction; a newer
 //   one is refused with a message asking to upgrade feedplan.
 //
+// A Store is one connection: use it from one thread at a time (open one Store per thread or process).
+//
 // Errors: bad input (unknown names, duplicate names, non-finite numbers, a file that is not a model
 // database, a schema newer than this code) throws feedplan::InputError naming the field or the path and
 // the value. SQLite failures that are not the user's (disk full, I/O error) throw std::runtime_error.
