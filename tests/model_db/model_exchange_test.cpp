@@ -16,17 +16,9 @@
 namespace feedplan::model_db {
 namespace {
 
+using fixtures::input_error_of;
 using fixtures::ScratchDir;
 
-template <typename Action>
-std::string input_error_of(Action&& action) {
-  try {
-    action();
-  } catch (const InputError& error) {
-    return error.what();
-  }
-  return "(no InputError)";
-}
 
 class ExchangeTest : public ::testing::Test {
  protected:

@@ -11,6 +11,7 @@
 #include <iterator>
 #include <string>
 
+#include "feedplan/core/input_error.hpp"
 #include "feedplan/model_db/store.hpp"
 
 namespace feedplan::model_db::fixtures {
@@ -158,6 +159,17 @@ inline std::string raw_sql(const std::filesystem::path& path, const std::string&
   sqlite3_finalize(statement);
   sqlite3_close(db);
   return result;
+}
+
+//! The InputError message thrown by `action`, or "(no InputError)".
+template <typename Action>
+std::string input_error_of(Action&& action) {
+  try {
+    action();
+  } catch (const InputError& error) {
+    return error.what();
+  }
+  return "(no InputError)";
 }
 
 }  // namespace feedplan::model_db::fixtures

@@ -19,20 +19,11 @@
 namespace feedplan::model_db {
 namespace {
 
+using fixtures::input_error_of;
 using fixtures::ScratchDir;
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
-//! The InputError message thrown by `action`, or "(no InputError)".
-template <typename Action>
-std::string input_error_of(Action&& action) {
-  try {
-    action();
-  } catch (const InputError& error) {
-    return error.what();
-  }
-  return "(no InputError)";
-}
 
 // ---------------------------------------------------------------------------------------------------
 // Schema, version, journal
