@@ -1,5 +1,7 @@
 #include "db_command.hpp"
 
+#include "database_path.hpp"
+
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
@@ -28,14 +30,8 @@ namespace {
 using nlohmann::json;
 namespace mdb = model_db;
 
-std::string database_path(const DbOptions& options) {
-  if (!options.db_path.empty()) return options.db_path;
-  if (const char* env = std::getenv("FEEDPLAN_DB"); env && *env) return env;
-  return FEEDPLAN_SAMPLE_DB;
-}
-
 mdb::Store open_store(const DbOptions& options, mdb::OpenMode mode = mdb::OpenMode::kExisting) {
-  return mdb::Store::open(database_path(options), mode);
+  return mdb::Store::open(database_path(options.db_path), mode);
 }
 
 geometry::Tool geometry_tool(const mdb::ToolRecord& tool) {

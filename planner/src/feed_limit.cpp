@@ -1,0 +1,72 @@
+#include "feedplan/planner/feed_limit.hpp"
+
+#include <cmath>
+
+#include "feedplan/model_db/model_prediction.hpp"
+
+namespace feedplan::planner {
+
+bool is_engaged(const geometry::EngagementSample& sample) { return sample.cutting && sample.engagement_rad > 0.0; }
+
+double axial_depth_ratio(const model_db::ResponseSurfaceModel& model, double axial_depth_mm) {
+  if (model.axial_depth_mm <= 0.0 || axial_depth_mm <= 0.0) return 1.0;
+  return axial_depth_mm / model.axial_depth_mm;
+}
+
+double chip_thickness_mm(const geometry::EngagementSample& sample, double feed_mm_per_min, int flutes,
+                         double spindle_rpm) {
+  const double feed_per_tooth_mm = feed_mm_per_min / (flutes * spindle_rpm);
+  return sample.chip_factor * sample.xy_speed_ratio * feed_per_tooth_mm;
+}
+
+double predicted_force_n(const model_db::ResponseSurfaceModel& model, const geometry::EngagementSample& sample,
+                         double feed_mm_per_min, int flutes, double spindle_rpm) {
+  if (!is_engaged(sample)) return 0.0;
+  const double chip_mm = chip_thickness_mm(sample, feed_mm_per_min, flutes, spindle_rpm);
+  const double force_n = model_db::predict(model, chip_mm, sample.contact_length_mm).force_n;
+  return force_n * axial_depth_ratio(model, sample.axial_depth_mm);
+}
+
+SampleFeedLimit sample_feed_limit(const model_db::ResponseSurfaceModel& model, const geometry::EngagementSample& sample,
+                                  double target_force_n, int flutes, double spindle_rpm, double air_feed_mm_per_min) {
+  SampleFeedLimit limit;
+  limit.feed_mm_per_min = air_feed_mm_per_min;
+  const double k = sample.chip_factor * sample.xy_speed_ratio;
+  if (!is_engaged(sample) || k < kMinChipFactor) return limit;
+
+  const double ratio = axial_depth_ratio(model, sample.axial_depth_mm);
+  // F̂ · ratio = target  ⇔  F̂ = target / ratio.
+  const model_db::FeedSolution solution =
+      model_db::solve_feed(model, std::min(k, 1.0), sample.contact_length_mm, target_force_n / ratio);
+  limit.solve_status = solution.status;
+  double feed_per_tooth_xy_mm = solution.feed_per_tooth_mm;
+  limit.reason = FeedLimitReason::kForce;
+  switch (solution.status) {
+    case model_db::FeedSolveStatus::kOk:
+      break;
+    case model_db::FeedSolveStatus::kClampedToRange:
+      if (solution.root_feed_per_tooth_mm && *solution.root_feed_per_tooth_mm < solution.feed_per_tooth_mm) {
+        // Below the fitted chip range: the root still gives F̂ = target (flagged as extrapolation); the
+        // range edge would overload.
+        feed_per_tooth_xy_mm = *solution.root_feed_per_tooth_mm;
+        limit.extrapolated = true;
+      } else {
+        limit.reason = FeedLimitReason::kModelRange;
+      }
+      break;
+    case model_db::FeedSolveStatus::kTargetBelowModel:
+      // No feed meets the target: the caller plans the machine's minimum feed here and reports it.
+      limit.target_below_model = true;
+      feed_per_tooth_xy_mm = 0.0;
+      break;
+    case model_db::FeedSolveStatus::kUnreachable:
+      limit.reason = FeedLimitReason::kModelRange;
+      break;
+  }
+  if (solution.contact_length_outside) limit.extrapolated = true;
+  if (ratio < kAxialDepthRatioMin || ratio > kAxialDepthRatioMax) limit.extrapolated = true;
+  limit.feed_mm_per_min = feed_per_tooth_xy_mm / sample.xy_speed_ratio * flutes * spindle_rpm;
+  return limit;
+}
+
+}  // namespace feedplan::planner

@@ -1,0 +1,449 @@
+#include "feedplan/planner/feed_plan.hpp"
+
+#include <algorithm>
+#include <cassert>
+#include <cmath>
+#include <limits>
+#include <sstream>
+
+#include "block_split.hpp"
+#include "feedplan/core/number_text.hpp"
+#include "feedplan/model_db/model_prediction.hpp"
+#include "feedplan/planner/controller_model.hpp"
+#include "feedplan/planner/feed_limit.hpp"
+#include "feedplan/planner/speed_profile.hpp"
+
+namespace feedplan::planner {
+namespace {
+
+std::string num(double value) { return shortest_number_text(value); }
+std::string fixed(double value, int digits) {
+  std::ostringstream out;
+  out.setf(std::ios::fixed);
+  out.precision(digits);
+  out << value;
+  return out.str();
+}
+
+bool finite_positive(double value) { return std::isfinite(value) && value > 0.0; }
+
+std::string where(const geometry::EngagementSample& sample) {
+  return "s = " + fixed(sample.s_mm, 2) + " mm (x " + fixed(sample.position.x_mm, 3) + ", y " +
+         fixed(sample.position.y_mm, 3) + ")";
+}
+
+// First sample of every move, and the last sample at the end (see detail::split_blocks).
+std::vector<int> first_samples(const geometry::ToolPath& path, const geometry::EngagementProfile& engagement) {
+  std::vector<int> first(path.moves.size() + 1, static_cast<int>(engagement.samples.size()) - 1);
+  for (std::size_t i = engagement.samples.size(); i-- > 0;) {
+    first[static_cast<std::size_t>(engagement.samples[i].move_index)] = static_cast<int>(i);
+  }
+  // Moves without samples (none today: every move has at least one step) take the next move's first.
+  for (std::size_t m = path.moves.size(); m-- > 0;) first[m] = std::min(first[m], first[m + 1]);
+  return first;
+}
+
+// Interval caps for the controller: block F (or the rapid rate), never above the centripetal cap.
+std::vector<double> block_caps(const std::vector<PlannedBlock>& blocks, std::size_t intervals,
+                               const std::vector<double>& centripetal, const geometry::ToolPath& path,
+                               double rapid_mm_per_s) {
+  std::vector<double> caps(intervals, rapid_mm_per_s);
+  for (const PlannedBlock& block : blocks) {
+    const bool rapid = path.moves[static_cast<std::size_t>(block.move_index)].kind == geometry::MoveKind::kRapid;
+    for (int j = block.first_sample; j < block.last_sample; ++j) {
+      const auto k = static_cast<std::size_t>(j);
+      caps[k] = rapid ? rapid_mm_per_s : std::min(block.feed_mm_per_min / 60.0, centripetal[k]);
+    }
+  }
+  return caps;
+}
+
+// The sub-move of `move` between fractions j0/n and j1/n of its length.
+geometry::Move sub_move(const geometry::Move& move, int j0, int j1, int n) {
+  geometry::Move part = move;
+  if (j0 == 0 && j1 == n) return part;
+  const double f0 = static_cast<double>(j0) / n;
+  const double f1 = static_cast<double>(j1) / n;
+  part.start = j0 == 0 ? move.start : geometry::point_at(move, f0);
+  part.end = j1 == n ? move.end : geometry::point_at(move, f1);
+  if (move.kind == geometry::MoveKind::kArc) part.sweep_rad = move.sweep_rad * (f1 - f0);
+  return part;
+}
+
+}  // namespace
+
+std::string to_string(PlanMode mode) { return mode == PlanMode::kSafe ? "safe" : "regulate"; }
+
+std::string to_string(PlanStatus status) {
+  switch (status) {
+    case PlanStatus::kOk: return "ok";
+    case PlanStatus::kExtrapolated: return "extrapolated";
+    case PlanStatus::kTargetNotMet: return "target not met";
+  }
+  return "?";
+}
+
+std::string to_string(FeedLimitReason reason) {
+  switch (reason) {
+    case FeedLimitReason::kForce: return "force";
+    case FeedLimitReason::kModelRange: return "model range";
+    case FeedLimitReason::kMaxFeed: return "max feed";
+    case FeedLimitReason::kCentripetal: return "centripetal";
+    case FeedLimitReason::kAirFeed: return "air";
+    case FeedLimitReason::kMinFeed: return "min feed";
+    case FeedLimitReason::kRapid: return "rapid";
+  }
+  return "?";
+}
+
+PlanGeometry analyse(const geometry::ToolPath& path, const geometry::Stock& stock, const geometry::Tool& tool,
+                     double ds_mm) {
+  std::vector<InputProblem> problems;
+  if (!(std::isfinite(ds_mm) && ds_mm > 0.0 && ds_mm <= 5.0)) {
+    problems.push_back({"options.ds_mm", "= " + num(ds_mm) + ": must be in (0, 5] mm"});
+  }
+  if (!finite_positive(tool.diameter_mm)) {
+    problems.push_back({"tool.diameter_mm", "= " + num(tool.diameter_mm) + ": must be a finite number > 0"});
+  }
+  if (path.moves.empty()) problems.push_back({"path", "has no moves: nothing to plan"});
+  for (const std::string& defect : geometry::consistency_defects(path)) problems.push_back({"path", defect});
+  if (!problems.empty()) throw InputError(std::move(problems));
+  PlanGeometry result;
+  result.path = path;
+  result.tool = tool;
+  geometry::EngagementOptions options;
+  options.ds_mm = ds_mm;
+  result.engagement = geometry::compute_engagement(path, stock, tool.radius_mm(), options);
+  return result;
+}
+
+std::vector<InputProblem> validate(const PlanSettings& settings, const geometry::Tool& tool) {
+  std::vector<InputProblem> problems = model_db::validate(settings.model);
+  if (!finite_positive(settings.target_force_n)) {
+    problems.push_back({"target_force_n", "= " + num(settings.target_force_n) + ": must be a finite force > 0 N"});
+  }
+  if (!finite_positive(settings.spindle_rpm)) {
+    problems.push_back({"spindle_rpm", "= " + num(settings.spindle_rpm) + ": must be a finite speed > 0 rev/min"});
+  }
+  if (tool.flutes < 1) problems.push_back({"tool.flutes", "= " + std::to_string(tool.flutes) + ": must be ≥ 1"});
+  const cycles::MachineLimits& m = settings.machine;
+  if (!finite_positive(m.max_feed_mm_per_min)) {
+    problems.push_back({"machine.max_feed_mm_per_min", "= " + num(m.max_feed_mm_per_min) + ": must be finite and > 0"});
+  }
+  if (!finite_positive(m.min_feed_mm_per_min)) {
+    problems.push_back({"machine.min_feed_mm_per_min", "= " + num(m.min_feed_mm_per_min) + ": must be finite and > 0"});
+  } else if (finite_positive(m.max_feed_mm_per_min) && m.min_feed_mm_per_min > m.max_feed_mm_per_min) {
+    problems.push_back({"machine.min_feed_mm_per_min", "= " + num(m.min_feed_mm_per_min) +
+                                                           ": must not exceed machine.max_feed_mm_per_min = " +
+                                                           num(m.max_feed_mm_per_min)});
+  }
+  if (!finite_positive(m.max_accel_mm_per_s2)) {
+    problems.push_back({"machine.max_accel_mm_per_s2", "= " + num(m.max_accel_mm_per_s2) + ": must be finite and > 0"});
+  }
+  if (!finite_positive(m.rapid_feed_mm_per_min)) {
+    problems.push_back({"machine.rapid_feed_mm_per_min", "= " + num(m.rapid_feed_mm_per_min) + ": must be finite and > 0"});
+  }
+  if (!(std::isfinite(m.block_time_min_s) && m.block_time_min_s >= 0.0 && m.block_time_min_s <= 1.0)) {
+    problems.push_back({"machine.block_time_min_s", "= " + num(m.block_time_min_s) + ": must be in [0, 1] s"});
+  }
+  const PlanOptions& o = settings.options;
+  if (!(std::isfinite(o.air_feed_mm_per_min) && o.air_feed_mm_per_min >= 0.0)) {
+    problems.push_back({"options.air_feed_mm_per_min", "= " + num(o.air_feed_mm_per_min) +
+                                                           ": must be ≥ 0 mm/min (0: the machine's maximum feed)"});
+  } else if (o.air_feed_mm_per_min > 0.0 && finite_positive(m.max_feed_mm_per_min) &&
+             (o.air_feed_mm_per_min > m.max_feed_mm_per_min || o.air_feed_mm_per_min < m.min_feed_mm_per_min)) {
+    problems.push_back({"options.air_feed_mm_per_min", "= " + num(o.air_feed_mm_per_min) +
+                                                           ": must lie in the machine's feed range [" +
+                                                           num(m.min_feed_mm_per_min) + ", " +
+                                                           num(m.max_feed_mm_per_min) + "] mm/min"});
+  }
+  if (!(std::isfinite(o.merge_tolerance) && o.merge_tolerance >= 0.0 && o.merge_tolerance <= 0.5)) {
+    problems.push_back({"options.merge_tolerance", "= " + num(o.merge_tolerance) + ": must be in [0, 0.5]"});
+  }
+  if (!(std::isfinite(o.feed_resolution_mm_per_min) && o.feed_resolution_mm_per_min > 0.0 &&
+        o.feed_resolution_mm_per_min <= 100.0)) {
+    problems.push_back({"options.feed_resolution_mm_per_min",
+                        "= " + num(o.feed_resolution_mm_per_min) + ": must be in (0, 100] mm/min"});
+  }
+  if (!(std::isfinite(o.jerk_limit_mm_per_s3) && o.jerk_limit_mm_per_s3 >= 0.0)) {
+    problems.push_back({"options.jerk_limit_mm_per_s3", "= " + num(o.jerk_limit_mm_per_s3) + ": must be ≥ 0 (0: none)"});
+  }
+  return problems;
+}
+
+PlanResult plan(const PlanGeometry& geometry, const PlanSettings& settings) {
+  if (auto problems = validate(settings, geometry.tool); !problems.empty()) throw InputError(std::move(problems));
+  const auto& samples = geometry.engagement.samples;
+  const geometry::ToolPath& path = geometry.path;
+  assert(!samples.empty());
+  const std::size_t n = samples.size();
+  const cycles::MachineLimits& machine = settings.machine;
+  const PlanOptions& options = settings.options;
+  const int flutes = geometry.tool.flutes;
+  const double rpm = settings.spindle_rpm;
+  const double air_feed = options.air_feed_mm_per_min > 0.0 ? options.air_feed_mm_per_min : machine.max_feed_mm_per_min;
+
+  PlanResult result;
+  result.samples.resize(n);
+  std::vector<double> s(n);
+  for (std::size_t i = 0; i < n; ++i) s[i] = samples[i].s_mm;
+  const std::vector<int> move_first = first_samples(path, geometry.engagement);
+
+  // Acceleration the passes use (with the jerk heuristic of PlanOptions::jerk_limit_mm_per_s3).
+  double accel = machine.max_accel_mm_per_s2;
+
+  // 1. Feed limits per sample; the limit of a node shared by two moves is the smaller of both sides.
+  const std::vector<double> centripetal = centripetal_caps_mm_per_s(path, geometry.engagement, accel);
+  std::vector<double> limit_mm_per_min(n);
+  int target_below_model = 0;
+  int over_min = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    const geometry::EngagementSample& sample = samples[i];
+    PlannedSample& planned = result.samples[i];
+    planned.s_mm = sample.s_mm;
+    planned.position = sample.position;
+    planned.move_index = sample.move_index;
+    planned.engaged = is_engaged(sample);
+    planned.engagement_rad = sample.engagement_rad;
+    planned.chip_factor = sample.chip_factor;
+    planned.contact_length_mm = sample.contact_length_mm;
+    planned.axial_depth_mm = sample.axial_depth_mm;
+
+    const geometry::Move& move = path.moves[static_cast<std::size_t>(sample.move_index)];
+    if (move.kind == geometry::MoveKind::kRapid) {
+      planned.limit_reason = FeedLimitReason::kRapid;
+      limit_mm_per_min[i] = machine.rapid_feed_mm_per_min;
+      planned.feed_limit_mm_per_min = machine.rapid_feed_mm_per_min;
+      continue;
+    }
+    const SampleFeedLimit limit = sample_feed_limit(settings.model, sample, settings.target_force_n, flutes, rpm, air_feed);
+    double feed = limit.feed_mm_per_min;
+    FeedLimitReason reason = limit.reason;
+    if (feed > machine.max_feed_mm_per_min) {
+      feed = machine.max_feed_mm_per_min;
+      if (reason != FeedLimitReason::kAirFeed) reason = FeedLimitReason::kMaxFeed;
+    }
+    auto apply_centripetal = [&](std::size_t interval) {
+      const double cap = centripetal[interval] * 60.0;
+      if (cap < feed) {
+        feed = cap;
+        reason = FeedLimitReason::kCentripetal;
+      }
+    };
+    if (i + 1 < n) apply_centripetal(i);
+    if (i > 0 && samples[i - 1].move_index != sample.move_index) apply_centripetal(i - 1);
+    if (feed < machine.min_feed_mm_per_min) {
+      feed = machine.min_feed_mm_per_min;
+      reason = FeedLimitReason::kMinFeed;
+      ++over_min;
+    }
+    if (limit.target_below_model) ++target_below_model;
+    planned.limit_reason = reason;
+    planned.extrapolated = limit.extrapolated && (reason == FeedLimitReason::kForce || reason == FeedLimitReason::kMinFeed);
+    limit_mm_per_min[i] = feed;
+    planned.feed_limit_mm_per_min = feed;
+  }
+  // The sample at a move boundary belongs to the next move; the previous move's end is the same point,
+  // and its limit must hold there too (the rapid/feed distinction is the next move's).
+  for (std::size_t m = 1; m < path.moves.size(); ++m) {
+    const auto i = static_cast<std::size_t>(move_first[m]);
+    if (i >= n || i == 0) continue;
+    const bool rapid_before = path.moves[m - 1].kind == geometry::MoveKind::kRapid;
+    const bool rapid_after = path.moves[m].kind == geometry::MoveKind::kRapid;
+    if (rapid_before == rapid_after) continue;
+    // A feed move beside a rapid: the boundary node keeps the feed side's limit.
+    if (rapid_after) limit_mm_per_min[i] = limit_mm_per_min[i - 1];
+  }
+
+  // 2. Command profile: the greatest profile under the limits and the acceleration (no stops).
+  auto command_profile = [&](double a) {
+    std::vector<double> cap(n);
+    for (std::size_t i = 0; i < n; ++i) cap[i] = limit_mm_per_min[i] / 60.0;
+    return greatest_speeds(s, cap, a);
+  };
+  std::vector<double> command = command_profile(accel);
+  if (options.jerk_limit_mm_per_s3 > 0.0) {
+    // Heuristic: an S-curve with acceleration limit a and jerk limit J covers a speed change Δv in
+    // Δv/a + a/J, i.e. at the mean acceleration a_eff = a·Δv / (Δv + a²/J). Taken for the largest
+    // change of the profile between a local minimum and the next maximum (approximated by the largest
+    // difference anywhere in a feed stretch), it bounds that change; smaller changes need little distance.
+    double largest_change = 0.0;
+    double lo = std::numeric_limits<double>::infinity();
+    double hi = 0.0;
+    for (std::size_t i = 0; i < n; ++i) {
+      lo = std::min(lo, command[i]);
+      hi = std::max(hi, command[i]);
+    }
+    largest_change = hi - lo;
+    if (largest_change > 0.0) {
+      const double a = machine.max_accel_mm_per_s2;
+      accel = a * largest_change / (largest_change + a * a / options.jerk_limit_mm_per_s3);
+      command = command_profile(accel);
+    }
+  }
+  result.summary.accel_used_mm_per_s2 = accel;
+  std::vector<double> command_mm_per_min(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    command_mm_per_min[i] = command[i] * 60.0;
+    result.samples[i].command_feed_mm_per_min = command_mm_per_min[i];
+  }
+
+  // 3. Blocks.
+  detail::BlockSplitSettings split;
+  split.mode = options.mode;
+  split.merge_tolerance = options.merge_tolerance;
+  split.feed_resolution_mm_per_min = options.feed_resolution_mm_per_min;
+  split.block_time_min_s = machine.block_time_min_s;
+  split.min_feed_mm_per_min = machine.min_feed_mm_per_min;
+  split.accel_mm_per_s2 = accel;
+  result.blocks = detail::split_blocks(path, s, command_mm_per_min, move_first, split, result.summary.short_blocks);
+
+  // 4. Prediction.
+  const std::vector<bool> stops = controller_stops(path, geometry.engagement);
+  std::vector<bool> interval_cutting(n - 1);
+  for (std::size_t j = 0; j + 1 < n; ++j) interval_cutting[j] = samples[j].cutting;
+  const double rapid_mm_per_s = machine.rapid_feed_mm_per_min / 60.0;
+  const ControllerRun run = run_controller(
+      s, block_caps(result.blocks, n - 1, centripetal, path, rapid_mm_per_s), stops, interval_cutting, accel);
+
+  for (std::size_t b = 0; b < result.blocks.size(); ++b) {
+    PlannedBlock& block = result.blocks[b];
+    block.min_limit_mm_per_min = std::numeric_limits<double>::infinity();
+    for (int i = block.first_sample; i <= block.last_sample; ++i) {
+      auto k = static_cast<std::size_t>(i);
+      block.min_limit_mm_per_min = std::min(block.min_limit_mm_per_min, limit_mm_per_min[k]);
+      if (i < block.last_sample || b + 1 == result.blocks.size()) {
+        result.samples[k].block_index = static_cast<int>(b);
+        result.samples[k].block_feed_mm_per_min = block.feed_mm_per_min;
+      }
+    }
+    block.duration_s = run.time_s[static_cast<std::size_t>(block.last_sample)] -
+                       run.time_s[static_cast<std::size_t>(block.first_sample)];
+  }
+
+  PlanSummary& summary = result.summary;
+  const geometry::EngagementSample* first_over = nullptr;
+  const geometry::EngagementSample* first_extrapolated = nullptr;
+  for (std::size_t i = 0; i < n; ++i) {
+    PlannedSample& planned = result.samples[i];
+    planned.feed_mm_per_min = run.speed_mm_per_s[i] * 60.0;
+    planned.time_s = run.time_s[i];
+    planned.chip_thickness_mm = planned.engaged ? chip_thickness_mm(samples[i], planned.feed_mm_per_min, flutes, rpm) : 0.0;
+    planned.predicted_force_n = predicted_force_n(settings.model, samples[i], planned.feed_mm_per_min, flutes, rpm);
+    summary.max_predicted_force_n = std::max(summary.max_predicted_force_n, planned.predicted_force_n);
+    if (planned.engaged) ++summary.engaged_samples;
+    if (planned.limit_reason == FeedLimitReason::kForce) ++summary.force_limited_samples;
+    if (planned.extrapolated) {
+      ++summary.extrapolated_samples;
+      if (!first_extrapolated) first_extrapolated = &samples[i];
+    }
+    if (planned.engaged && planned.predicted_force_n > settings.target_force_n * (1.0 + 1e-9)) {
+      ++summary.over_target_samples;
+      if (!first_over) first_over = &samples[i];
+    }
+  }
+  summary.cycle_time_s = run.cycle_time_s;
+  summary.cutting_time_s = run.cutting_time_s;
+  summary.air_time_s = run.air_time_s;
+  summary.min_feed_mm_per_min = std::numeric_limits<double>::infinity();
+  for (const PlannedBlock& block : result.blocks) {
+    if (block.feed_mm_per_min <= 0.0) continue;
+    summary.min_feed_mm_per_min = std::min(summary.min_feed_mm_per_min, block.feed_mm_per_min);
+    summary.max_feed_mm_per_min = std::max(summary.max_feed_mm_per_min, block.feed_mm_per_min);
+  }
+  if (!std::isfinite(summary.min_feed_mm_per_min)) summary.min_feed_mm_per_min = 0.0;
+
+  // 5. Baseline: the one feed whose predicted peak equals the plan's, on every feed move.
+  ConstantFeedBaseline& baseline = summary.baseline;
+  if (summary.max_predicted_force_n > 0.0) {
+    double feed = machine.max_feed_mm_per_min;
+    for (std::size_t i = 0; i < n; ++i) {
+      if (!result.samples[i].engaged) continue;
+      const SampleFeedLimit limit =
+          sample_feed_limit(settings.model, samples[i], summary.max_predicted_force_n, flutes, rpm, air_feed);
+      if (limit.reason == FeedLimitReason::kAirFeed) continue;
+      feed = std::min(feed, limit.target_below_model ? machine.min_feed_mm_per_min : limit.feed_mm_per_min);
+    }
+    const double r = options.feed_resolution_mm_per_min;
+    baseline.feed_mm_per_min = std::max(machine.min_feed_mm_per_min, std::floor(feed / r + 1e-9) * r);
+  } else {
+    baseline.feed_mm_per_min = air_feed;
+  }
+  {
+    std::vector<PlannedBlock> constant;
+    for (std::size_t m = 0; m < path.moves.size(); ++m) {
+      PlannedBlock block;
+      block.move_index = static_cast<int>(m);
+      block.first_sample = move_first[m];
+      block.last_sample = move_first[m + 1];
+      block.feed_mm_per_min = baseline.feed_mm_per_min;
+      constant.push_back(block);
+    }
+    const ControllerRun base_run = run_controller(
+        s, block_caps(constant, n - 1, centripetal, path, rapid_mm_per_s), stops, interval_cutting, accel);
+    baseline.cycle_time_s = base_run.cycle_time_s;
+    baseline.cutting_time_s = base_run.cutting_time_s;
+    for (std::size_t i = 0; i < n; ++i) {
+      baseline.peak_force_n = std::max(
+          baseline.peak_force_n,
+          predicted_force_n(settings.model, samples[i], base_run.speed_mm_per_s[i] * 60.0, flutes, rpm));
+    }
+  }
+  summary.time_saved_percent =
+      baseline.cycle_time_s > 0.0 ? 100.0 * (baseline.cycle_time_s - summary.cycle_time_s) / baseline.cycle_time_s : 0.0;
+
+  // Program: one move per block, M3 at the settings' speed.
+  for (const PlannedBlock& block : result.blocks) {
+    const geometry::Move& move = path.moves[static_cast<std::size_t>(block.move_index)];
+    const int first = move_first[static_cast<std::size_t>(block.move_index)];
+    const int steps = move_first[static_cast<std::size_t>(block.move_index) + 1] - first;
+    result.program.path.moves.push_back(sub_move(move, block.first_sample - first, block.last_sample - first, steps));
+    geometry::BlockCommand command_block;
+    command_block.feed_mm_per_min = block.feed_mm_per_min;
+    command_block.spindle_rpm = rpm;
+    command_block.spindle = geometry::SpindleDirection::kClockwise;
+    result.program.blocks.push_back(command_block);
+  }
+  result.program.path.part_names = path.part_names;
+
+  // Status and messages.
+  if (summary.over_target_samples > 0) {
+    result.status = PlanStatus::kTargetNotMet;
+    result.messages.push_back(
+        "target " + num(settings.target_force_n) + " N not met at " + std::to_string(summary.over_target_samples) +
+        " samples, first at " + where(*first_over) + ": " +
+        (target_below_model > 0 ? "the model predicts more than the target even as the feed goes to 0"
+                                : "the target needs less than the machine's minimum feed " +
+                                      num(machine.min_feed_mm_per_min) + " mm/min") +
+        "; planned at the minimum feed, predicted up to " + fixed(summary.max_predicted_force_n, 1) + " N");
+  } else if (summary.extrapolated_samples > 0) {
+    result.status = PlanStatus::kExtrapolated;
+  }
+  if (summary.extrapolated_samples > 0) {
+    const geometry::EngagementSample& e = *first_extrapolated;
+    const model_db::FittedRange& range = settings.model.range;
+    result.messages.push_back(
+        "the model extrapolates where it sets the feed at " + std::to_string(summary.extrapolated_samples) +
+        " samples, first at " + where(e) + " (L = " + fixed(e.contact_length_mm, 3) + " mm, fitted " +
+        fixed(range.contact_length_min_mm, 3) + "–" + fixed(range.contact_length_max_mm, 3) + " mm; t_m fitted " +
+        fixed(range.chip_min_mm, 4) + "–" + fixed(range.chip_max_mm, 4) + " mm; a_p " + num(e.axial_depth_mm) +
+        " mm, fitted at " + num(settings.model.axial_depth_mm) + " mm)");
+  }
+  int range_limited = 0;
+  for (const PlannedSample& planned : result.samples) range_limited += planned.limit_reason == FeedLimitReason::kModelRange;
+  if (range_limited > 0) {
+    result.messages.push_back("the model's fitted chip range (t_m ≤ " + fixed(settings.model.range.chip_max_mm, 4) +
+                              " mm) limits the feed at " + std::to_string(range_limited) +
+                              " samples: the force there stays below the target rather than extrapolate");
+  }
+  if (summary.short_blocks > 0) {
+    result.messages.push_back(std::to_string(summary.short_blocks) +
+                              " blocks last less than the block time " + num(machine.block_time_min_s) +
+                              " s (whole moves that short; the controller may slow down there)");
+  }
+  for (const std::string& warning : geometry.engagement.warnings) result.messages.push_back(warning);
+  (void)over_min;
+  return result;
+}
+
+}  // namespace feedplan::planner

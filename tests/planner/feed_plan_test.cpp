@@ -1,0 +1,282 @@
+// The feed planner against truths it does not compute itself: the closed-form feed on a straight wall
+// (DESIGN.md §5.1, §5.3), the virtual machine's own controller model (sim::plan_motion, a separate
+// implementation of look-ahead under the acceleration limit) for the predicted cycle time and the
+// feed actually run, and the statuses for targets the model cannot meet.
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "feedplan/core/input_error.hpp"
+#include "feedplan/cycles/cycle.hpp"
+#include "feedplan/cycles/spec_reader.hpp"
+#include "feedplan/model_db/model_prediction.hpp"
+#include "feedplan/planner/feed_plan.hpp"
+#include "feedplan/planner/speed_profile.hpp"
+#include "feedplan/sim/motion_profile.hpp"
+#include "test_models.hpp"
+
+namespace feedplan::planner {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+PlanSettings settings_for(const cycles::CycleSpec& spec, const model_db::ResponseSurfaceModel& model) {
+  PlanSettings settings;
+  settings.model = model;
+  settings.target_force_n = spec.target_force_n;
+  settings.spindle_rpm = spec.spindle_rpm;
+  settings.machine = spec.machine;
+  return settings;
+}
+
+PlanGeometry geometry_for(const cycles::CycleSpec& spec, double ds_mm = 0.05) {
+  const cycles::Cycle cycle = cycles::generate(spec);
+  return analyse(cycle.path, cycle.stock, spec.tool, ds_mm);
+}
+
+sim::MotionLimits sim_limits(const cycles::MachineLimits& machine) {
+  sim::MotionLimits limits;
+  limits.max_accel_mm_per_s2 = machine.max_accel_mm_per_s2;
+  limits.rapid_feed_mm_per_min = machine.rapid_feed_mm_per_min;
+  limits.max_feed_mm_per_min = machine.max_feed_mm_per_min;
+  limits.junction_deviation_mm = 0.0;  // the planner's controller model stops at corners
+  limits.limit_centripetal = true;
+  return limits;
+}
+
+// --- Speed profile ---------------------------------------------------------------------------------
+
+TEST(GreatestSpeeds, StopInTheMiddleGivesTheBrakingParabola) {
+  // Caps 100 mm/s everywhere but a stop at s = 5: v(s) = min(100, √(2 a |s − 5|)).
+  const double a = 2000.0;
+  std::vector<double> s;
+  std::vector<double> cap;
+  for (int i = 0; i <= 1000; ++i) {
+    s.push_back(0.01 * i);
+    cap.push_back(i == 500 ? 0.0 : 100.0);
+  }
+  const std::vector<double> v = greatest_speeds(s, cap, a);
+  for (std::size_t i = 0; i < s.size(); ++i) {
+    EXPECT_NEAR(v[i], std::min(100.0, std::sqrt(2.0 * a * std::abs(s[i] - 5.0))), 1e-9) << "s = " << s[i];
+  }
+}
+
+TEST(IntervalTime, TriangleAndTrapezoidMatchKinematics) {
+  // From rest to rest over 1 mm at 1000 mm/s²: triangle, t = 2 √(L / a).
+  EXPECT_NEAR(interval_time(1.0, 0.0, 0.0, 1e9, 1000.0), 2.0 * std::sqrt(1.0 / 1000.0), 1e-12);
+  // Same with a cap of 10 mm/s: 0.01 s up, 0.01 s down (0.05 mm each), 0.9 mm at 10 mm/s.
+  EXPECT_NEAR(interval_time(1.0, 0.0, 0.0, 10.0, 1000.0), 0.01 + 0.01 + 0.09, 1e-12);
+  // Cruise: L / v.
+  EXPECT_NEAR(interval_time(2.0, 10.0, 10.0, 10.0, 1000.0), 0.2, 1e-12);
+}
+
+// F of the blocks that run along a straight wall at engagement `alpha`: at least 100 samples at α
+// (±1e-6 rad); the stretch entering the stock and the first samples of the arc's rise may belong to them.
+std::vector<double> steady_wall_feeds(const PlanResult& result, double alpha) {
+  std::vector<double> feeds;
+  for (const PlannedBlock& block : result.blocks) {
+    int at_alpha = 0;
+    for (int i = block.first_sample; i <= block.last_sample; ++i) {
+      const PlannedSample& sample = result.samples[static_cast<std::size_t>(i)];
+      if (sample.engaged && std::abs(sample.engagement_rad - alpha) < 1e-6) ++at_alpha;
+    }
+    if (at_alpha >= 100 && block.feed_mm_per_min > 0.0) feeds.push_back(block.feed_mm_per_min);
+  }
+  return feeds;
+}
+
+// --- Closed-form feed on a straight wall -----------------------------------------------------------
+
+TEST(FeedPlan, StraightWallFeedEqualsClosedForm) {
+  // Corner rounding, walls at R_d = 1.5 mm with a D10 tool: α_en = acos(1 − R_d/r), t_m = f sin α_en.
+  // A linear model F̂ = β0 + β1 (t_m − c1)/s1 gives f = (c1 + s1 (F − β0)/β1) / sin α_en, and F = f Z n.
+  const cycles::CycleSpec spec = testing::corner_spec();
+  const auto model = testing::s50c_like_model(/*linear=*/true);
+  const PlanGeometry geometry = geometry_for(spec);
+  const PlanSettings settings = settings_for(spec, model);
+  const PlanResult result = plan(geometry, settings);
+  ASSERT_EQ(result.status, PlanStatus::kOk) << ::testing::PrintToString(result.messages);
+
+  const double alpha = std::acos(1.0 - 1.5 / 5.0);
+  const double t_m = model.chip_center_mm + model.chip_scale_mm * (settings.target_force_n - model.beta[0]) / model.beta[1];
+  const double feed_closed_form = t_m / std::sin(alpha) * 4 * 2800.0;
+  const std::vector<double> feeds = steady_wall_feeds(result, alpha);
+  ASSERT_EQ(feeds.size(), 2u);  // both walls
+  // Rounded down to 1 mm/min; where the wall's block ends at the first samples of the slow-down for
+  // the arc, their (lower) limit sets F: at most 0.5 % below.
+  for (double feed : feeds) {
+    EXPECT_LE(feed, feed_closed_form);
+    EXPECT_GE(feed, std::floor(feed_closed_form * 0.995));
+  }
+  EXPECT_EQ(*std::max_element(feeds.begin(), feeds.end()), std::floor(feed_closed_form));
+}
+
+// --- Prediction against the virtual machine's controller ------------------------------------------
+
+class PlanAgainstMachine : public ::testing::TestWithParam<const char*> {};
+
+TEST_P(PlanAgainstMachine, CycleTimeAndForceMatchTheVirtualMachinesMotion) {
+  const cycles::CycleSpec spec = cycles::load_cycle_spec(std::string(FEEDPLAN_SAMPLES_DIR) + "/" + GetParam());
+  const auto model = testing::s50c_like_model();
+  const PlanGeometry geometry = geometry_for(spec);
+  PlanSettings settings = settings_for(spec, model);
+  const PlanResult result = plan(geometry, settings);
+  ASSERT_NE(result.status, PlanStatus::kTargetNotMet) << ::testing::PrintToString(result.messages);
+
+  const sim::MotionProfile motion = sim::plan_motion(result.program, sim_limits(spec.machine));
+  EXPECT_NEAR(result.summary.cycle_time_s, motion.duration_s(), 2e-3 * motion.duration_s());
+
+  // The force at the speed the virtual machine's controller runs, from the model directly: never
+  // above the target (default mode).
+  double worst_n = 0.0;
+  for (const auto& sample : geometry.engagement.samples) {
+    if (!sample.cutting || sample.engagement_rad <= 0.0) continue;
+    const double feed_mm_per_min = motion.speed_cap_at(sample.s_mm) * 60.0;
+    const double chip = sample.chip_factor * sample.xy_speed_ratio * feed_mm_per_min / (spec.tool.flutes * spec.spindle_rpm);
+    double force = model_db::predict(model, chip, sample.contact_length_mm).force_n;
+    if (model.axial_depth_mm > 0 && sample.axial_depth_mm > 0) force *= sample.axial_depth_mm / model.axial_depth_mm;
+    worst_n = std::max(worst_n, force);
+  }
+  EXPECT_LE(worst_n, settings.target_force_n * (1.0 + 1e-9));
+  // …and the plan is not timid: somewhere the force comes within 3 % of the target.
+  EXPECT_GE(worst_n, 0.97 * settings.target_force_n);
+  // The baseline runs one feed and is slower.
+  EXPECT_GT(result.summary.baseline.cycle_time_s, result.summary.cycle_time_s);
+}
+
+INSTANTIATE_TEST_SUITE_P(Samples, PlanAgainstMachine,
+                         ::testing::Values("corner.yaml", "trochoid.yaml", "spiral.yaml"));
+
+TEST(FeedPlan, SlowsDownBeforeTheArcNotInIt) {
+  // Seed 003 Fig. 6: with feedback the force spikes where the straight wall meets the arc; planned
+  // ahead, the machine is already at the arc's feed when the engagement rises.
+  const cycles::CycleSpec spec = testing::corner_spec();
+  const PlanGeometry geometry = geometry_for(spec);
+  const PlanResult result = plan(geometry, settings_for(spec, testing::s50c_like_model()));
+  double first_arc_limit = 0.0;
+  double feed_there = 0.0;
+  for (const PlannedSample& sample : result.samples) {
+    const auto& move = geometry.path.moves[static_cast<std::size_t>(sample.move_index)];
+    if (move.kind == geometry::MoveKind::kArc && sample.engaged) {
+      first_arc_limit = sample.feed_limit_mm_per_min;
+      feed_there = sample.feed_mm_per_min;
+      break;
+    }
+  }
+  ASSERT_GT(first_arc_limit, 0.0);
+  EXPECT_LE(feed_there, first_arc_limit);
+}
+
+// --- Statuses and bad settings ---------------------------------------------------------------------
+
+TEST(FeedPlan, TargetBelowForceAtMinimumFeedIsReportedNotClamped) {
+  const cycles::CycleSpec spec = testing::corner_spec();
+  PlanSettings settings = settings_for(spec, testing::s50c_like_model());
+  settings.target_force_n = 40.0;  // F̂ at t_m → 0 is ≈ 60–100 N on the walls
+  const PlanResult result = plan(geometry_for(spec), settings);
+  EXPECT_EQ(result.status, PlanStatus::kTargetNotMet);
+  ASSERT_FALSE(result.messages.empty());
+  EXPECT_THAT(result.messages.front(), ::testing::HasSubstr("target 40 N not met"));
+  EXPECT_GT(result.summary.over_target_samples, 0);
+  for (const PlannedBlock& block : result.blocks) {
+    if (block.feed_mm_per_min > 0.0) EXPECT_GE(block.feed_mm_per_min, spec.machine.min_feed_mm_per_min);
+  }
+}
+
+TEST(FeedPlan, MachineMinimumFeedAboveTheNeededFeedIsReported) {
+  const cycles::CycleSpec spec = testing::corner_spec();
+  PlanSettings settings = settings_for(spec, testing::s50c_like_model());
+  settings.machine.min_feed_mm_per_min = 5000.0;  // the target needs ≈ 1400 mm/min on the walls
+  const PlanResult result = plan(geometry_for(spec), settings);
+  EXPECT_EQ(result.status, PlanStatus::kTargetNotMet);
+  EXPECT_THAT(result.messages.front(), ::testing::HasSubstr("minimum feed 5000 mm/min"));
+}
+
+TEST(FeedPlan, ModelExtrapolationIsAStatus) {
+  const cycles::CycleSpec spec = testing::corner_spec();
+  auto model = testing::s50c_like_model();
+  model.range.contact_length_max_mm = 2.0;  // the walls have L = 4 mm
+  const PlanResult result = plan(geometry_for(spec), settings_for(spec, model));
+  EXPECT_EQ(result.status, PlanStatus::kExtrapolated);
+  EXPECT_GT(result.summary.extrapolated_samples, 0);
+  EXPECT_THAT(::testing::PrintToString(result.messages), ::testing::HasSubstr("extrapolates"));
+}
+
+TEST(FeedPlan, AxialDepthScalesTheForce) {
+  // The same cycle at half the axial depth: the model (fitted at 10 mm) is scaled by 0.5, so the feed
+  // on the walls is the one for twice the target.
+  cycles::CycleSpec spec = testing::corner_spec();
+  const auto model = testing::s50c_like_model(/*linear=*/true);
+  spec.axial_depth_mm = 5.0;
+  const PlanResult half = plan(geometry_for(spec), settings_for(spec, model));
+  const double alpha = std::acos(1.0 - 1.5 / 5.0);
+  const double t_m = model.chip_center_mm + model.chip_scale_mm * (2.0 * spec.target_force_n - model.beta[0]) / model.beta[1];
+  const double expected = std::floor(t_m / std::sin(alpha) * 4 * 2800.0);
+  const std::vector<double> feeds = steady_wall_feeds(half, alpha);
+  ASSERT_EQ(feeds.size(), 2u);
+  EXPECT_EQ(*std::max_element(feeds.begin(), feeds.end()), expected);
+}
+
+TEST(FeedPlan, NonsenseSettingsAreInputErrorsNamingTheField) {
+  const cycles::CycleSpec spec = testing::corner_spec();
+  const PlanGeometry geometry = geometry_for(spec, 0.2);
+  auto expect_field = [&](PlanSettings settings, const std::string& field) {
+    try {
+      plan(geometry, settings);
+      ADD_FAILURE() << "no InputError for " << field;
+    } catch (const InputError& error) {
+      EXPECT_THAT(error.what(), ::testing::HasSubstr(field));
+    }
+  };
+  PlanSettings base = settings_for(spec, testing::s50c_like_model());
+  PlanSettings s = base;
+  s.machine.min_feed_mm_per_min = 20000.0;
+  expect_field(s, "machine.min_feed_mm_per_min");
+  s = base;
+  s.machine.max_accel_mm_per_s2 = -1.0;
+  expect_field(s, "machine.max_accel_mm_per_s2");
+  s = base;
+  s.target_force_n = std::nan("");
+  expect_field(s, "target_force_n");
+  s = base;
+  s.spindle_rpm = 0.0;
+  expect_field(s, "spindle_rpm");
+  s = base;
+  s.options.merge_tolerance = 3.0;
+  expect_field(s, "options.merge_tolerance");
+  s = base;
+  s.options.air_feed_mm_per_min = 1e6;
+  expect_field(s, "options.air_feed_mm_per_min");
+  s = base;
+  s.model.chip_scale_mm = 0.0;
+  expect_field(s, "model.");
+}
+
+TEST(FeedPlan, RegulateModeTracksCloserWithBoundedOvershoot) {
+  const cycles::CycleSpec spec = cycles::load_cycle_spec(std::string(FEEDPLAN_SAMPLES_DIR) + "/trochoid.yaml");
+  const PlanGeometry geometry = geometry_for(spec);
+  PlanSettings settings = settings_for(spec, testing::s50c_like_model());
+  const PlanResult safe = plan(geometry, settings);
+  settings.options.mode = PlanMode::kRegulate;
+  const PlanResult regulate = plan(geometry, settings);
+  EXPECT_LE(regulate.summary.cycle_time_s, safe.summary.cycle_time_s);
+  EXPECT_LE(regulate.summary.max_predicted_force_n, settings.target_force_n * 1.03);
+}
+
+TEST(FeedPlan, JerkLimitOnlySlowsDown) {
+  const cycles::CycleSpec spec = testing::corner_spec();
+  const PlanGeometry geometry = geometry_for(spec);
+  PlanSettings settings = settings_for(spec, testing::s50c_like_model());
+  const PlanResult plain = plan(geometry, settings);
+  settings.options.jerk_limit_mm_per_s3 = 50000.0;
+  const PlanResult jerk = plan(geometry, settings);
+  EXPECT_LT(jerk.summary.accel_used_mm_per_s2, settings.machine.max_accel_mm_per_s2);
+  EXPECT_GE(jerk.summary.cycle_time_s, plain.summary.cycle_time_s);
+  EXPECT_LE(jerk.summary.max_predicted_force_n, settings.target_force_n * (1.0 + 1e-9));
+}
+
+}  // namespace
+}  // namespace feedplan::planner
