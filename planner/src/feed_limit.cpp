@@ -39,7 +39,8 @@ SampleFeedLimit sample_feed_limit(const model_db::ResponseSurfaceModel& model, c
   const model_db::FeedSolution solution =
       model_db::solve_feed(model, std::min(k, 1.0), sample.contact_length_mm, target_force_n / ratio);
   limit.solve_status = solution.status;
-  double feed_per_tooth_xy_mm = solution.feed_per_tooth_mm;
+  // solve_feed's feed per tooth is along the path: its chip factor already holds the XY speed ratio.
+  double feed_per_tooth_mm = solution.feed_per_tooth_mm;
   limit.reason = FeedLimitReason::kForce;
   switch (solution.status) {
     case model_db::FeedSolveStatus::kOk:
@@ -48,7 +49,7 @@ SampleFeedLimit sample_feed_limit(const model_db::ResponseSurfaceModel& model, c
       if (solution.root_feed_per_tooth_mm && *solution.root_feed_per_tooth_mm < solution.feed_per_tooth_mm) {
         // Below the fitted chip range: the root still gives F̂ = target (flagged as extrapolation); the
         // range edge would overload.
-        feed_per_tooth_xy_mm = *solution.root_feed_per_tooth_mm;
+        feed_per_tooth_mm = *solution.root_feed_per_tooth_mm;
         limit.extrapolated = true;
       } else {
         limit.reason = FeedLimitReason::kModelRange;
@@ -57,7 +58,7 @@ SampleFeedLimit sample_feed_limit(const model_db::ResponseSurfaceModel& model, c
     case model_db::FeedSolveStatus::kTargetBelowModel:
       // No feed meets the target: the caller plans the machine's minimum feed here and reports it.
       limit.target_below_model = true;
-      feed_per_tooth_xy_mm = 0.0;
+      feed_per_tooth_mm = 0.0;
       break;
     case model_db::FeedSolveStatus::kUnreachable:
       limit.reason = FeedLimitReason::kModelRange;
@@ -65,7 +66,7 @@ SampleFeedLimit sample_feed_limit(const model_db::ResponseSurfaceModel& model, c
   }
   if (solution.contact_length_outside) limit.extrapolated = true;
   if (ratio < kAxialDepthRatioMin || ratio > kAxialDepthRatioMax) limit.extrapolated = true;
-  limit.feed_mm_per_min = feed_per_tooth_xy_mm / sample.xy_speed_ratio * flutes * spindle_rpm;
+  limit.feed_mm_per_min = feed_per_tooth_mm * flutes * spindle_rpm;
   return limit;
 }
 
