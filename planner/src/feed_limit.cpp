@@ -1,5 +1,6 @@
 #include "feedplan/planner/feed_limit.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include "feedplan/model_db/model_prediction.hpp"
@@ -13,6 +14,10 @@ double axial_depth_ratio(const model_db::ResponseSurfaceModel& model, double axi
   return axial_depth_mm / model.axial_depth_mm;
 }
 
+double model_contact_length_mm(const model_db::ResponseSurfaceModel& model, double contact_length_mm) {
+  return std::max(contact_length_mm, model.range.contact_length_min_mm);
+}
+
 double chip_thickness_mm(const geometry::EngagementSample& sample, double feed_mm_per_min, int flutes,
                          double spindle_rpm) {
   const double feed_per_tooth_mm = feed_mm_per_min / (flutes * spindle_rpm);
@@ -23,7 +28,7 @@ double predicted_force_n(const model_db::ResponseSurfaceModel& model, const geom
                          double feed_mm_per_min, int flutes, double spindle_rpm) {
   if (!is_engaged(sample)) return 0.0;
   const double chip_mm = chip_thickness_mm(sample, feed_mm_per_min, flutes, spindle_rpm);
-  const double force_n = model_db::predict(model, chip_mm, sample.contact_length_mm).force_n;
+  const double force_n = model_db::predict(model, chip_mm, model_contact_length_mm(model, sample.contact_length_mm)).force_n;
   return force_n * axial_depth_ratio(model, sample.axial_depth_mm);
 }
 
@@ -37,7 +42,8 @@ SampleFeedLimit sample_feed_limit(const model_db::ResponseSurfaceModel& model, c
   const double ratio = axial_depth_ratio(model, sample.axial_depth_mm);
   // F̂ · ratio = target  ⇔  F̂ = target / ratio.
   const model_db::FeedSolution solution =
-      model_db::solve_feed(model, std::min(k, 1.0), sample.contact_length_mm, target_force_n / ratio);
+      model_db::solve_feed(model, std::min(k, 1.0), model_contact_length_mm(model, sample.contact_length_mm),
+                           target_force_n / ratio);
   limit.solve_status = solution.status;
   // solve_feed's feed per tooth is along the path: its chip factor already holds the XY speed ratio.
   double feed_per_tooth_mm = solution.feed_per_tooth_mm;

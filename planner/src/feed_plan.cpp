@@ -330,6 +330,8 @@ PlanResult plan(const PlanGeometry& geometry, const PlanSettings& settings) {
     planned.time_s = run.time_s[i];
     planned.chip_thickness_mm = planned.engaged ? chip_thickness_mm(samples[i], planned.feed_mm_per_min, flutes, rpm) : 0.0;
     planned.predicted_force_n = predicted_force_n(settings.model, samples[i], planned.feed_mm_per_min, flutes, rpm);
+    planned.within_model_range = planned.engaged && !model_db::chip_outside(settings.model.range, planned.chip_thickness_mm) &&
+                                 !model_db::contact_length_outside(settings.model.range, planned.contact_length_mm);
     summary.max_predicted_force_n = std::max(summary.max_predicted_force_n, planned.predicted_force_n);
     if (planned.engaged) ++summary.engaged_samples;
     if (planned.limit_reason == FeedLimitReason::kForce) ++summary.force_limited_samples;

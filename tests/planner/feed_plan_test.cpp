@@ -136,7 +136,7 @@ TEST_P(PlanAgainstMachine, CycleTimeAndForceMatchTheVirtualMachinesMotion) {
     if (!sample.cutting || sample.engagement_rad <= 0.0) continue;
     const double feed_mm_per_min = motion.speed_cap_at(sample.s_mm) * 60.0;
     const double chip = sample.chip_factor * sample.xy_speed_ratio * feed_mm_per_min / (spec.tool.flutes * spec.spindle_rpm);
-    double force = model_db::predict(model, chip, sample.contact_length_mm).force_n;
+    double force = model_db::predict(model, chip, std::max(sample.contact_length_mm, model.range.contact_length_min_mm)).force_n;
     if (model.axial_depth_mm > 0 && sample.axial_depth_mm > 0) force *= sample.axial_depth_mm / model.axial_depth_mm;
     worst_n = std::max(worst_n, force);
   }

@@ -3,7 +3,8 @@
 // between neighbouring blocks feasible inside the faster block at the acceleration limit (the
 // controller behaviour documented in feed_plan.hpp); and the force the model predicts at the speed the
 // virtual machine's own motion planner (sim::plan_motion, independent of the planner's controller
-// model) runs never above the target in the default mode, wherever the target is reachable.
+// model) runs never above the target in the default mode, wherever the target is reachable (the model
+// evaluated at max(L, L_min), the rule of feed_limit.hpp).
 //
 // Reproduce a run with FEEDPLAN_TEST_SEED and FEEDPLAN_TEST_COUNT (printed at the start).
 
@@ -215,7 +216,7 @@ TEST(RandomPlans, FeedsAccelerationsAndForcesWithinLimits) {
       ++samples_checked;
       const double feed = motion.speed_cap_at(sample.s_mm) * 60.0;
       const double chip = sample.chip_factor * sample.xy_speed_ratio * feed / (c.spec.tool.flutes * c.spec.spindle_rpm);
-      double force = model_db::predict(model, chip, sample.contact_length_mm).force_n;
+      double force = model_db::predict(model, chip, std::max(sample.contact_length_mm, model.range.contact_length_min_mm)).force_n;
       if (model.axial_depth_mm > 0.0 && sample.axial_depth_mm > 0.0) force *= sample.axial_depth_mm / model.axial_depth_mm;
       if (force > c.settings.target_force_n * (1.0 + 1e-6)) {
         ADD_FAILURE() << where << ": at s = " << sample.s_mm << " the machine runs " << feed << " mm/min and the model predicts "

@@ -6,6 +6,12 @@
 // f_xy = (F / (Z · n)) · xy_speed_ratio for a path feed F (mm/min), Z flutes, n rpm — on a helix only the
 // XY part of the feed makes the radial chip.
 //
+// Contact length below the fitted range: where the tool enters or leaves the material, L falls below the
+// smallest L the model was fitted on, and a quadratic extrapolated there can predict anything (often more
+// force at less contact). The planner evaluates the model at max(L, L_min) there: more contact than
+// there is, so the force is over- rather than under-estimated, and the feed errs on the safe side. Above
+// the fitted range the model is extrapolated as it is, and the sample is flagged.
+//
 // Axial depth: the model has no axial-depth term; it was fitted at a_p,model (ResponseSurfaceModel::
 // axial_depth_mm). Forces scale with the axial depth in contact, so at a sample cut at a_p the planner
 // uses F̂ · a_p / a_p,model (1 when either is unknown). Outside kAxialDepthRatioRange that scaling counts
@@ -55,6 +61,10 @@ double predicted_force_n(const model_db::ResponseSurfaceModel& model, const geom
 //! t_m (mm) at `sample` for path feed `feed_mm_per_min`.
 double chip_thickness_mm(const geometry::EngagementSample& sample, double feed_mm_per_min, int flutes,
                          double spindle_rpm);
+
+//! The contact length the model is evaluated at for a sample with contact length `contact_length_mm`:
+//! max(L, range.contact_length_min_mm) (see the file comment), mm.
+double model_contact_length_mm(const model_db::ResponseSurfaceModel& model, double contact_length_mm);
 
 //! True when the sample is on a cutting move with some engagement (what the force model applies to).
 bool is_engaged(const geometry::EngagementSample& sample);

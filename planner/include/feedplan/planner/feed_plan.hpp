@@ -146,6 +146,9 @@ struct PlannedSample {
   double feed_mm_per_min = 0.0;         //!< predicted path speed the machine runs here, mm/min
   double chip_thickness_mm = 0.0;       //!< t_m at that speed, mm
   double predicted_force_n = 0.0;       //!< F̂ at that speed, N (0 where not engaged)
+  //! t_m at that speed and L both inside the model's fitted range (false where not engaged): the
+  //! prediction interpolates the cutting tests the model was fitted on.
+  bool within_model_range = false;
   double time_s = 0.0;                  //!< predicted time from the program start, s
 };
 
