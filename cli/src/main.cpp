@@ -8,6 +8,7 @@
 
 #include "cycle_command.hpp"
 #include "db_command.hpp"
+#include "plan_command.hpp"
 #include "simulate_command.hpp"
 #include "feedplan/core/input_error.hpp"
 
@@ -30,6 +31,8 @@ int main(int argc, char** argv) {
   feedplan::cli::add_cycle_command(app, cycle_options);
   feedplan::cli::SimulateOptions simulate_options;
   feedplan::cli::add_simulate_command(app, simulate_options);
+  feedplan::cli::PlanCommandOptions plan_options;
+  feedplan::cli::add_plan_command(app, plan_options);
   feedplan::cli::DbOptions db_options;
   feedplan::cli::add_db_command(app, db_options);
 
@@ -49,6 +52,7 @@ int main(int argc, char** argv) {
   try {
     if (app.got_subcommand("cycle")) return feedplan::cli::run_cycle_command(cycle_options);
     if (app.got_subcommand("simulate")) return feedplan::cli::run_simulate_command(simulate_options);
+    if (app.got_subcommand("plan")) return feedplan::cli::run_plan_command(plan_options);
     if (app.got_subcommand("db")) return feedplan::cli::run_db_command(app, db_options);
   } catch (const feedplan::InputError& e) {
     std::cerr << "feedplan: bad input:\n";

@@ -1,5 +1,7 @@
 #include "simulate_command.hpp"
 
+#include "data_path.hpp"
+
 #include <nlohmann/json.hpp>
 #include <unistd.h>
 
@@ -91,14 +93,6 @@ std::vector<double> parse_runout(const std::string& text, std::vector<InputProbl
     values.push_back(value);
   }
   return values;
-}
-
-std::string bundled_materials_path() {
-  if (const char* dir = std::getenv("FEEDPLAN_DATA_DIR")) return std::string(dir) + "/materials.yaml";
-  std::error_code ec;
-  const std::filesystem::path installed = std::filesystem::path(FEEDPLAN_INSTALLED_DATA_DIR) / "materials.yaml";
-  if (std::filesystem::exists(installed, ec)) return installed.string();
-  return (std::filesystem::path(FEEDPLAN_SOURCE_DATA_DIR) / "materials.yaml").string();
 }
 
 // A solid block around every feed move, grown by the tool diameter, from below the lowest feed move

@@ -18,7 +18,8 @@ constexpr const char* kHomeReason = "it moves to stored machine positions, which
 constexpr const char* kCompReason =
     "cutter radius compensation: the controller would offset the path by the tool radius; program the "
     "tool-centre path instead";
-constexpr const char* kLengthReason = "tool length offsets: Z would no longer be the programmed tool tip";
+constexpr const char* kLengthReason =
+    "dynamic or added tool length offsets: Z would no longer be the programmed tool tip; use G43 H<tool>";
 constexpr const char* kPathControlReason =
     "path control only changes how the controller blends corners; the programmed path is the same";
 constexpr const char* kRetractReason = "canned-cycle retract mode; canned cycles are refused anyway";
@@ -61,7 +62,7 @@ const std::map<int, CodeInfo>& g_codes() {
       {411, {7, "cutter compensation", kR, kCompReason}},
       {420, {7, "cutter compensation", kR, kCompReason}},
       {421, {7, "cutter compensation", kR, kCompReason}},
-      {430, {8, "tool length offset", kR, kLengthReason}},
+      {430, {8, "tool length offset", kS, ""}},
       {431, {8, "tool length offset", kR, kLengthReason}},
       {432, {8, "tool length offset", kR, kLengthReason}},
       {490, {8, "tool length offset", kI, "tool length offset off is the state of a program without G43"}},
@@ -121,7 +122,7 @@ const std::map<int, CodeInfo>& m_codes() {
       {3, {7, "spindle", kS, ""}},
       {4, {7, "spindle", kS, ""}},
       {5, {7, "spindle", kS, ""}},
-      {6, {6, "tool change", kR, "tool change: the path is planned for one tool; split the program per tool"}},
+      {6, {6, "tool change", kS, ""}},
       {7, {8, "coolant", kI, "coolant"}},
       {8, {8, "coolant", kI, "coolant"}},
       {9, {8, "coolant", kI, "coolant"}},
@@ -167,7 +168,6 @@ std::string letter_refusal(char letter) {
     case 'U': case 'V': case 'W': return "extra linear axes; the reader reads X, Y and Z only";
     case 'K': return "K is the Z centre offset of arcs in the XZ and YZ planes (G18, G19), which are not supported";
     case 'D': return "D selects cutter radius compensation (G41, G42), which is not supported";
-    case 'H': return "H selects a tool length offset (G43), which is not supported";
     case 'L': return "L is read by G10 and canned cycles, which are not supported";
     default: return "not a word the reader knows";
   }

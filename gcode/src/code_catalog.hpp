@@ -33,7 +33,7 @@ std::optional<CodeInfo> find_g_code(int tenths);
 //! The M code `number` (whole numbers only; nullopt otherwise or when unknown).
 std::optional<CodeInfo> find_m_code(double number);
 
-//! Why a word letter other than F G I J M N O P Q R S T X Y Z is not read.
+//! Why a word letter other than F G H I J M N O P Q R S T X Y Z is not read.
 std::string letter_refusal(char letter);
 
 //! "G90.1", "G0" from tenths.

@@ -43,6 +43,8 @@ constexpr int kG2 = 20;
 constexpr int kG3 = 30;
 constexpr int kG4 = 40;
 constexpr int kG20 = 200;
+constexpr int kG43 = 430;
+constexpr int kG49 = 490;
 constexpr int kG64 = 640;
 constexpr int kG80 = 800;
 constexpr int kG94 = 940;
@@ -58,7 +60,7 @@ bool is_motion(int motion) { return motion == kG0 || motion == kG1 || is_arc(mot
 // Value words the reader reads (G, M, N and O are handled separately).
 bool is_value_letter(char letter) {
   switch (letter) {
-    case 'F': case 'I': case 'J': case 'P': case 'Q': case 'R': case 'S': case 'T': case 'X': case 'Y': case 'Z':
+    case 'F': case 'H': case 'I': case 'J': case 'P': case 'Q': case 'R': case 'S': case 'T': case 'X': case 'Y': case 'Z':
       return true;
     default:
       return false;
@@ -118,6 +120,9 @@ class Interpreter {
   }
 
   geometry::Program take_program() { return std::move(program_); }
+
+  // Why a tool change is refused: the path is planned for one tool (the catalog's old reason).
+  static constexpr const char* kOneToolReason = "tool change: the path is planned for one tool; split the program per tool";
 
  private:
   void end_program(int line, const char* how) {
@@ -309,11 +314,62 @@ class Interpreter {
       fail("word " + block.word('F')->text + ": F in a block whose " + detail::g_code_name(*units) +
            " changes the units (LinuxCNC reads this F in the previous unit); put F in a later block");
     }
+    if (!check_tool_words(block)) ok = false;
     return ok;
   }
 
-  // Executes a block in LinuxCNC's order: G94, F, S, (T), M3/M4/M5, G4, units, work offset,
-  // distance modes, motion, program end.
+  // The tool a T word selects, when it is a whole number ≥ 0 (check_block reports it otherwise).
+  static std::optional<int> tool_of(const Word* t) {
+    if (t == nullptr || t->value < 0.0 || t->value != std::floor(t->value) || t->value > 1e6) return std::nullopt;
+    return static_cast<int>(t->value);
+  }
+
+  // M6 once, before the first move, of a selected tool; G43 with the H of the tool in the spindle.
+  // LinuxCNC's order within a block: T, then M6, then G43.
+  bool check_tool_words(const Block& block) {
+    bool ok = true;
+    const int line = block.line;
+    auto fail = [&](const std::string& message) {
+      problems_.add(line, message);
+      ok = false;
+    };
+    std::optional<int> tool = tool_in_spindle_;
+    if (block.has_m(6, 6)) {
+      const std::optional<int> selected = block.has('T') ? tool_of(block.word('T')) : selected_tool_;
+      if (moved_) {
+        fail(std::string("word M6: not supported after the first move (") + kOneToolReason + ")");
+      } else if (tool_in_spindle_) {
+        fail("word M6: a second tool change (T" + std::to_string(*tool_in_spindle_) + " M6 on line " +
+             std::to_string(tool_line_) + ") is not supported (" + kOneToolReason + ")");
+      } else if (!selected) {
+        if (!block.has('T')) fail("word M6: no tool selected: a T word must come before M6 or with it");
+      } else if (g43_tool_ && *g43_tool_ != *selected) {
+        fail("word M6: G43 H" + std::to_string(*g43_tool_) + " (line " + std::to_string(g43_line_) +
+             ") stays in effect after the change, the length offset of another tool; switch it on after M6");
+      } else {
+        tool = selected;
+      }
+    }
+    const Word* h = block.word('H');
+    if (h != nullptr && !block.has_g(kG43, 8)) {
+      fail("word " + h->text + ": H is read only with G43 (the tool length offset number)");
+    } else if (block.has_g(kG43, 8)) {
+      if (h != nullptr && (h->value < 0.0 || h->value != std::floor(h->value) || h->value > 1e6)) {
+        fail("word " + h->text + ": a tool length offset number must be a whole number ≥ 0");
+      } else if (h == nullptr && !tool) {
+        fail("word G43: without H and with no tool change (T M6) before it, the reader cannot tell which "
+             "tool's length offset is meant; write G43 H<tool>");
+      } else if (h != nullptr && tool && static_cast<int>(h->value) != *tool) {
+        fail("word " + h->text + ": G43 " + h->text + " is the length offset of tool " +
+             std::to_string(static_cast<int>(h->value)) + ", but tool " + std::to_string(*tool) +
+             " is in the spindle: H must be the tool in the spindle, or Z is no longer the tool tip");
+      }
+    }
+    return ok;
+  }
+
+  // Executes a block in LinuxCNC's order: G94, F, S, T, M6, M3/M4/M5, G4, units, tool length
+  // offset, work offset, distance modes, motion, program end.
   void execute(const std::vector<Word>& words, int line) {
     Block block;
     block.line = line;
@@ -333,6 +389,13 @@ class Interpreter {
       feed_problem_reported_ = false;
     }
     if (const Word* s = block.word('S')) spindle_rpm_ = s->value;
+    if (block.has('T')) selected_tool_ = tool_of(block.word('T'));
+    if (block.has_m(6, 6)) {
+      tool_in_spindle_ = selected_tool_;
+      tool_line_ = line;
+      note("line " + std::to_string(line) + ": T" + std::to_string(*tool_in_spindle_) + " M6: the program is for tool " +
+           std::to_string(*tool_in_spindle_));
+    }
     if (block.has_m(3, 7)) spindle_ = SpindleDirection::kClockwise;
     if (block.has_m(4, 7)) spindle_ = SpindleDirection::kCounterClockwise;
     if (block.has_m(5, 7)) spindle_ = SpindleDirection::kOff;
@@ -342,6 +405,15 @@ class Interpreter {
       units_set_ = true;
     }
     if (const std::optional<int> offset = block.g_by_group[12]) work_offset_ = *offset;
+    if (block.has_g(kG43, 8)) {
+      g43_tool_ = block.has('H') ? static_cast<int>(block.word('H')->value) : *tool_in_spindle_;
+      g43_line_ = line;
+      if (!tool_in_spindle_) {
+        note("line " + std::to_string(line) + ": G43 H" + std::to_string(*g43_tool_) +
+             " with no tool change (T M6) before it: the program is taken to be for tool " + std::to_string(*g43_tool_));
+      }
+    }
+    if (block.has_g(kG49, 8)) g43_tool_.reset();
     if (block.has_g(kG90, 3)) absolute_ = true;
     if (block.has_g(kG91, 3)) absolute_ = false;
     if (block.has_g(kG90_1, 4)) absolute_arc_center_ = true;
@@ -473,6 +545,11 @@ class Interpreter {
   bool feed_problem_reported_ = false;
   double spindle_rpm_ = 0.0;
   SpindleDirection spindle_ = SpindleDirection::kOff;
+  std::optional<int> selected_tool_;    // the last T word
+  std::optional<int> tool_in_spindle_;  // set by the one M6
+  int tool_line_ = 0;                   // line of that M6
+  std::optional<int> g43_tool_;         // H of the G43 in effect
+  int g43_line_ = 0;
   double pending_dwell_s_ = 0.0;
   int shifted_arcs_ = 0;  // arcs whose centre moved by more than kReportedShiftMm
   double largest_shift_mm_ = 0.0;

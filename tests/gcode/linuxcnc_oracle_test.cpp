@@ -10,219 +10,38 @@
 // rs274 prints 4 decimals in the program's unit, so the test programs keep inch values exact to
 // 4 decimals (0.0001 in = 2.54 µm would otherwise exceed the 1 µm budget by rounding alone).
 
-#include <fcntl.h>
 #include <gtest/gtest.h>
-#include <sys/file.h>
-#include <sys/wait.h>
-#include <unistd.h>
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <cstdlib>
 #include <filesystem>
-#include <fstream>
 #include <iostream>
-#include <optional>
 #include <set>
-#include <sstream>
 #include <string>
 #include <vector>
 
 #include "feedplan/core/input_error.hpp"
 #include "feedplan/gcode/reader.hpp"
 #include "feedplan/geometry/tool_path.hpp"
+#include "rs274_runner.hpp"
 
 namespace feedplan::gcode {
 namespace {
 
 namespace fs = std::filesystem;
 using geometry::MoveKind;
-using geometry::Point2;
 using geometry::Point3;
-using geometry::SpindleDirection;
+using oracle::OracleMove;
+using oracle::OracleRun;
+using oracle::oracle_sweep_rad;
+using oracle::run_rs274;
 
-constexpr double kTwoPi = 2.0 * 3.14159265358979323846;
-constexpr double kMmPerInch = 25.4;
+constexpr double kTwoPi = oracle::kTwoPi;
 constexpr double kPositionToleranceMm = 1e-3;
 constexpr double kFeedToleranceMmPerMin = 0.01;
 
 fs::path data_dir() { return fs::path(FEEDPLAN_TEST_DATA_DIR) / "gcode"; }
-
-// --- Running rs274 and reading its canonical calls (test-only code) ------------------------------
-
-std::optional<fs::path> find_rs274() {
-  const char* path = std::getenv("PATH");
-  std::stringstream dirs(path != nullptr ? path : "/usr/bin:/bin");
-  std::string dir;
-  while (std::getline(dirs, dir, ':')) {
-    if (dir.empty()) continue;
-    const fs::path candidate = fs::path(dir) / "rs274";
-    if (::access(candidate.c_str(), X_OK) == 0) return candidate;
-  }
-  return std::nullopt;
-}
-
-std::string shell_quoted(const std::string& text) {
-  std::string quoted = "'";
-  for (char c : text) quoted += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  return quoted + "'";
-}
-
-// One move as LinuxCNC's canonical calls describe it, converted to mm.
-struct OracleMove {
-  MoveKind kind = MoveKind::kLine;
-  Point3 start;
-  Point3 end;
-  Point2 center;
-  int rotation = 0;  // ARC_FEED's rotation: +n counter-clockwise, −n clockwise, n turns
-  double feed_mm_per_min = 0.0;
-  double spindle_rpm = 0.0;
-  SpindleDirection spindle = SpindleDirection::kOff;
-  double dwell_before_s = 0.0;
-};
-
-struct OracleRun {
-  int exit_code = -1;
-  std::string messages;  // what rs274 printed (its error text on rejection)
-  std::vector<OracleMove> moves;
-  double dwell_at_end_s = 0.0;
-  std::vector<std::string> oddities;  // canonical calls the comparison cannot follow
-};
-
-std::string read_text(const fs::path& path) {
-  std::ifstream in(path);
-  std::stringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
-
-std::vector<double> numbers_in(const std::string& arguments) {
-  std::vector<double> numbers;
-  std::stringstream items(arguments);
-  std::string item;
-  while (std::getline(items, item, ',')) numbers.push_back(std::strtod(item.c_str(), nullptr));
-  return numbers;
-}
-
-// Follows the canonical calls in rs274's output file. Zero-length straight moves (LinuxCNC emits one
-// for a bare "G1") are dropped, as the reader drops them.
-void parse_canonical(const std::string& text, OracleRun& run) {
-  double unit_mm = 1.0;
-  Point3 position;
-  double feed = 0.0;
-  double rpm = 0.0;
-  SpindleDirection spindle = SpindleDirection::kOff;
-  double dwell = 0.0;
-  std::stringstream lines(text);
-  std::string line;
-  while (std::getline(lines, line)) {
-    const std::size_t open = line.find('(');
-    const std::size_t close = line.rfind(')');
-    if (open == std::string::npos || close == std::string::npos || close < open) continue;
-    const std::size_t name_begin = line.rfind(' ', open) == std::string::npos ? 0 : line.rfind(' ', open) + 1;
-    const std::string name = line.substr(name_begin, open - name_begin);
-    const std::string arguments = line.substr(open + 1, close - open - 1);
-    if (name == "COMMENT" || name == "MESSAGE") continue;
-    if (name == "USE_LENGTH_UNITS") {
-      unit_mm = arguments == "CANON_UNITS_INCHES" ? kMmPerInch : 1.0;
-      if (arguments != "CANON_UNITS_INCHES" && arguments != "CANON_UNITS_MM") run.oddities.push_back(line);
-    } else if (name == "SELECT_PLANE") {
-      if (arguments != "CANON_PLANE_XY") run.oddities.push_back(line);
-    } else if (name == "SET_FEED_RATE") {
-      feed = numbers_in(arguments).at(0) * unit_mm;  // LinuxCNC converts F when it is set
-    } else if (name == "SET_SPINDLE_SPEED") {
-      rpm = numbers_in(arguments).at(1);
-    } else if (name == "START_SPINDLE_CLOCKWISE") {
-      spindle = SpindleDirection::kClockwise;
-    } else if (name == "START_SPINDLE_COUNTERCLOCKWISE") {
-      spindle = SpindleDirection::kCounterClockwise;
-    } else if (name == "STOP_SPINDLE_TURNING") {
-      spindle = SpindleDirection::kOff;
-    } else if (name == "DWELL") {
-      dwell += numbers_in(arguments).at(0);
-    } else if (name == "STRAIGHT_TRAVERSE" || name == "STRAIGHT_FEED" || name == "ARC_FEED") {
-      const std::vector<double> v = numbers_in(arguments);
-      OracleMove move;
-      move.start = position;
-      if (name == "ARC_FEED") {
-        // ARC_FEED(first_end, second_end, first_axis, second_axis, rotation, axis_end_point, a, b, c)
-        move.kind = MoveKind::kArc;
-        move.end = {v.at(0) * unit_mm, v.at(1) * unit_mm, v.at(5) * unit_mm};
-        move.center = {v.at(2) * unit_mm, v.at(3) * unit_mm};
-        move.rotation = static_cast<int>(v.at(4));
-      } else {
-        move.kind = name == "STRAIGHT_TRAVERSE" ? MoveKind::kRapid : MoveKind::kLine;
-        move.end = {v.at(0) * unit_mm, v.at(1) * unit_mm, v.at(2) * unit_mm};
-        const double length = std::hypot(std::hypot(move.end.x_mm - position.x_mm, move.end.y_mm - position.y_mm),
-                                          move.end.z_mm - position.z_mm);
-        if (length < 1e-7) continue;
-      }
-      for (std::size_t i = name == "ARC_FEED" ? 6 : 3; i < v.size(); ++i) {
-        if (v[i] != 0.0) run.oddities.push_back(line + "  (a rotary or extra axis moves)");
-      }
-      move.feed_mm_per_min = move.kind == MoveKind::kRapid ? 0.0 : feed;
-      move.spindle_rpm = rpm;
-      move.spindle = spindle;
-      move.dwell_before_s = dwell;
-      dwell = 0.0;
-      position = move.end;
-      run.moves.push_back(move);
-    }
-  }
-  run.dwell_at_end_s = dwell;
-}
-
-// Holds an exclusive lock on a machine-wide file while it lives: two rs274 processes running at the
-// same time (ctest -j) crash with a bus error, so every run of it is serialised.
-class Rs274Lock {
- public:
-  Rs274Lock() : fd_(::open((fs::temp_directory_path() / "feedplan-rs274.lock").c_str(), O_RDWR | O_CREAT, 0666)) {
-    if (fd_ >= 0) ::flock(fd_, LOCK_EX);
-  }
-  ~Rs274Lock() {
-    if (fd_ >= 0) ::close(fd_);  // closing releases the lock
-  }
-  Rs274Lock(const Rs274Lock&) = delete;
-  Rs274Lock& operator=(const Rs274Lock&) = delete;
-
- private:
-  int fd_;
-};
-
-// Runs rs274 on `program` in a directory of this process's own.
-OracleRun run_rs274(const fs::path& rs274, const fs::path& program) {
-  const Rs274Lock lock;
-  const fs::path dir = fs::temp_directory_path() / ("feedplan-rs274-" + std::to_string(::getpid()));
-  fs::create_directories(dir);
-  const fs::path output = dir / "canonical.txt";
-  const fs::path messages = dir / "messages.txt";
-  fs::remove(output);
-  const std::string command = "cd " + shell_quoted(dir.string()) + " && " + shell_quoted(rs274.string()) + " -g " +
-                              shell_quoted(fs::absolute(program).string()) + " " + shell_quoted(output.string()) +
-                              " < /dev/null > " + shell_quoted(messages.string()) + " 2>&1";
-  OracleRun run;
-  const int status = std::system(command.c_str());
-  run.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  run.messages = read_text(messages);
-  if (fs::exists(output)) parse_canonical(read_text(output), run);
-  fs::remove_all(dir);
-  return run;
-}
-
-// The swept angle LinuxCNC means by an ARC_FEED: from start to end in the rotation's direction,
-// in (0, 2π] (2π when start and end coincide), plus one full turn per extra count of rotation.
-double oracle_sweep_rad(const OracleMove& m) {
-  const bool ccw = m.rotation > 0;
-  double base = kTwoPi;
-  if (std::hypot(m.end.x_mm - m.start.x_mm, m.end.y_mm - m.start.y_mm) > 1e-9) {
-    const double a0 = std::atan2(m.start.y_mm - m.center.y_mm, m.start.x_mm - m.center.x_mm);
-    const double a1 = std::atan2(m.end.y_mm - m.center.y_mm, m.end.x_mm - m.center.x_mm);
-    base = std::fmod(ccw ? a1 - a0 : a0 - a1, kTwoPi);
-    if (base <= 0.0) base += kTwoPi;
-  }
-  return base + (std::abs(m.rotation) - 1) * kTwoPi;
-}
 
 double distance_mm(const Point3& a, const Point3& b) {
   return std::hypot(std::hypot(b.x_mm - a.x_mm, b.y_mm - a.y_mm), b.z_mm - a.z_mm);
@@ -237,16 +56,7 @@ const char* kind_name(MoveKind kind) {
   return "?";
 }
 
-class LinuxCncOracle : public ::testing::Test {
- protected:
-  void SetUp() override {
-    rs274_ = find_rs274();
-    ASSERT_TRUE(rs274_.has_value())
-        << "rs274 (LinuxCNC's G-code interpreter, the oracle of this test) is not on PATH: run "
-           "scripts/install-deps.sh, which installs the Debian package linuxcnc-uspace";
-  }
-  std::optional<fs::path> rs274_;
-};
+using LinuxCncOracle = oracle::Rs274Test;
 
 // --- Programs both must accept, move by move ---------------------------------------------------
 
@@ -369,10 +179,13 @@ const std::vector<BadProgram>& bad_programs() {
       // LinuxCNC accepts these; feedplan refuses them (reader.hpp says why).
       {"lathe_g7.ngc", "line 2: word G7: not supported (lathe diameter mode)", false},
       {"arc_radius_mismatch_small.ngc", "line 2: G3 I5.01: end point is 0.02 mm off the circle", false},
-      {"tool_change.ngc", "line 2: word M6: not supported (tool change", false},
+      {"tool_change.ngc", "line 3: word M6: not supported after the first move (tool change: the path is planned "
+                          "for one tool", false},
+      {"tool_change_second.ngc", "line 3: word M6: a second tool change (T1 M6 on line 2) is not supported", false},
       {"cutter_compensation.ngc", "line 2: word G41: not supported (cutter radius compensation", false},
       {"plane_g18.ngc", "line 2: word G18: not supported (arcs are read in the XY plane", false},
-      {"tool_length_offset.ngc", "line 2: word G43: not supported (tool length offsets", false},
+      {"tool_length_offset.ngc", "line 3: word H2: G43 H2 is the length offset of tool 2, but tool 1 is in the "
+                                 "spindle", false},
       {"inverse_time.ngc", "line 2: word G93: not supported (inverse-time feed", false},
       {"feed_per_revolution.ngc", "line 2: word G95: not supported (feed per revolution", false},
       {"units_change_with_f.ngc", "line 2: word F10: F in a block whose G20 changes the units", false},

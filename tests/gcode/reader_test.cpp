@@ -248,6 +248,27 @@ TEST(Reader, ArcToleranceIsAnOption) {
   EXPECT_THAT(problems_of("G21 F100\nM2\n", options), HasSubstr("ReaderOptions::arc_radius_tolerance_mm = -1"));
 }
 
+TEST(Reader, OneToolChangeBeforeTheFirstMoveIsReadAndNoted) {
+  // T in the M6 block or before it; G43 with the tool's H in a rapid's block, or without H.
+  for (const std::string head : {"T3 M6\nG43 H3\n", "T3\nM6\nG0 G43 H3 Z5\n", "T3 M6 G43\n", "T3 M6 G43 H3\n"}) {
+    SCOPED_TRACE(head);
+    const Program p = read("G21 F100\n" + head + "G0 X1 Z5\nG1 X2\nM2\n");
+    ASSERT_EQ(p.path.moves.size(), head.find("Z5") != std::string::npos ? 3u : 2u);
+    EXPECT_EQ(p.path.moves.back().end.x_mm, 2.0);
+    EXPECT_EQ(p.path.moves.back().end.z_mm, 5.0);  // G43 leaves Z the programmed tool tip
+    ASSERT_FALSE(p.notes.empty());
+    EXPECT_THAT(p.notes.front(), HasSubstr("T3 M6: the program is for tool 3"));
+  }
+}
+
+TEST(Reader, LengthOffsetWithoutToolChangeIsTakenToNameTheTool) {
+  const Program p = read("G21 F100\nG0 G43 H7 X1 Z5\nG1 X2\nM2\n");
+  ASSERT_EQ(p.path.moves.size(), 2u);
+  ASSERT_EQ(p.notes.size(), 1u);
+  EXPECT_THAT(p.notes[0], HasSubstr("line 2: G43 H7 with no tool change (T M6) before it: the program is taken to be "
+                                    "for tool 7"));
+}
+
 // --- Bad input: every problem names the line and the word --------------------------------------
 
 TEST(ReaderProblems, UnknownWordsAndCodes) {
@@ -258,12 +279,34 @@ TEST(ReaderProblems, UnknownWordsAndCodes) {
               HasSubstr("test line 2: word G12: not supported (not a G code the reader knows)"));
   EXPECT_THAT(problems_of("G21 F100\nM100\nM2\n"),
               HasSubstr("test line 2: word M100: not supported (not an M code the reader knows)"));
-  EXPECT_THAT(problems_of("G21 F100\nT1 M6\nM2\n"),
-              HasSubstr("test line 2: word M6: not supported (tool change: the path is planned for one tool"));
   EXPECT_THAT(problems_of("G21 F100\nG41 D1\nM2\n"), HasSubstr("test line 2: word G41: not supported (cutter radius"));
   EXPECT_THAT(problems_of("G21 F100\nG1 X1 A3\nM2\n"), HasSubstr("test line 2: word A3: not supported (rotary axes"));
   EXPECT_THAT(problems_of("G21 F100\nG1 X1 E3\nM2\n"), HasSubstr("test line 2: word E3: not supported"));
   EXPECT_THAT(problems_of("G21 F100\nG18\nM2\n"), HasSubstr("test line 2: word G18: not supported (arcs are read in the XY plane"));
+}
+
+TEST(ReaderProblems, ToolChangesAndLengthOffsets) {
+  EXPECT_THAT(problems_of("G21 F100\nT1 M6\nT2 M6\nG1 X1\nM2\n"),
+              HasSubstr("test line 3: word M6: a second tool change (T1 M6 on line 2) is not supported (tool change: "
+                        "the path is planned for one tool; split the program per tool)"));
+  EXPECT_THAT(problems_of("G21 F100\nG1 X1\nT1 M6\nM2\n"),
+              HasSubstr("test line 3: word M6: not supported after the first move (tool change: the path is planned "
+                        "for one tool"));
+  EXPECT_THAT(problems_of("G21 F100\nM6\nM2\n"),
+              HasSubstr("test line 2: word M6: no tool selected: a T word must come before M6 or with it"));
+  EXPECT_THAT(problems_of("G21 F100\nT1 M6\nG43 H2\nM2\n"),
+              HasSubstr("test line 3: word H2: G43 H2 is the length offset of tool 2, but tool 1 is in the spindle"));
+  EXPECT_THAT(problems_of("G21 F100\nT1 M6 G43 H2\nM2\n"), HasSubstr("test line 2: word H2: G43 H2 is the length"));
+  EXPECT_THAT(problems_of("G21 F100\nG0 X1 H1\nM2\n"),
+              HasSubstr("test line 2: word H1: H is read only with G43 (the tool length offset number)"));
+  EXPECT_THAT(problems_of("G21 F100\nG43\nM2\n"),
+              HasSubstr("test line 2: word G43: without H and with no tool change (T M6) before it"));
+  EXPECT_THAT(problems_of("G21 F100\nG43 H1.5\nM2\n"),
+              HasSubstr("test line 2: word H1.5: a tool length offset number must be a whole number ≥ 0"));
+  EXPECT_THAT(problems_of("G21 F100\nG43 H1\nT2 M6\nM2\n"),
+              HasSubstr("test line 3: word M6: G43 H1 (line 2) stays in effect after the change"));
+  EXPECT_THAT(problems_of("G21 F100\nT1 M6\nG43.1 Z1\nM2\n"),
+              HasSubstr("test line 3: word G43.1: not supported (dynamic or added tool length offsets"));
 }
 
 TEST(ReaderProblems, FeedMoveWithoutPositiveFeed) {

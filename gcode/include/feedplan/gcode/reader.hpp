@@ -5,7 +5,8 @@
 // by line and word — a skipped word could change the path the force model is computed on.
 //
 // What the reader does with each word (LinuxCNC's order of execution within a block: G94, F, S, T,
-// M3/M4/M5, coolant, G4, plane, units, work offset, distance modes, motion, M0/M1, M2/M30):
+// M6, M3/M4/M5, coolant, G4, plane, units, tool length offset, work offset, distance modes, motion,
+// M0/M1, M2/M30):
 //
 // Supported
 //   G0, G1            rapid and straight feed moves
@@ -24,25 +25,33 @@
 //   G94               feed per minute, the only feed mode read; like LinuxCNC it resets the feed to
 //                     0, so a feed move needs an F after it (in the same block or later)
 //   F S               feed (per minute, in the length unit in effect when F is read) and spindle rpm
+//   T, M6             tool selection and change (`T1 M6`, T in the same or an earlier block): once,
+//                     before the first move; a note records the tool number
+//   G43 H             tool length offset on: the programmed Z is the tool tip, which is what the reader
+//                     assumes anyway; H must be the tool in the spindle (without H: that tool). Other
+//                     words may share the block (`G43 H1 Z5`). G43 with no M6 before it is taken to name
+//                     the tool in the spindle (a note says so)
 //   M3, M4, M5        spindle clockwise / counter-clockwise / off
 //   M2, M30           program end; later lines are not read (a note says so when they hold words)
 //   N, O              line numbers (first in their block), program-number lines like `O1000`
 //   %                 alone on the first line opens the program, alone on a later line ends it
 //   ( ) and ;         comments; blank lines; lowercase letters; spaces inside words
 // Ignored: accepted, with no effect on the path, feeds or spindle
-//   G40 (cutter compensation off) and G49 (tool length offset off): both are the state a program
-//   without G41/G42/G43 is in; G97 (constant rpm): the default; G61, G61.1, G64 [P Q] (path
-//   control): how the controller blends corners, the programmed path stays the same; G98, G99
-//   (canned-cycle retract): canned cycles are refused anyway; M0, M1 (program pause); M7, M8, M9
-//   (coolant); T (tool preparation — M6 is refused).
+//   G40 (cutter compensation off) and G49 (tool length offset off): the state a program without
+//   G41/G42 is in, and the reader's Z is the tool tip either way; G97 (constant rpm): the default;
+//   G61, G61.1, G64 [P Q] (path control): how the controller blends corners, the programmed path
+//   stays the same; G98, G99 (canned-cycle retract): canned cycles are refused anyway; M0, M1
+//   (program pause); M7, M8, M9 (coolant); T without M6 (tool preparation).
 // Refused, by line and word
-//   G18, G19 and other planes; G41, G42 cutter compensation; G43 tool length offsets; G93 inverse
+//   G18, G19 and other planes; G41, G42 cutter compensation; G43.1, G43.2 (dynamic and added tool
+//   length offsets), G43 with an H that is not the tool in the spindle, H without G43; G93 inverse
 //   time and G95 feed per revolution; G96 constant surface speed; G28, G30, G53 (machine
 //   positions); G10, G52, G92 (offset changes); G5.x splines, G33 threading, G38.x probing, G73–G89
-//   canned cycles, G7, G8; M6 tool changes (the path is planned for one tool: split the program per
-//   tool); every other G or M code; A, B, C, U, V, W axes; K (arcs outside XY) and the letters D,
-//   E, H, L and the like; parameters and expressions (#1, [..]); O-word subroutines and control
-//   flow; block delete `/` (whether the line runs depends on the operator's switch).
+//   canned cycles, G7, G8; a second M6 or one after the first move (the path is planned for one
+//   tool: split the program per tool), M6 with no T before it; every other G or M code; A, B, C, U,
+//   V, W axes; K (arcs outside XY) and the letters D, E, L and the like; parameters and expressions
+//   (#1, [..]); O-word subroutines and control flow; block delete `/` (whether the line runs
+//   depends on the operator's switch).
 //
 // Problems found (all collected, up to a cap, into one InputError; each names the line and the
 // word): unknown or refused words; numbers that are not plain decimals (`X1..2`, `Xabc`, `X`, no

@@ -1,0 +1,353 @@
+#include "plan_command.hpp"
+
+#include <nlohmann/json.hpp>
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <iostream>
+#include <optional>
+
+#include "data_path.hpp"
+#include "database_path.hpp"
+#include "plan_check.hpp"
+#include "feedplan/core/atomic_file.hpp"
+#include "feedplan/core/input_error.hpp"
+#include "feedplan/core/number_text.hpp"
+#include "feedplan/cycles/cycle.hpp"
+#include "feedplan/cycles/spec_reader.hpp"
+#include "feedplan/gcode/writer.hpp"
+#include "feedplan/model_db/closest_model.hpp"
+#include "feedplan/model_db/store.hpp"
+#include "feedplan/planner/feed_plan.hpp"
+#include "feedplan/planner/plan_plot.hpp"
+#include "feedplan/planner/plan_report.hpp"
+
+namespace feedplan::cli {
+namespace {
+
+namespace fs = std::filesystem;
+namespace mdb = model_db;
+
+constexpr int kExitFailed = 1;
+
+// An output path must name a file in an existing directory; checked before anything is written.
+void check_output(const std::string& flag, const std::string& path, std::vector<InputProblem>& problems) {
+  if (path.empty()) return;
+  const fs::path p(path);
+  const fs::path directory = p.has_parent_path() ? p.parent_path() : fs::path(".");
+  std::error_code ec;
+  if (!fs::is_directory(directory, ec)) {
+    problems.push_back({flag, "= '" + path + "': directory '" + directory.string() + "' does not exist"});
+  } else if (fs::is_directory(p, ec)) {
+    problems.push_back({flag, "= '" + path + "': is a directory, expected a file name"});
+  }
+}
+
+struct ChosenModel {
+  mdb::ModelRecord record;
+  std::string match;        // to_string(ModelMatch) or "by id"
+  std::string explanation;  // for people
+};
+
+// The model to plan with: --model-id, else the closest active model for the spec's tool and material.
+// Returns nothing (after printing why) when the database has none that qualifies.
+std::optional<ChosenModel> choose_model(const mdb::Store& store, const cycles::CycleSpec& spec, std::int64_t model_id) {
+  if (model_id != 0) {
+    auto record = store.model_by_id(model_id);
+    if (!record) {
+      throw InputError("--model-id", "= " + std::to_string(model_id) + ": no model with this id in " +
+                                         store.path().string() + " (see feedplan db list)");
+    }
+    return ChosenModel{*record, "by id", "model id " + std::to_string(model_id) + " as asked (--model-id)"};
+  }
+  if (spec.material.empty()) throw InputError("material", "is required to choose a force model, e.g. material: S50C");
+  const auto material = store.find_material(spec.material);
+  if (!material) {
+    std::string known;
+    for (const auto& m : store.materials()) known += (known.empty() ? "" : ", ") + m.name;
+    throw InputError("material", "= '" + spec.material + "': not in the model database " + store.path().string() +
+                                     " (known: " + (known.empty() ? "none" : known) + ")");
+  }
+  mdb::ToolRecord tool;
+  if (auto stored = store.find_tool(spec.tool.name)) {
+    tool = *stored;
+  } else {
+    tool.name = spec.tool.name;
+    tool.diameter_mm = spec.tool.diameter_mm;
+    tool.flutes = spec.tool.flutes;
+    tool.helix_deg = spec.tool.helix_deg;
+  }
+  const mdb::ClosestModel closest = mdb::closest_model(store, tool, *material);
+  if (closest.status != mdb::ClosestModelStatus::kFound) {
+    std::cerr << "feedplan: failed: no force model to plan with: " << closest.explanation << "\n"
+              << "  add cutting tests and fit one (feedplan db import-test, feedplan db fit), or pass --model-id\n";
+    return std::nullopt;
+  }
+  return ChosenModel{*closest.model, mdb::to_string(closest.match), closest.explanation};
+}
+
+}  // namespace
+
+void add_plan_command(CLI::App& app, PlanCommandOptions& options) {
+  auto* cmd = app.add_subcommand(
+      "plan",
+      "Plan the feeds of a canned cycle: engagement along the path, the closest force model from the database,\n"
+      "feeds that hold the predicted force at the target under the machine's limits; writes G-code with F words");
+  cmd->add_option("spec", options.spec_path, "Cycle spec (YAML), e.g. samples/trochoid.yaml")->required();
+  cmd->add_option("-o,--output", options.program_path, "G-code program to write")->required();
+  cmd->add_option("--db", options.db_path, "Model database (default: $FEEDPLAN_DB, else the bundled sample database)");
+  cmd->add_option("--target-force", options.target_force_n, "Per-revolution peak force to hold, N (default: the spec's)");
+  cmd->add_option("--dialect", options.dialect, "G-code dialect: linuxcnc, fanuc or haas (default linuxcnc)");
+  cmd->add_option("--report", options.report_path, "Write the plan report (JSON)");
+  cmd->add_option("--csv", options.csv_path, "Write the plan per sample (CSV)");
+  cmd->add_option("--plot", options.plot_path, "Write a plot of engagement, feed and predicted force (SVG)");
+  cmd->add_option("--mode", options.mode, "safe (F never above any limit inside its block) or regulate (default safe)");
+  cmd->add_option("--air-feed", options.air_feed_mm_per_min, "Feed through air, mm/min (default: the machine's maximum)");
+  cmd->add_option("--merge-tolerance", options.merge_tolerance, "Relative feed spread merged into one block (default 0.02)");
+  cmd->add_option("--feed-resolution", options.feed_resolution_mm_per_min, "F resolution, mm/min (default 1)");
+  cmd->add_option("--jerk", options.jerk_limit_mm_per_s3, "Path jerk limit, mm/s³ (default: none)");
+  cmd->add_option("--ds", options.ds_mm, "Engagement sample spacing, mm (default 0.05)");
+  cmd->add_option("--model-id", options.model_id, "Plan with this model (id from feedplan db list) instead of the closest");
+  cmd->add_option("--decimals", options.decimals, "Digits after the point in X Y Z I J (default 3)");
+  cmd->add_flag("--line-numbers", options.line_numbers, "Number the blocks (N words)");
+  cmd->add_flag("--coolant", options.coolant, "Flood coolant on (M8) while cutting");
+  cmd->add_option("--tool-number", options.tool_number, "Tool number for T and H (default 1)");
+  cmd->add_option("--program-number", options.program_number, "Program number for the O word of Fanuc/Haas (default 1000)");
+  cmd->add_flag("--json", options.json, "Print the summary as JSON");
+  cmd->add_flag("--simulate", options.simulate,
+                "Run the written program on the virtual machine (mechanistic forces for the spec's material) and\n"
+                "compare its per-revolution peak forces with the target");
+  cmd->add_option("--constant-feed", options.constant_feed_mm_per_min,
+                  "Write the constant-feed program instead: this F (mm/min) on every feed move (a baseline to compare)");
+  cmd->add_option("--materials", options.materials_path, "Materials file of the virtual machine (default: the bundled one)");
+}
+
+int run_plan_command(const PlanCommandOptions& o) {
+  // 1. Everything the user gave, checked before anything is read from the database or written.
+  const cycles::CycleSpec spec = cycles::load_cycle_spec(o.spec_path);
+  std::vector<InputProblem> problems;
+  const auto dialect = gcode::dialect_from_string(o.dialect);
+  if (!dialect) problems.push_back({"--dialect", "= '" + o.dialect + "': expected linuxcnc, fanuc or haas"});
+  planner::PlanMode mode = planner::PlanMode::kSafe;
+  if (o.mode == "regulate") {
+    mode = planner::PlanMode::kRegulate;
+  } else if (o.mode != "safe") {
+    problems.push_back({"--mode", "= '" + o.mode + "': expected safe or regulate"});
+  }
+  const double target_force_n = o.target_force_n != 0.0 ? o.target_force_n : spec.target_force_n;
+  if (!(std::isfinite(target_force_n) && target_force_n > 0.0)) {
+    problems.push_back({o.target_force_n != 0.0 ? "--target-force" : "target_force_n",
+                        "= " + shortest_number_text(target_force_n) +
+                            ": a target force > 0 N is required (in the spec or with --target-force)"});
+  }
+  if (!(spec.spindle_rpm > 0.0)) problems.push_back({"spindle_rpm", "is required to plan feeds (rev/min > 0)"});
+  if (!(o.ds_mm >= 0.001 && o.ds_mm <= spec.tool.radius_mm())) {
+    problems.push_back({"--ds", "= " + shortest_number_text(o.ds_mm) + ": must be in [0.001, tool radius " +
+                                    shortest_number_text(spec.tool.radius_mm()) + "] mm"});
+  }
+  gcode::WriterOptions writer;
+  if (dialect) writer.dialect = *dialect;
+  writer.decimals = o.decimals;
+  writer.line_numbers = o.line_numbers;
+  writer.coolant = o.coolant;
+  writer.tool_number = o.tool_number;
+  writer.program_number = o.program_number;
+  for (InputProblem problem : gcode::validate(writer)) {
+    problem.field = "--" + problem.field;
+    problems.push_back(problem);
+  }
+  if (o.constant_feed_mm_per_min != 0.0 &&
+      !(o.constant_feed_mm_per_min >= spec.machine.min_feed_mm_per_min &&
+        o.constant_feed_mm_per_min <= spec.machine.max_feed_mm_per_min)) {
+    problems.push_back({"--constant-feed", "= " + shortest_number_text(o.constant_feed_mm_per_min) +
+                                               ": must lie in the machine's feed range [" +
+                                               shortest_number_text(spec.machine.min_feed_mm_per_min) + ", " +
+                                               shortest_number_text(spec.machine.max_feed_mm_per_min) + "] mm/min"});
+  }
+  check_output("-o", o.program_path, problems);
+  check_output("--report", o.report_path, problems);
+  check_output("--csv", o.csv_path, problems);
+  check_output("--plot", o.plot_path, problems);
+  if (!problems.empty()) throw InputError(std::move(problems));
+
+  // 2. The model.
+  const std::string db_path = database_path(o.db_path);
+  const mdb::Store store = mdb::Store::open(db_path, mdb::OpenMode::kReadOnly);
+  const std::optional<ChosenModel> chosen = choose_model(store, spec, o.model_id);
+  if (!chosen) return kExitFailed;
+
+  // 3. Path, engagement, plan.
+  const auto started = std::chrono::steady_clock::now();
+  const cycles::Cycle cycle = cycles::generate(spec);
+  const planner::PlanGeometry geometry = planner::analyse(cycle.path, cycle.stock, spec.tool, o.ds_mm);
+  const auto analysed = std::chrono::steady_clock::now();
+  planner::PlanSettings settings;
+  settings.model = chosen->record.model;
+  settings.target_force_n = target_force_n;
+  settings.spindle_rpm = spec.spindle_rpm;
+  settings.machine = spec.machine;
+  settings.options.mode = mode;
+  settings.options.air_feed_mm_per_min = o.air_feed_mm_per_min;
+  settings.options.merge_tolerance = o.merge_tolerance;
+  settings.options.feed_resolution_mm_per_min = o.feed_resolution_mm_per_min;
+  settings.options.jerk_limit_mm_per_s3 = o.jerk_limit_mm_per_s3;
+  settings.options.ds_mm = o.ds_mm;
+  const planner::PlanResult result = planner::plan(geometry, settings);
+  const auto planned = std::chrono::steady_clock::now();
+
+  // 4. Outputs. The program only when the target can be met everywhere.
+  const bool write_program = result.status != planner::PlanStatus::kTargetNotMet && o.constant_feed_mm_per_min == 0.0;
+  const mdb::ModelRecord& record = chosen->record;
+  writer.program_name = spec.cycle + " " + spec.tool.name;
+  writer.header_comments = {
+      {"cycle", spec.cycle + " from " + fs::path(o.spec_path).filename().string()},
+      {"tool", spec.tool.name + " D" + shortest_number_text(spec.tool.diameter_mm) + " Z" + std::to_string(spec.tool.flutes)},
+      {"material", spec.material},
+      {"model", "id " + std::to_string(record.id) + " v" + std::to_string(record.version) + " " + record.tool_name +
+                    " in " + record.material_name + " (" + chosen->match + ")"},
+      {"target force N", shortest_number_text(target_force_n)},
+      {"planned cycle time s", shortest_number_text(std::round(result.summary.cycle_time_s * 100.0) / 100.0)},
+      {"feedplan", FEEDPLAN_VERSION}};
+  writer.retract_z_mm = std::nullopt;
+  std::vector<std::string> written;
+  auto fail_write = [](const std::string& error) {
+    std::cerr << "feedplan: failed: " << error << "\n";
+    return kExitFailed;
+  };
+  // --constant-feed: the cycle's own moves, one F on every feed move (what the baseline is).
+  geometry::Program constant_program;
+  if (o.constant_feed_mm_per_min > 0.0) {
+    constant_program.path = cycle.path;
+    for (const geometry::Move& move : cycle.path.moves) {
+      geometry::BlockCommand block;
+      block.feed_mm_per_min = move.kind == geometry::MoveKind::kRapid ? 0.0 : o.constant_feed_mm_per_min;
+      block.spindle_rpm = spec.spindle_rpm;
+      block.spindle = geometry::SpindleDirection::kClockwise;
+      constant_program.blocks.push_back(block);
+    }
+    writer.header_comments.erase(writer.header_comments.begin() + 3, writer.header_comments.end());
+    writer.header_comments.push_back({"constant feed mm/min", shortest_number_text(o.constant_feed_mm_per_min)});
+  }
+  const bool constant = o.constant_feed_mm_per_min > 0.0;
+  const std::string program_text =
+      write_program || constant ? gcode::write_gcode(constant ? constant_program : result.program, writer) : "";
+  if (write_program || constant) {
+    if (auto error = write_file_atomically(o.program_path, program_text); !error.empty()) return fail_write(error);
+    written.push_back(o.program_path);
+  }
+  std::optional<PlanCheck> check;
+  if (o.simulate && (write_program || constant)) {
+    check = check_on_virtual_machine(program_text, spec, cycle, result, target_force_n,
+                                     o.materials_path.empty() ? bundled_materials_path() : o.materials_path);
+  }
+  planner::PlanReportContext context;
+  context.spec_path = o.spec_path;
+  context.cycle = spec.cycle;
+  context.tool = spec.tool;
+  context.material = spec.material;
+  context.model_id = record.id;
+  context.model_version = record.version;
+  context.model_tool = record.tool_name;
+  context.model_material = record.material_name;
+  context.model_match = chosen->explanation;
+  context.database_path = db_path;
+  context.program_path = write_program || constant ? o.program_path : "";
+  context.dialect = gcode::to_string(writer.dialect);
+  if (!o.report_path.empty()) {
+    if (auto error = planner::write_plan_report(o.report_path, result, settings, context); !error.empty()) return fail_write(error);
+    written.push_back(o.report_path);
+  }
+  if (!o.csv_path.empty()) {
+    if (auto error = planner::write_plan_samples_csv(o.csv_path, result); !error.empty()) return fail_write(error);
+    written.push_back(o.csv_path);
+  }
+  if (!o.plot_path.empty()) {
+    planner::PlanPlotOptions plot;
+    plot.title = spec.cycle + " — " + spec.tool.name + " in " + spec.material + ", target " +
+                 shortest_number_text(target_force_n) + " N";
+    if (check) {
+      std::vector<std::pair<double, double>> peaks;
+      for (const auto& r : check->comparison.revolutions) {
+        if (r.in_cut) peaks.emplace_back(0.5 * (r.revolution.s_start_mm + r.revolution.s_end_mm), r.revolution.peak_n);
+      }
+      plot.measured_peaks = peaks;
+      plot.title += " (markers: virtual machine, per-revolution peaks)";
+    }
+    if (auto error = planner::write_plan_plot(o.plot_path, result, target_force_n, plot); !error.empty()) return fail_write(error);
+    written.push_back(o.plot_path);
+  }
+
+  // 5. Summary.
+  const planner::PlanSummary& s = result.summary;
+  const double analyse_s = std::chrono::duration<double>(analysed - started).count();
+  const double plan_s = std::chrono::duration<double>(planned - analysed).count();
+  if (o.json) {
+    nlohmann::json out;
+    out["status"] = planner::to_string(result.status);
+    out["messages"] = result.messages;
+    out["spec"] = o.spec_path;
+    out["model"] = {{"id", record.id}, {"version", record.version}, {"tool", record.tool_name},
+                    {"material", record.material_name}, {"match", chosen->match}, {"explanation", chosen->explanation}};
+    out["target_force_n"] = target_force_n;
+    out["blocks"] = result.blocks.size();
+    out["samples"] = result.samples.size();
+    out["feed_min_mm_per_min"] = s.min_feed_mm_per_min;
+    out["feed_max_mm_per_min"] = s.max_feed_mm_per_min;
+    out["cycle_time_s"] = s.cycle_time_s;
+    out["cutting_time_s"] = s.cutting_time_s;
+    out["max_predicted_force_n"] = s.max_predicted_force_n;
+    out["baseline"] = {{"feed_mm_per_min", s.baseline.feed_mm_per_min}, {"cycle_time_s", s.baseline.cycle_time_s},
+                       {"peak_force_n", s.baseline.peak_force_n}};
+    out["time_saved_percent"] = s.time_saved_percent;
+    out["engagement_time_s"] = analyse_s;
+    out["plan_time_s"] = plan_s;
+    out["written"] = written;
+    if (check) {
+      const auto& c = check->comparison;
+      out["virtual_machine"] = {{"cycle_time_s", check->cycle_time_s},
+                                {"max_peak_n", check->max_peak_n},
+                                {"revolutions", c.revolutions.size()},
+                                {"in_cut", c.in_cut},
+                                {"held", c.held},
+                                {"steady", c.steady},
+                                {"steady_max_abs_error_percent", c.steady_max_abs_error_percent},
+                                {"steady_rms_error_percent", c.steady_rms_error_percent},
+                                {"max_abs_error_percent", c.max_abs_error_percent},
+                                {"rms_error_percent", c.rms_error_percent},
+                                {"max_overshoot_percent", c.max_overshoot_percent},
+                                {"warnings", check->warnings}};
+    }
+    std::cout << out.dump(2) << "\n";
+  } else {
+    std::printf("%s: %s, tool %s, %s, target %s N\n", o.spec_path.c_str(), spec.cycle.c_str(), spec.tool.name.c_str(),
+                spec.material.c_str(), shortest_number_text(target_force_n).c_str());
+    std::printf("model: id %lld v%d (%s in %s) — %s\n", static_cast<long long>(record.id), record.version,
+                record.tool_name.c_str(), record.material_name.c_str(), chosen->explanation.c_str());
+    std::printf("status: %s\n", planner::to_string(result.status).c_str());
+    std::printf("plan: %zu samples, %zu blocks, F %.0f–%.0f mm/min, predicted peak %.1f N (engagement %.3f s, plan %.3f s)\n",
+                result.samples.size(), result.blocks.size(), s.min_feed_mm_per_min, s.max_feed_mm_per_min,
+                s.max_predicted_force_n, analyse_s, plan_s);
+    std::printf("cycle time: planned %.2f s (cutting %.2f s) vs constant F%.0f %.2f s: %.1f %% saved\n", s.cycle_time_s,
+                s.cutting_time_s, s.baseline.feed_mm_per_min, s.baseline.cycle_time_s, s.time_saved_percent);
+    if (check) {
+      std::printf("virtual machine: cycle time %.2f s, largest per-revolution peak %.1f N\n", check->cycle_time_s,
+                  check->max_peak_n);
+      std::printf("%s", planner::describe(check->comparison).c_str());
+    }
+    for (const std::string& path : written) std::printf("wrote %s\n", path.c_str());
+  }
+  if (check) {
+    for (const std::string& warning : check->warnings) std::cerr << "feedplan: virtual machine: " << warning << "\n";
+  }
+  for (const std::string& message : result.messages) std::cerr << "feedplan: note: " << message << "\n";
+  if (!write_program && !constant) {
+    std::cerr << "feedplan: failed: the target cannot be met everywhere (see the note above); no program written to "
+              << o.program_path << " — raise the target, or lower the machine's min_feed_mm_per_min\n";
+    return kExitFailed;
+  }
+  return 0;
+}
+
+}  // namespace feedplan::cli

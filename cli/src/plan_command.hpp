@@ -1,0 +1,47 @@
+#pragma once
+// `feedplan plan SPEC.yaml -o PROGRAM.nc [--db PATH] [--target-force N] [--dialect …] [--report PLAN.json]
+// [--csv PLAN.csv] [--plot PLAN.svg] …`: the main job — a cycle, the closest model in the database and a
+// target force → a G-code program whose F words hold the predicted force at the target.
+
+#include <CLI/CLI.hpp>
+
+#include <cstdint>
+#include <string>
+
+namespace feedplan::cli {
+
+struct PlanCommandOptions {
+  std::string spec_path;              //!< the cycle spec (YAML)
+  std::string program_path;           //!< -o: the G-code program to write
+  std::string db_path;                //!< --db; empty: $FEEDPLAN_DB, else the sample database
+  double target_force_n = 0.0;        //!< --target-force; 0: the spec's target_force_n
+  std::string dialect = "linuxcnc";   //!< --dialect linuxcnc | fanuc | haas
+  std::string report_path;            //!< --report: JSON summary
+  std::string csv_path;               //!< --csv: per-sample CSV
+  std::string plot_path;              //!< --plot: SVG
+  std::string mode = "safe";          //!< --mode safe | regulate
+  double air_feed_mm_per_min = 0.0;   //!< --air-feed; 0: the machine's maximum feed
+  double merge_tolerance = 0.02;      //!< --merge-tolerance
+  double feed_resolution_mm_per_min = 1.0;  //!< --feed-resolution
+  double jerk_limit_mm_per_s3 = 0.0;  //!< --jerk; 0: none
+  double ds_mm = 0.05;                //!< --ds: engagement sample spacing
+  std::int64_t model_id = 0;          //!< --model-id; 0: the closest active model
+  int decimals = 3;                   //!< --decimals
+  bool line_numbers = false;          //!< --line-numbers
+  bool coolant = false;               //!< --coolant
+  int tool_number = 1;                //!< --tool-number
+  int program_number = 1000;          //!< --program-number (Fanuc/Haas O word)
+  bool json = false;                  //!< --json: summary as JSON on stdout
+  bool simulate = false;              //!< --simulate: run the program on the virtual machine and compare
+  double constant_feed_mm_per_min = 0.0;  //!< --constant-feed: write this one F on every feed move instead
+  std::string materials_path;         //!< --materials: the virtual machine's materials file
+};
+
+//! Registers the subcommand.
+void add_plan_command(CLI::App& app, PlanCommandOptions& options);
+
+//! Runs the command. Returns 0 (planned), 1 (failed: no model for the material, or the target cannot be
+//! met — the program is then not written); throws InputError on bad input before anything is written.
+int run_plan_command(const PlanCommandOptions& options);
+
+}  // namespace feedplan::cli
