@@ -1,9 +1,10 @@
 #!/usr/bin/env bash
-# Quick start 1: install what is missing, build, and run the main job on the bundled samples.
-# Until the planner lands (`feedplan plan`), the main job is: build the sample model database from
-# virtual cutting tests (once; build/sample.db), show its models, generate the trochoid sample (seed 003
-# Table 2) with its engagement profile (out/trochoid_engagement.csv), and run today's constant-feed
-# trochoid program on the virtual machine (out/trochoid_force.csv, out/trochoid_force.svg).
+# Quick start 1: install what is missing, build, and run the main job on the bundled sample database:
+# plan the feeds of the trochoid sample (seed 003 Table 2) so the predicted cutting force holds 300 N,
+# write the G-code (out/trochoid.nc), the plan report (out/trochoid_plan.json, out/trochoid_plan.csv)
+# and its plot (out/trochoid_plan.svg), and run the program on the virtual machine to compare its
+# per-revolution peak forces with the target. The sample model database (build/sample.db) is built
+# from virtual cutting tests the first time (a few minutes).
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 bash "$root/scripts/install-deps.sh"
@@ -13,8 +14,7 @@ if [[ ! -s "$root/build/sample.db" ]]; then
   echo "building the sample model database (virtual cutting tests; a few minutes, once)"
   bash "$root/scripts/build-sample-db.sh" "$root/build/sample.db"
 fi
-"$feedplan" db list
 mkdir -p "$root/out"
-"$feedplan" cycle "$root/samples/trochoid.yaml" --engagement "$root/out/trochoid_engagement.csv"
-"$feedplan" simulate "$root/samples/trochoid_constant_feed.ngc" --spec "$root/samples/trochoid.yaml" \
-    --log "$root/out/trochoid_force.csv" --plot "$root/out/trochoid_force.svg"
+"$feedplan" plan "$root/samples/trochoid.yaml" --db "$root/build/sample.db" -o "$root/out/trochoid.nc" \
+    --report "$root/out/trochoid_plan.json" --csv "$root/out/trochoid_plan.csv" --plot "$root/out/trochoid_plan.svg" \
+    --simulate
