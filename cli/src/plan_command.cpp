@@ -2,6 +2,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -155,6 +156,7 @@ int run_plan_command(const PlanCommandOptions& o) {
   writer.tool_number = o.tool_number;
   writer.program_number = o.program_number;
   for (InputProblem problem : gcode::validate(writer)) {
+    std::replace(problem.field.begin(), problem.field.end(), '_', '-');  // decimals, tool-number: the flags
     problem.field = "--" + problem.field;
     problems.push_back(problem);
   }

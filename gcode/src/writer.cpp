@@ -540,7 +540,7 @@ class Writer {
 std::vector<InputProblem> validate(const WriterOptions& options) {
   std::vector<InputProblem> problems;
   auto add = [&problems](const std::string& field, std::string message) {
-    problems.push_back({"WriterOptions::" + field, std::move(message)});
+    problems.push_back({field, std::move(message)});
   };
   const bool known_dialect = options.dialect == Dialect::kLinuxCnc || options.dialect == Dialect::kFanuc ||
                              options.dialect == Dialect::kHaas;

@@ -103,8 +103,9 @@ struct WriterOptions {
 //! Checks `options`: dialect one of the three; decimals in 1..6; line_number_step in 1..99999;
 //! tool_number in 1..999; program_number in 1..9999 (Fanuc) or 1..99999 (Haas); header comment keys
 //! as described at WriterOptions::header_comments; retract_z_mm finite within ±99999 mm;
-//! max_arc_sweep_deg finite in [1, 360]. Returns every problem, each naming the field
-//! ("WriterOptions::decimals"), its value and the allowed range; empty when the options are usable.
+//! max_arc_sweep_deg finite in [1, 360]. Returns every problem, each naming the field as declared
+//! ("decimals", "header_comments[2].key" — the CLI prefixes its flag), its value and the allowed
+//! range; empty when the options are usable.
 std::vector<InputProblem> validate(const WriterOptions& options);
 
 //! Writes `program` as G-code text in `options.dialect` (layout, numbers, arcs and comments as
