@@ -183,7 +183,7 @@ int run_plan_command(const PlanCommandOptions& o) {
   // 3. Path, engagement, plan.
   const auto started = std::chrono::steady_clock::now();
   const cycles::Cycle cycle = cycles::generate(spec);
-  const planner::PlanGeometry geometry = planner::analyse(cycle.path, cycle.stock, spec.tool, o.ds_mm);
+  const planner::PlanGeometry geometry = planner::analyse(cycle.path, cycle.stock, spec.tool, o.ds_mm);  // = options.ds_mm
   const auto analysed = std::chrono::steady_clock::now();
   planner::PlanSettings settings;
   settings.model = chosen->record.model;
@@ -203,15 +203,22 @@ int run_plan_command(const PlanCommandOptions& o) {
   const bool write_program = result.status != planner::PlanStatus::kTargetNotMet && o.constant_feed_mm_per_min == 0.0;
   const mdb::ModelRecord& record = chosen->record;
   writer.program_name = spec.cycle + " " + spec.tool.name;
+  const bool constant = o.constant_feed_mm_per_min > 0.0;
   writer.header_comments = {
       {"cycle", spec.cycle + " from " + fs::path(o.spec_path).filename().string()},
       {"tool", spec.tool.name + " D" + shortest_number_text(spec.tool.diameter_mm) + " Z" + std::to_string(spec.tool.flutes)},
-      {"material", spec.material},
-      {"model", "id " + std::to_string(record.id) + " v" + std::to_string(record.version) + " " + record.tool_name +
-                    " in " + record.material_name + " (" + chosen->match + ")"},
-      {"target force N", shortest_number_text(target_force_n)},
-      {"planned cycle time s", shortest_number_text(std::round(result.summary.cycle_time_s * 100.0) / 100.0)},
-      {"feedplan", FEEDPLAN_VERSION}};
+      {"material", spec.material}};
+  if (constant) {
+    writer.header_comments.push_back({"constant feed mm/min", shortest_number_text(o.constant_feed_mm_per_min)});
+  } else {
+    writer.header_comments.push_back(
+        {"model", "id " + std::to_string(record.id) + " v" + std::to_string(record.version) + " " + record.tool_name +
+                      " in " + record.material_name + " (" + chosen->match + ")"});
+    writer.header_comments.push_back({"target force N", shortest_number_text(target_force_n)});
+    writer.header_comments.push_back(
+        {"planned cycle time s", shortest_number_text(std::round(result.summary.cycle_time_s * 100.0) / 100.0)});
+  }
+  writer.header_comments.push_back({"feedplan", FEEDPLAN_VERSION});
   writer.retract_z_mm = std::nullopt;
   std::vector<std::string> written;
   auto fail_write = [](const std::string& error) {
@@ -220,7 +227,7 @@ int run_plan_command(const PlanCommandOptions& o) {
   };
   // --constant-feed: the cycle's own moves, one F on every feed move (what the baseline is).
   geometry::Program constant_program;
-  if (o.constant_feed_mm_per_min > 0.0) {
+  if (constant) {
     constant_program.path = cycle.path;
     for (const geometry::Move& move : cycle.path.moves) {
       geometry::BlockCommand block;
@@ -229,10 +236,7 @@ int run_plan_command(const PlanCommandOptions& o) {
       block.spindle = geometry::SpindleDirection::kClockwise;
       constant_program.blocks.push_back(block);
     }
-    writer.header_comments.erase(writer.header_comments.begin() + 3, writer.header_comments.end());
-    writer.header_comments.push_back({"constant feed mm/min", shortest_number_text(o.constant_feed_mm_per_min)});
   }
-  const bool constant = o.constant_feed_mm_per_min > 0.0;
   const std::string program_text =
       write_program || constant ? gcode::write_gcode(constant ? constant_program : result.program, writer) : "";
   if (write_program || constant) {

@@ -89,9 +89,8 @@ ControllerRun run_controller(const std::vector<double>& s_mm, const std::vector<
     node_cap[j + 1] = std::min(node_cap[j + 1], interval_cap_mm_per_s[j]);
   }
   for (std::size_t i = 0; i < n; ++i) {
-    if (stops[i] || !std::isfinite(node_cap[i])) node_cap[i] = stops[i] ? 0.0 : node_cap[i];
+    if (stops[i]) node_cap[i] = 0.0;
   }
-  if (n == 1) node_cap[0] = 0.0;
   run.speed_mm_per_s = greatest_speeds(s_mm, node_cap, accel_mm_per_s2);
   run.time_s.assign(n, 0.0);
   for (std::size_t j = 0; j + 1 < n; ++j) {

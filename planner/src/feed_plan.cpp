@@ -196,7 +196,6 @@ PlanResult plan(const PlanGeometry& geometry, const PlanSettings& settings) {
   const std::vector<double> centripetal = centripetal_caps_mm_per_s(path, geometry.engagement, accel);
   std::vector<double> limit_mm_per_min(n);
   int target_below_model = 0;
-  int over_min = 0;
   for (std::size_t i = 0; i < n; ++i) {
     const geometry::EngagementSample& sample = samples[i];
     PlannedSample& planned = result.samples[i];
@@ -235,7 +234,6 @@ PlanResult plan(const PlanGeometry& geometry, const PlanSettings& settings) {
     if (feed < machine.min_feed_mm_per_min) {
       feed = machine.min_feed_mm_per_min;
       reason = FeedLimitReason::kMinFeed;
-      ++over_min;
     }
     if (limit.target_below_model) ++target_below_model;
     planned.limit_reason = reason;
@@ -267,14 +265,8 @@ PlanResult plan(const PlanGeometry& geometry, const PlanSettings& settings) {
     // Δv/a + a/J, i.e. at the mean acceleration a_eff = a·Δv / (Δv + a²/J). Taken for the largest
     // change of the profile between a local minimum and the next maximum (approximated by the largest
     // difference anywhere in a feed stretch), it bounds that change; smaller changes need little distance.
-    double largest_change = 0.0;
-    double lo = std::numeric_limits<double>::infinity();
-    double hi = 0.0;
-    for (std::size_t i = 0; i < n; ++i) {
-      lo = std::min(lo, command[i]);
-      hi = std::max(hi, command[i]);
-    }
-    largest_change = hi - lo;
+    const auto [lowest, highest] = std::minmax_element(command.begin(), command.end());
+    const double largest_change = *highest - *lowest;
     if (largest_change > 0.0) {
       const double a = machine.max_accel_mm_per_s2;
       accel = a * largest_change / (largest_change + a * a / options.jerk_limit_mm_per_s3);
@@ -444,7 +436,6 @@ PlanResult plan(const PlanGeometry& geometry, const PlanSettings& settings) {
                               " s (whole moves that short; the controller may slow down there)");
   }
   for (const std::string& warning : geometry.engagement.warnings) result.messages.push_back(warning);
-  (void)over_min;
   return result;
 }
 

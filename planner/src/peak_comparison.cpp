@@ -7,6 +7,35 @@
 
 namespace feedplan::planner {
 
+namespace {
+
+// Count, largest |error| with where, and RMS of a set of revolutions' errors.
+struct ErrorStatistics {
+  int count = 0;
+  double max_abs = 0.0;
+  double sum_squares = 0.0;
+  int worst = -1;
+  void add(double error_percent, int index) {
+    ++count;
+    sum_squares += error_percent * error_percent;
+    if (worst < 0 || std::abs(error_percent) > max_abs) {
+      max_abs = std::abs(error_percent);
+      worst = index;
+    }
+  }
+  double rms() const { return count > 0 ? std::sqrt(sum_squares / count) : 0.0; }
+};
+
+// "<peak> N at s = <mid> mm, x <x> y <y>" for one revolution.
+std::string where_text(const RevolutionComparison& r) {
+  char text[160];
+  std::snprintf(text, sizeof text, "%.1f N at s = %.1f mm, x %.2f y %.2f", r.revolution.peak_n,
+                0.5 * (r.revolution.s_start_mm + r.revolution.s_end_mm), r.position.x_mm, r.position.y_mm);
+  return text;
+}
+
+}  // namespace
+
 PeakComparison compare_peaks(const PlanResult& result, double target_force_n,
                              const std::vector<MeasuredRevolution>& revolutions) {
   assert(target_force_n > 0.0);
@@ -17,8 +46,8 @@ PeakComparison compare_peaks(const PlanResult& result, double target_force_n,
                                                      [](const PlannedSample& p, double s) { return p.s_mm < s; }) -
                                     samples.begin());
   };
-  double sum_squares = 0.0;
-  double steady_sum_squares = 0.0;
+  ErrorStatistics held_errors;
+  ErrorStatistics steady_errors;
   for (const MeasuredRevolution& revolution : revolutions) {
     RevolutionComparison c;
     c.revolution = revolution;
@@ -48,28 +77,21 @@ PeakComparison compare_peaks(const PlanResult& result, double target_force_n,
         out.worst_overshoot = index;
       }
     }
-    if (c.held) {
-      ++out.held;
-      sum_squares += c.error_percent * c.error_percent;
-      if (std::abs(c.error_percent) > out.max_abs_error_percent || out.worst_held < 0) {
-        out.max_abs_error_percent = std::abs(c.error_percent);
-        out.worst_held = index;
-      }
-    }
-    if (c.steady) {
-      ++out.steady;
-      steady_sum_squares += c.error_percent * c.error_percent;
-      if (std::abs(c.error_percent) > out.steady_max_abs_error_percent || out.worst_steady < 0) {
-        out.steady_max_abs_error_percent = std::abs(c.error_percent);
-        out.worst_steady = index;
-      }
-    }
+    if (c.held) held_errors.add(c.error_percent, index);
+    if (c.steady) steady_errors.add(c.error_percent, index);
     out.revolutions.push_back(c);
   }
-  if (out.held > 0) out.rms_error_percent = std::sqrt(sum_squares / out.held);
-  if (out.steady > 0) out.steady_rms_error_percent = std::sqrt(steady_sum_squares / out.steady);
+  out.held = held_errors.count;
+  out.max_abs_error_percent = held_errors.max_abs;
+  out.rms_error_percent = held_errors.rms();
+  out.worst_held = held_errors.worst;
+  out.steady = steady_errors.count;
+  out.steady_max_abs_error_percent = steady_errors.max_abs;
+  out.steady_rms_error_percent = steady_errors.rms();
+  out.worst_steady = steady_errors.worst;
   return out;
 }
+
 
 std::string describe(const PeakComparison& c) {
   char line[512];
@@ -79,27 +101,17 @@ std::string describe(const PeakComparison& c) {
                 "of them steady (constant engagement) %d\n",
                 c.revolutions.size(), c.in_cut, c.held, c.steady);
   text += line;
-  if (c.worst_steady >= 0) {
-    const auto& w = c.revolutions[static_cast<std::size_t>(c.worst_steady)];
-    std::snprintf(line, sizeof line,
-                  "steady revolutions: max |error| %.2f %%, RMS %.2f %% (worst %.1f N at s = %.1f mm, x %.2f y %.2f)\n",
-                  c.steady_max_abs_error_percent, c.steady_rms_error_percent, w.revolution.peak_n,
-                  0.5 * (w.revolution.s_start_mm + w.revolution.s_end_mm), w.position.x_mm, w.position.y_mm);
+  const auto error_line = [&](const char* what, int worst, double max_abs, double rms) {
+    if (worst < 0) return;
+    std::snprintf(line, sizeof line, "%s: max |error| %.2f %%, RMS %.2f %% (worst %s)\n", what, max_abs, rms,
+                  where_text(c.revolutions[static_cast<std::size_t>(worst)]).c_str());
     text += line;
-  }
-  if (c.worst_held >= 0) {
-    const auto& w = c.revolutions[static_cast<std::size_t>(c.worst_held)];
-    std::snprintf(line, sizeof line,
-                  "all held revolutions: max |error| %.2f %%, RMS %.2f %% (worst %.1f N at s = %.1f mm, x %.2f y %.2f)\n",
-                  c.max_abs_error_percent, c.rms_error_percent, w.revolution.peak_n,
-                  0.5 * (w.revolution.s_start_mm + w.revolution.s_end_mm), w.position.x_mm, w.position.y_mm);
-    text += line;
-  }
+  };
+  error_line("steady revolutions", c.worst_steady, c.steady_max_abs_error_percent, c.steady_rms_error_percent);
+  error_line("all held revolutions", c.worst_held, c.max_abs_error_percent, c.rms_error_percent);
   if (c.worst_overshoot >= 0) {
-    const auto& w = c.revolutions[static_cast<std::size_t>(c.worst_overshoot)];
-    std::snprintf(line, sizeof line, "largest peak vs target over all in-cut revolutions: %+.2f %% (%.1f N at s = %.1f mm, x %.2f y %.2f)\n",
-                  c.max_overshoot_percent, w.revolution.peak_n, 0.5 * (w.revolution.s_start_mm + w.revolution.s_end_mm),
-                  w.position.x_mm, w.position.y_mm);
+    std::snprintf(line, sizeof line, "largest peak vs target over all in-cut revolutions: %+.2f %% (%s)\n",
+                  c.max_overshoot_percent, where_text(c.revolutions[static_cast<std::size_t>(c.worst_overshoot)]).c_str());
     text += line;
   }
   return text;

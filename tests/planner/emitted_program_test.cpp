@@ -92,7 +92,9 @@ TEST_P(EmittedProgram, LinuxCncRunsThePlannedPathAndFeeds) {
   }
   for (; j < oracle.size(); ++j) EXPECT_EQ(oracle[j].kind, geometry::MoveKind::kRapid) << "after the program: only the retract";
   EXPECT_GT(feeds_checked, 10);
-  if (spec.cycle != "corner") EXPECT_GT(arcs_checked, 0);
+  if (spec.cycle != "corner") {
+    EXPECT_GT(arcs_checked, 0);
+  }
 }
 
 std::string case_name(const ::testing::TestParamInfo<EmittedCase>& info) {

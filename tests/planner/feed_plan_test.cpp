@@ -182,7 +182,9 @@ TEST(FeedPlan, TargetBelowForceAtMinimumFeedIsReportedNotClamped) {
   EXPECT_THAT(result.messages.front(), ::testing::HasSubstr("target 40 N not met"));
   EXPECT_GT(result.summary.over_target_samples, 0);
   for (const PlannedBlock& block : result.blocks) {
-    if (block.feed_mm_per_min > 0.0) EXPECT_GE(block.feed_mm_per_min, spec.machine.min_feed_mm_per_min);
+    if (block.feed_mm_per_min > 0.0) {
+      EXPECT_GE(block.feed_mm_per_min, spec.machine.min_feed_mm_per_min);
+    }
   }
 }
 

@@ -74,7 +74,9 @@ struct PlanOptions {
   //! acceleration a_eff = a·Δv/(Δv + a²/J) that an S-curve reaches over a speed change Δv, taken for the
   //! largest speed change of the plan — conservative for that change, approximate for smaller ones.
   double jerk_limit_mm_per_s3 = 0.0;
-  double ds_mm = 0.05;                  //!< engagement sample spacing along the path, mm (used by analyse())
+  //! Engagement sample spacing the geometry was analysed at, mm: plan() works on the samples it is given;
+  //! the report records this so a re-plan (learning) analyses the path at the same spacing.
+  double ds_mm = 0.05;
 };
 
 //! Everything about the path that does not depend on the feed: computed once, planned many times.

@@ -1,0 +1,65 @@
+// compare_peaks on a hand-made plan: which revolutions count as in cut, held and steady, and the
+// error statistics computed by hand.
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "feedplan/planner/peak_comparison.hpp"
+
+namespace feedplan::planner {
+namespace {
+
+// Samples every 1 mm over 0..30 mm: air up to 10, then force-limited at 40° inside the model's range up
+// to 20, then limited by the machine's maximum feed at a rising engagement up to 30.
+PlanResult hand_made_plan() {
+  PlanResult result;
+  for (int i = 0; i <= 30; ++i) {
+    PlannedSample s;
+    s.s_mm = i;
+    s.engaged = i >= 10;
+    s.engagement_rad = i < 10 ? 0.0 : i <= 20 ? 0.7 : 0.7 + 0.05 * (i - 20);
+    s.limit_reason = i < 10 ? FeedLimitReason::kAirFeed : i <= 20 ? FeedLimitReason::kForce : FeedLimitReason::kMaxFeed;
+    s.within_model_range = s.engaged;
+    s.predicted_force_n = s.engaged ? 100.0 : 0.0;
+    result.samples.push_back(s);
+  }
+  return result;
+}
+
+TEST(PeakComparison, ClassifiesRevolutionsAndComputesErrors) {
+  const PlanResult plan = hand_made_plan();
+  const std::vector<MeasuredRevolution> revolutions = {
+      {1.0, 4.0, 0.0},     // air
+      {11.0, 14.0, 103.0}, // steady, +3 %
+      {15.0, 18.0, 96.0},  // steady, −4 %
+      {22.0, 26.0, 120.0}, // in cut, max feed binds: not held, +20 % overshoot
+  };
+  const PeakComparison c = compare_peaks(plan, 100.0, revolutions);
+  EXPECT_EQ(c.in_cut, 3);
+  EXPECT_EQ(c.held, 2);
+  EXPECT_EQ(c.steady, 2);
+  EXPECT_FALSE(c.revolutions[0].in_cut);
+  EXPECT_TRUE(c.revolutions[1].steady);
+  EXPECT_FALSE(c.revolutions[3].held);
+  EXPECT_NEAR(c.max_abs_error_percent, 4.0, 1e-12);
+  EXPECT_EQ(c.worst_held, 2);
+  EXPECT_NEAR(c.rms_error_percent, std::sqrt((9.0 + 16.0) / 2.0), 1e-12);
+  EXPECT_NEAR(c.max_overshoot_percent, 20.0, 1e-12);
+  EXPECT_EQ(c.worst_overshoot, 3);
+  EXPECT_NE(describe(c).find("+20.00 %"), std::string::npos);
+}
+
+TEST(PeakComparison, ARevolutionAcrossAChangingEngagementIsHeldButNotSteady) {
+  PlanResult plan = hand_made_plan();
+  for (auto& s : plan.samples) {
+    if (s.s_mm > 20) s.limit_reason = FeedLimitReason::kForce;
+  }
+  const PeakComparison c = compare_peaks(plan, 100.0, {{22.0, 26.0, 110.0}});
+  EXPECT_EQ(c.held, 1);
+  EXPECT_EQ(c.steady, 0);
+  EXPECT_EQ(c.worst_steady, -1);
+}
+
+}  // namespace
+}  // namespace feedplan::planner
