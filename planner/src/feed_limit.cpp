@@ -32,8 +32,19 @@ double predicted_force_n(const model_db::ResponseSurfaceModel& model, const geom
   return force_n * axial_depth_ratio(model, sample.axial_depth_mm);
 }
 
+double upper_force_n(const model_db::ResponseSurfaceModel& model, const geometry::EngagementSample& sample,
+                     double feed_mm_per_min, int flutes, double spindle_rpm, const ForceUncertainty* uncertainty) {
+  const double force_n = predicted_force_n(model, sample, feed_mm_per_min, flutes, spindle_rpm);
+  if (!uncertainty || !is_engaged(sample)) return force_n;
+  const double chip_mm = chip_thickness_mm(sample, feed_mm_per_min, flutes, spindle_rpm);
+  const double sigma_n = force_standard_deviation_n(model, uncertainty->covariance, chip_mm,
+                                                    model_contact_length_mm(model, sample.contact_length_mm));
+  return force_n + uncertainty->sigmas * sigma_n * axial_depth_ratio(model, sample.axial_depth_mm);
+}
+
 SampleFeedLimit sample_feed_limit(const model_db::ResponseSurfaceModel& model, const geometry::EngagementSample& sample,
-                                  double target_force_n, int flutes, double spindle_rpm, double air_feed_mm_per_min) {
+                                  double target_force_n, int flutes, double spindle_rpm, double air_feed_mm_per_min,
+                                  const ForceUncertainty* uncertainty) {
   SampleFeedLimit limit;
   limit.feed_mm_per_min = air_feed_mm_per_min;
   const double k = sample.chip_factor * sample.xy_speed_ratio;
@@ -73,6 +84,25 @@ SampleFeedLimit sample_feed_limit(const model_db::ResponseSurfaceModel& model, c
   if (solution.contact_length_outside) limit.extrapolated = true;
   if (ratio < kAxialDepthRatioMin || ratio > kAxialDepthRatioMax) limit.extrapolated = true;
   limit.feed_mm_per_min = feed_per_tooth_mm * flutes * spindle_rpm;
+  if (uncertainty && !limit.target_below_model) {
+    // The bound rises with the feed: bisect on [0, plain limit] for the largest feed it allows.
+    const auto bound = [&](double feed) { return upper_force_n(model, sample, feed, flutes, spindle_rpm, uncertainty); };
+    if (bound(limit.feed_mm_per_min) > target_force_n) {
+      double lo = 0.0;
+      double hi = limit.feed_mm_per_min;
+      if (bound(1e-9 * hi) > target_force_n) {
+        limit.target_below_model = true;
+        limit.feed_mm_per_min = 0.0;
+      } else {
+        for (int i = 0; i < 60 && hi - lo > 1e-9 * limit.feed_mm_per_min; ++i) {
+          const double mid = 0.5 * (lo + hi);
+          (bound(mid) > target_force_n ? hi : lo) = mid;
+        }
+        limit.feed_mm_per_min = lo;
+        limit.reason = FeedLimitReason::kForce;
+      }
+    }
+  }
   return limit;
 }
 

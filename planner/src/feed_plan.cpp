@@ -146,6 +146,18 @@ std::vector<InputProblem> validate(const PlanSettings& settings, const geometry:
   if (!(std::isfinite(m.block_time_min_s) && m.block_time_min_s >= 0.0 && m.block_time_min_s <= 1.0)) {
     problems.push_back({"machine.block_time_min_s", "= " + num(m.block_time_min_s) + ": must be in [0, 1] s"});
   }
+  if (settings.uncertainty) {
+    const ForceUncertainty& u = *settings.uncertainty;
+    if (!(std::isfinite(u.sigmas) && u.sigmas >= 0.0)) {
+      problems.push_back({"uncertainty.sigmas", "= " + num(u.sigmas) + ": must be a finite number ≥ 0"});
+    }
+    for (std::size_t k = 0; k < 36; ++k) {
+      if (!std::isfinite(u.covariance[k]) || (k % 7 == 0 && u.covariance[k] < 0.0)) {
+        problems.push_back({"uncertainty.covariance[" + std::to_string(k) + "]",
+                            "= " + num(u.covariance[k]) + ": must be finite (and ≥ 0 on the diagonal)"});
+      }
+    }
+  }
   const PlanOptions& o = settings.options;
   if (!(std::isfinite(o.air_feed_mm_per_min) && o.air_feed_mm_per_min >= 0.0)) {
     problems.push_back({"options.air_feed_mm_per_min", "= " + num(o.air_feed_mm_per_min) +
@@ -182,6 +194,7 @@ PlanResult plan(const PlanGeometry& geometry, const PlanSettings& settings) {
   const int flutes = geometry.tool.flutes;
   const double rpm = settings.spindle_rpm;
   const double air_feed = options.air_feed_mm_per_min > 0.0 ? options.air_feed_mm_per_min : machine.max_feed_mm_per_min;
+  const ForceUncertainty* uncertainty = settings.uncertainty ? &*settings.uncertainty : nullptr;
 
   PlanResult result;
   result.samples.resize(n);
@@ -215,7 +228,8 @@ PlanResult plan(const PlanGeometry& geometry, const PlanSettings& settings) {
       planned.feed_limit_mm_per_min = machine.rapid_feed_mm_per_min;
       continue;
     }
-    const SampleFeedLimit limit = sample_feed_limit(settings.model, sample, settings.target_force_n, flutes, rpm, air_feed);
+    const SampleFeedLimit limit = sample_feed_limit(settings.model, sample, settings.target_force_n, flutes, rpm, air_feed,
+                                                    uncertainty);
     double feed = limit.feed_mm_per_min;
     FeedLimitReason reason = limit.reason;
     if (feed > machine.max_feed_mm_per_min) {
@@ -322,6 +336,9 @@ PlanResult plan(const PlanGeometry& geometry, const PlanSettings& settings) {
     planned.time_s = run.time_s[i];
     planned.chip_thickness_mm = planned.engaged ? chip_thickness_mm(samples[i], planned.feed_mm_per_min, flutes, rpm) : 0.0;
     planned.predicted_force_n = predicted_force_n(settings.model, samples[i], planned.feed_mm_per_min, flutes, rpm);
+    planned.upper_force_n =
+        uncertainty ? upper_force_n(settings.model, samples[i], planned.feed_mm_per_min, flutes, rpm, uncertainty)
+                    : planned.predicted_force_n;
     planned.within_model_range = planned.engaged && !model_db::chip_outside(settings.model.range, planned.chip_thickness_mm) &&
                                  !model_db::contact_length_outside(settings.model.range, planned.contact_length_mm);
     summary.max_predicted_force_n = std::max(summary.max_predicted_force_n, planned.predicted_force_n);
@@ -331,7 +348,7 @@ PlanResult plan(const PlanGeometry& geometry, const PlanSettings& settings) {
       ++summary.extrapolated_samples;
       if (!first_extrapolated) first_extrapolated = &samples[i];
     }
-    if (planned.engaged && planned.predicted_force_n > settings.target_force_n * (1.0 + 1e-9)) {
+    if (planned.engaged && planned.upper_force_n > settings.target_force_n * (1.0 + 1e-9)) {
       ++summary.over_target_samples;
       if (!first_over) first_over = &samples[i];
     }

@@ -282,3 +282,52 @@ TEST(FeedPlan, JerkLimitOnlySlowsDown) {
 
 }  // namespace
 }  // namespace feedplan::planner
+
+namespace feedplan::planner {
+namespace {
+
+TEST(CautiousPlan, HoldsTheUpperBoundAtTheTargetAndTightensWithTheCovariance) {
+  const cycles::CycleSpec spec = testing::corner_spec();
+  const PlanGeometry geometry = geometry_for(spec);
+  PlanSettings settings = settings_for(spec, testing::s50c_like_model());
+  const PlanResult plain = plan(geometry, settings);
+  settings.uncertainty = ForceUncertainty{transferred_covariance(settings.model, {}, 0.2), 2.0};
+  const PlanResult cautious = plan(geometry, settings);
+  settings.uncertainty->covariance = transferred_covariance(settings.model, {}, 0.05);
+  const PlanResult tighter = plan(geometry, settings);
+  EXPECT_GT(cautious.summary.cycle_time_s, tighter.summary.cycle_time_s);
+  EXPECT_GT(tighter.summary.cycle_time_s, plain.summary.cycle_time_s);
+  // Independently of the planner: F̂ + 2σ, σ² = ψᵀCψ with C = diag((0.2 β)²), at every engaged sample at
+  // the feed the plan runs, never above the target, and close to it somewhere.
+  const auto& model = settings.model;
+  double worst = 0.0;
+  for (std::size_t i = 0; i < cautious.samples.size(); ++i) {
+    const PlannedSample& p = cautious.samples[i];
+    if (!p.engaged) continue;
+    const double length = std::max(p.contact_length_mm, model.range.contact_length_min_mm);
+    const auto psi = model_db::regressors(model, p.chip_thickness_mm, length);
+    double variance = 0.0;
+    for (int j = 0; j < 6; ++j) variance += std::pow(0.2 * model.beta[j] * psi[j], 2);
+    worst = std::max(worst, model_db::predict(model, p.chip_thickness_mm, length).force_n + 2.0 * std::sqrt(variance));
+  }
+  EXPECT_LE(worst, settings.target_force_n * (1.0 + 1e-6));
+  EXPECT_GE(worst, settings.target_force_n * 0.97);
+}
+
+TEST(CautiousPlan, BadUncertaintyIsAnInputError) {
+  const cycles::CycleSpec spec = testing::corner_spec();
+  PlanSettings settings = settings_for(spec, testing::s50c_like_model());
+  settings.uncertainty = ForceUncertainty{};
+  settings.uncertainty->sigmas = -1.0;
+  settings.uncertainty->covariance[7] = std::nan("");
+  try {
+    plan(geometry_for(spec, 0.2), settings);
+    ADD_FAILURE() << "no InputError";
+  } catch (const InputError& error) {
+    EXPECT_THAT(error.what(), ::testing::HasSubstr("uncertainty.sigmas"));
+    EXPECT_THAT(error.what(), ::testing::HasSubstr("uncertainty.covariance[7]"));
+  }
+}
+
+}  // namespace
+}  // namespace feedplan::planner

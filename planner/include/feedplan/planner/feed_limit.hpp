@@ -22,6 +22,7 @@
 #include "feedplan/model_db/feed_solve.hpp"
 #include "feedplan/model_db/response_surface_model.hpp"
 #include "feedplan/planner/feed_plan.hpp"
+#include "feedplan/planner/force_bound.hpp"
 
 namespace feedplan::planner {
 
@@ -50,8 +51,18 @@ double axial_depth_ratio(const model_db::ResponseSurfaceModel& model, double axi
 //! that is not engaged or makes no chip gets `air_feed_mm_per_min` with reason kAirFeed. A solution
 //! clamped at the top of the fitted t_m range gets reason kModelRange (the feed the model still covers);
 //! one below the range uses the rising root (F̂ = target, an extrapolation downwards, flagged).
+//! With `uncertainty`, the feed is the largest one at or below that limit at which the upper bound
+//! F̂ + z·σ (force_bound.hpp, same axial-depth scaling) meets the target, found by bisection (F̂ + z·σ
+//! rises with the feed on the rising branch); when even a vanishing feed exceeds the target,
+//! target_below_model is set.
 SampleFeedLimit sample_feed_limit(const model_db::ResponseSurfaceModel& model, const geometry::EngagementSample& sample,
-                                  double target_force_n, int flutes, double spindle_rpm, double air_feed_mm_per_min);
+                                  double target_force_n, int flutes, double spindle_rpm, double air_feed_mm_per_min,
+                                  const ForceUncertainty* uncertainty = nullptr);
+
+//! F̂ + z·σ at `sample` and path feed `feed_mm_per_min` (F̂ without `uncertainty`), with the axial-depth
+//! scaling; 0 when the sample is not engaged.
+double upper_force_n(const model_db::ResponseSurfaceModel& model, const geometry::EngagementSample& sample,
+                     double feed_mm_per_min, int flutes, double spindle_rpm, const ForceUncertainty* uncertainty);
 
 //! F̂ (N) the model predicts at `sample` when the tool runs at path feed `feed_mm_per_min`, with the
 //! axial-depth scaling; 0 when the sample is not engaged.

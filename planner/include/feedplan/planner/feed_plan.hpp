@@ -32,6 +32,7 @@
 //     every F change feasible within the faster block (it decelerates at the end of a fast block and
 //     accelerates at the start of the next fast one).
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -43,6 +44,7 @@
 #include "feedplan/geometry/tool.hpp"
 #include "feedplan/geometry/tool_path.hpp"
 #include "feedplan/model_db/response_surface_model.hpp"
+#include "feedplan/planner/force_bound.hpp"
 
 namespace feedplan::planner {
 
@@ -98,6 +100,8 @@ struct PlanSettings {
   double spindle_rpm = 0.0;              //!< spindle speed, rev/min (> 0)
   cycles::MachineLimits machine;         //!< feed range, acceleration, rapid rate, block time
   PlanOptions options;                   //!< mode, air feed, merging, resolution, jerk
+  //! When set, the cautious plan: the upper bound F̂ + z·σ is held at the target (force_bound.hpp).
+  std::optional<ForceUncertainty> uncertainty;
 };
 
 //! Every problem with the settings (model via model_db::validate as "model.…", "target_force_n",
@@ -148,6 +152,7 @@ struct PlannedSample {
   double feed_mm_per_min = 0.0;         //!< predicted path speed the machine runs here, mm/min
   double chip_thickness_mm = 0.0;       //!< t_m at that speed, mm
   double predicted_force_n = 0.0;       //!< F̂ at that speed, N (0 where not engaged)
+  double upper_force_n = 0.0;           //!< F̂ + z·σ at that speed with PlanSettings::uncertainty, else F̂, N
   //! t_m at that speed and L both inside the model's fitted range (false where not engaged): the
   //! prediction interpolates the cutting tests the model was fitted on.
   bool within_model_range = false;

@@ -1,0 +1,34 @@
+#pragma once
+// The cautious plan: an upper confidence bound on the predicted force from the model's parameter
+// covariance (issue 6, "cautious first cut"). With covariance C of β, the standard deviation of F̂ at
+// (t_m, L) is σ(t_m, L) = √(ψᵀ C ψ), ψ the regressors of seed 003 Eq. 4; the planner then holds
+// F̂ + z·σ at the target instead of F̂. As logs arrive the refit's covariance shrinks and the bound
+// tightens toward F̂.
+//
+// A model fitted on cutting tests of this very tool and material knows its own fit covariance; one
+// taken from another tool or material, or never checked on this machine, is wrong by more than its
+// fit says. transferred_covariance() adds that: a relative uncertainty r on every coefficient,
+// C = C_fit + diag((r·|β_j|)²) — so σ is about r·|F̂| where one term dominates.
+
+#include <array>
+
+#include "feedplan/model_db/response_surface_model.hpp"
+
+namespace feedplan::planner {
+
+//! Covariance of β and how many standard deviations to plan on.
+struct ForceUncertainty {
+  std::array<double, 36> covariance{};  //!< 6×6 covariance of β (row-major, BetaIndex order), N²
+  double sigmas = 2.0;                  //!< z: the bound is F̂ + z·σ (≥ 0)
+};
+
+//! σ(F̂) = √(ψᵀ C ψ) at t_m = chip_mm and L = contact_length_mm, N (0 for a zero covariance).
+double force_standard_deviation_n(const model_db::ResponseSurfaceModel& model, const std::array<double, 36>& covariance,
+                                  double chip_mm, double contact_length_mm);
+
+//! C_fit + diag((relative_uncertainty · |β_j|)²): the covariance of a model used away from the tests it
+//! was fitted on. relative_uncertainty ≥ 0 (asserted).
+std::array<double, 36> transferred_covariance(const model_db::ResponseSurfaceModel& model,
+                                              const std::array<double, 36>& fit_covariance, double relative_uncertainty);
+
+}  // namespace feedplan::planner
