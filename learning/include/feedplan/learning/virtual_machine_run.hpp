@@ -1,0 +1,41 @@
+#pragma once
+// Running a planned program on the virtual machine (first-principles forces, not the response-surface
+// model) and comparing its true per-revolution peaks with the plan's target — what `feedplan plan
+// --simulate` reports and what `feedplan loop` learns from.
+
+#include "feedplan/cycles/spec.hpp"
+#include "feedplan/geometry/program.hpp"
+#include "feedplan/geometry/stock.hpp"
+#include "feedplan/geometry/tool.hpp"
+#include "feedplan/planner/feed_plan.hpp"
+#include "feedplan/planner/peak_comparison.hpp"
+#include "feedplan/sim/cutting_coefficients.hpp"
+#include "feedplan/sim/milling_simulation.hpp"
+
+namespace feedplan::learning {
+
+//! What the virtual machine needs besides the program.
+struct VirtualMachine {
+  geometry::Tool tool;                    //!< the end mill
+  sim::CuttingCoefficients coefficients;  //!< the true physics of the tool–material pair
+  geometry::Stock stock;                  //!< the material before the program
+  cycles::MachineLimits machine;          //!< feed, acceleration and rapid limits
+  double spindle_rpm = 0.0;               //!< for blocks without S, rev/min
+  sim::SensorOptions sensors;             //!< what is logged (dynamometer by default)
+};
+
+//! One run.
+struct VirtualMachineRun {
+  sim::SimulationResult simulation;       //!< log, true per-revolution peaks, summary
+  planner::PeakComparison comparison;     //!< true peaks against the target along the plan
+};
+
+//! Simulates `program` on `machine` and places every simulated revolution on the plan's path: the
+//! machine's motion gives the path length at each revolution's start and end; a program that begins
+//! with a move the plan does not have (a G-code text read back starts from the machine's position) is
+//! aligned by the difference of the total lengths, as both end at the same point. Throws InputError on
+//! an invalid request (sim::validate).
+VirtualMachineRun run_on_virtual_machine(const geometry::Program& program, const VirtualMachine& machine,
+                                         const planner::PlanResult& plan, double target_force_n);
+
+}  // namespace feedplan::learning

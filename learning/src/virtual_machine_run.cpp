@@ -1,0 +1,34 @@
+#include "feedplan/learning/virtual_machine_run.hpp"
+
+#include "feedplan/sim/motion_profile.hpp"
+
+namespace feedplan::learning {
+
+VirtualMachineRun run_on_virtual_machine(const geometry::Program& program, const VirtualMachine& machine,
+                                         const planner::PlanResult& plan, double target_force_n) {
+  sim::SimulationRequest request;
+  request.program = program;
+  request.tool = machine.tool;
+  request.coefficients = machine.coefficients;
+  request.stock = machine.stock;
+  request.machine.max_accel_mm_per_s2 = machine.machine.max_accel_mm_per_s2;
+  request.machine.rapid_feed_mm_per_min = machine.machine.rapid_feed_mm_per_min;
+  request.machine.max_feed_mm_per_min = machine.machine.max_feed_mm_per_min;
+  request.options.default_spindle_rpm = machine.spindle_rpm;
+  request.sensors = machine.sensors;
+  VirtualMachineRun run;
+  run.simulation = sim::simulate(request);
+
+  const sim::MotionProfile motion = sim::plan_motion(request.program, request.machine);
+  const double offset_mm = plan.samples.empty() ? 0.0 : motion.length_mm() - plan.samples.back().s_mm;
+  std::vector<planner::MeasuredRevolution> revolutions;
+  revolutions.reserve(run.simulation.revolutions.size());
+  for (const sim::RevolutionPeak& peak : run.simulation.revolutions) {
+    revolutions.push_back({motion.state_at_time(peak.t_start_s).s_mm - offset_mm,
+                           motion.state_at_time(peak.t_end_s).s_mm - offset_mm, peak.peak_xy_n});
+  }
+  run.comparison = planner::compare_peaks(plan, target_force_n, revolutions);
+  return run;
+}
+
+}  // namespace feedplan::learning
