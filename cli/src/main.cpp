@@ -8,6 +8,8 @@
 
 #include "cycle_command.hpp"
 #include "db_command.hpp"
+#include "learn_command.hpp"
+#include "loop_command.hpp"
 #include "plan_command.hpp"
 #include "simulate_command.hpp"
 #include "feedplan/core/input_error.hpp"
@@ -33,6 +35,10 @@ int main(int argc, char** argv) {
   feedplan::cli::add_simulate_command(app, simulate_options);
   feedplan::cli::PlanCommandOptions plan_options;
   feedplan::cli::add_plan_command(app, plan_options);
+  feedplan::cli::LearnOptions learn_options;
+  feedplan::cli::add_learn_command(app, learn_options);
+  feedplan::cli::LoopOptions loop_options;
+  feedplan::cli::add_loop_command(app, loop_options);
   feedplan::cli::DbOptions db_options;
   feedplan::cli::add_db_command(app, db_options);
 
@@ -53,6 +59,8 @@ int main(int argc, char** argv) {
     if (app.got_subcommand("cycle")) return feedplan::cli::run_cycle_command(cycle_options);
     if (app.got_subcommand("simulate")) return feedplan::cli::run_simulate_command(simulate_options);
     if (app.got_subcommand("plan")) return feedplan::cli::run_plan_command(plan_options);
+    if (app.got_subcommand("learn")) return feedplan::cli::run_learn_command(learn_options);
+    if (app.got_subcommand("loop")) return feedplan::cli::run_loop_command(loop_options);
     if (app.got_subcommand("db")) return feedplan::cli::run_db_command(app, db_options);
   } catch (const feedplan::InputError& e) {
     std::cerr << "feedplan: bad input:\n";

@@ -1,5 +1,7 @@
 #include "feedplan/model_db/store.hpp"
 
+#include <functional>
+
 #include <sqlite3.h>
 
 #include <algorithm>
@@ -113,9 +115,10 @@ std::vector<MaterialRecord> Store::materials() const { return detail::select_mat
 
 // ---- models ----
 
-ModelRecord Store::add_model(const ModelRecord& model) {
-  auto& db = impl_->db;
-  WriteTransaction transaction(db);
+namespace {
+
+// The steps of add_model inside a transaction the caller holds.
+RowId insert_and_activate_model(detail::Connection& db, const ModelRecord& model, const std::function<void(const char*)>& after_step) {
   std::vector<InputProblem> problems;
   const auto ids = detail::pair_ids(db, model.tool_name, model.material_name, "models.", problems);
   append(problems, validate(model));
@@ -127,11 +130,51 @@ ModelRecord Store::add_model(const ModelRecord& model) {
   stored.parent_id = previous ? std::optional<RowId>(previous->id) : std::nullopt;
   stored.created_at = detail::utc_now_iso8601();
   const RowId id = detail::insert_model_row(db, ids.tool_id, ids.material_id, stored);
-  impl_->after_step("models.insert");
+  after_step("models.insert");
   detail::activate_model(db, ids.tool_id, ids.material_id, id, ActivationReason::kAdded, stored.created_at);
-  impl_->after_step("models.activate");
+  after_step("models.activate");
+  return id;
+}
+
+// The checks and insert of add_learning_entry inside a transaction the caller holds.
+LearningEntry insert_learning(detail::Connection& db, const LearningEntry& entry, const std::function<void(const char*)>& after_step) {
+  auto problems = validate(entry);
+  if (entry.model_id_before > 0 && !detail::select_model_by_id(db, entry.model_id_before)) {
+    problems.push_back({"learning_history.model_id_before",
+                        "= " + std::to_string(entry.model_id_before) + ": no such model version"});
+  }
+  if (entry.model_id_after > 0 && !detail::select_model_by_id(db, entry.model_id_after)) {
+    problems.push_back({"learning_history.model_id_after",
+                        "= " + std::to_string(entry.model_id_after) + ": no such model version"});
+  }
+  throw_if_any(std::move(problems));
+  LearningEntry stored = entry;
+  stored.created_at = detail::utc_now_iso8601();
+  stored.id = detail::insert_learning_entry(db, entry, stored.created_at);
+  after_step("learning_history.insert");
+  return stored;
+}
+
+}  // namespace
+
+ModelRecord Store::add_model(const ModelRecord& model) {
+  auto& db = impl_->db;
+  WriteTransaction transaction(db);
+  const RowId id = insert_and_activate_model(db, model, [this](const char* step) { impl_->after_step(step); });
   transaction.commit();
   return *detail::select_model_by_id(db, id);
+}
+
+std::pair<ModelRecord, LearningEntry> Store::add_learned_model(const ModelRecord& model, const LearningEntry& entry) {
+  auto& db = impl_->db;
+  WriteTransaction transaction(db);
+  const auto after_step = [this](const char* step) { impl_->after_step(step); };
+  const RowId id = insert_and_activate_model(db, model, after_step);
+  LearningEntry linked = entry;
+  linked.model_id_after = id;
+  LearningEntry stored = insert_learning(db, linked, after_step);
+  transaction.commit();
+  return {*detail::select_model_by_id(db, id), stored};
 }
 
 std::vector<ModelRecord> Store::models_for(std::string_view tool_name, std::string_view material_name) const {
@@ -208,20 +251,7 @@ std::vector<StoredCuttingTest> Store::all_cutting_tests() const { return detail:
 LearningEntry Store::add_learning_entry(const LearningEntry& entry) {
   auto& db = impl_->db;
   WriteTransaction transaction(db);
-  auto problems = validate(entry);
-  if (entry.model_id_before > 0 && !detail::select_model_by_id(db, entry.model_id_before)) {
-    problems.push_back({"learning_history.model_id_before",
-                        "= " + std::to_string(entry.model_id_before) + ": no such model version"});
-  }
-  if (entry.model_id_after > 0 && !detail::select_model_by_id(db, entry.model_id_after)) {
-    problems.push_back({"learning_history.model_id_after",
-                        "= " + std::to_string(entry.model_id_after) + ": no such model version"});
-  }
-  throw_if_any(std::move(problems));
-  LearningEntry stored = entry;
-  stored.created_at = detail::utc_now_iso8601();
-  stored.id = detail::insert_learning_entry(db, entry, stored.created_at);
-  impl_->after_step("learning_history.insert");
+  LearningEntry stored = insert_learning(db, entry, [this](const char* step) { impl_->after_step(step); });
   transaction.commit();
   return stored;
 }

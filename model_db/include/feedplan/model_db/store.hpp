@@ -26,6 +26,7 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 #include "feedplan/model_db/cutting_test.hpp"
@@ -114,6 +115,11 @@ class Store {
   //! the store". Throws InputError for unknown tool or material names ("models.tool_name = 'X':
   //! unknown tool; known: …") and every validate() problem. Returns the stored version.
   ModelRecord add_model(const ModelRecord& model);
+
+  //! A learned version and the learning entry that explains it, in one transaction: add_model(model), then
+  //! add_learning_entry(entry) with model_id_after = the new version's id. Either both are stored or
+  //! neither (the database is unchanged on any error). Throws as those two do.
+  std::pair<ModelRecord, LearningEntry> add_learned_model(const ModelRecord& model, const LearningEntry& entry);
 
   //! Every version of the model of `tool_name` in `material_name`, oldest first (empty if none).
   //! Throws InputError for an unknown tool or material.

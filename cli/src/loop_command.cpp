@@ -1,0 +1,142 @@
+#include "loop_command.hpp"
+
+#include <nlohmann/json.hpp>
+
+#include <cmath>
+#include <cstdio>
+#include <iostream>
+#include <unistd.h>
+
+#include "data_path.hpp"
+#include "database_path.hpp"
+#include "model_choice.hpp"
+#include "feedplan/core/input_error.hpp"
+#include "feedplan/core/number_text.hpp"
+#include "feedplan/cycles/cycle.hpp"
+#include "feedplan/cycles/spec_reader.hpp"
+#include "feedplan/learning/learning_loop.hpp"
+#include "feedplan/sim/material.hpp"
+
+namespace feedplan::cli {
+
+void add_loop_command(CLI::App& app, LoopOptions& options) {
+  auto* cmd = app.add_subcommand(
+      "loop",
+      "Plan → cut on the virtual machine → learn from its force log → re-plan, N times, from a model that is\n"
+      "deliberately wrong for the machine; prints the per-revolution force error and cycle time per cycle");
+  cmd->add_option("spec", options.spec_path, "Cycle spec (YAML)")->required();
+  cmd->add_option("--cycles", options.cycles, "Repetitions (default 3)");
+  cmd->add_option("--db", options.db_path, "Model database (default: $FEEDPLAN_DB, else the bundled sample database)");
+  cmd->add_option("--machine-scale", options.machine_scale,
+                  "The virtual machine's cutting coefficients × this: its forces ≈ this × the model's (default 1.4)");
+  cmd->add_option("--target-force", options.target_force_n, "Per-revolution peak force to hold, N (default: the spec's)");
+  cmd->add_option("--cautious", options.cautious,
+                  "Cautious first cut: plan on F̂ + z·σ with this relative uncertainty of the starting model (e.g. 0.25)");
+  cmd->add_option("--sigmas", options.sigmas, "z of the cautious bound (default 2)");
+  cmd->add_option("--model-id", options.model_id, "Start from this model instead of the closest");
+  cmd->add_option("--materials", options.materials_path, "Materials file of the virtual machine (default: the bundled one)");
+  cmd->add_flag("--json", options.json, "Print the table as JSON");
+}
+
+int run_loop_command(const LoopOptions& o) {
+  const cycles::CycleSpec spec = cycles::load_cycle_spec(o.spec_path);
+  std::vector<InputProblem> problems;
+  if (!(o.cycles >= 1 && o.cycles <= 100)) problems.push_back({"--cycles", "= " + std::to_string(o.cycles) + ": must be in [1, 100]"});
+  if (!(std::isfinite(o.machine_scale) && o.machine_scale > 0.1 && o.machine_scale < 10.0)) {
+    problems.push_back({"--machine-scale", "= " + shortest_number_text(o.machine_scale) + ": must be in (0.1, 10)"});
+  }
+  if (!(std::isfinite(o.cautious) && o.cautious >= 0.0 && o.cautious <= 2.0)) {
+    problems.push_back({"--cautious", "= " + shortest_number_text(o.cautious) + ": must be in [0, 2] (a relative uncertainty)"});
+  }
+  if (!(std::isfinite(o.sigmas) && o.sigmas >= 0.0 && o.sigmas <= 10.0)) {
+    problems.push_back({"--sigmas", "= " + shortest_number_text(o.sigmas) + ": must be in [0, 10]"});
+  }
+  const double target_force_n = o.target_force_n != 0.0 ? o.target_force_n : spec.target_force_n;
+  if (!(std::isfinite(target_force_n) && target_force_n > 0.0)) {
+    problems.push_back({o.target_force_n != 0.0 ? "--target-force" : "target_force_n",
+                        "= " + shortest_number_text(target_force_n) + ": a target force > 0 N is required"});
+  }
+  if (!(spec.spindle_rpm > 0.0)) problems.push_back({"spindle_rpm", "is required (rev/min > 0)"});
+  if (!problems.empty()) throw InputError(std::move(problems));
+
+  const model_db::Store store = model_db::Store::open(database_path(o.db_path), model_db::OpenMode::kReadOnly);
+  const std::optional<ChosenModel> chosen = choose_model(store, spec, o.model_id);
+  if (!chosen) return 1;
+  const sim::MaterialLibrary materials =
+      sim::load_materials(o.materials_path.empty() ? bundled_materials_path() : o.materials_path);
+
+  const cycles::Cycle cycle = cycles::generate(spec);
+  learning::LoopRequest request;
+  request.geometry = planner::analyse(cycle.path, cycle.stock, spec.tool);
+  request.settings.model = chosen->record.model;
+  request.settings.target_force_n = target_force_n;
+  request.settings.spindle_rpm = spec.spindle_rpm;
+  request.settings.machine = spec.machine;
+  request.machine.tool = spec.tool;
+  request.machine.coefficients = materials.get(spec.material, "material").coefficients;
+  for (double* k : {&request.machine.coefficients.ktc_n_per_mm2, &request.machine.coefficients.krc_n_per_mm2,
+                    &request.machine.coefficients.kac_n_per_mm2, &request.machine.coefficients.kte_n_per_mm,
+                    &request.machine.coefficients.kre_n_per_mm, &request.machine.coefficients.kae_n_per_mm}) {
+    *k *= o.machine_scale;
+  }
+  request.machine.stock = cycle.stock;
+  request.machine.machine = spec.machine;
+  request.machine.spindle_rpm = spec.spindle_rpm;
+  request.cycles = o.cycles;
+  request.first_cut_uncertainty = o.cautious;
+  request.sigmas = o.sigmas;
+  request.start_fit_covariance = chosen->record.fit.covariance;
+  const bool terminal = ::isatty(STDERR_FILENO) != 0;
+  request.on_cycle_done = [&](int done) {
+    if (terminal) std::fprintf(stderr, "\rcycle %d/%d done", done, o.cycles);
+  };
+  const learning::LoopResult result = learning::run_learning_loop(request);
+  if (terminal) std::fprintf(stderr, "\n");
+
+  if (o.json) {
+    nlohmann::json out;
+    out["spec"] = o.spec_path;
+    out["target_force_n"] = target_force_n;
+    out["machine_scale"] = o.machine_scale;
+    out["cautious"] = o.cautious;
+    out["start_model"] = {{"id", chosen->record.id}, {"version", chosen->record.version}};
+    out["cycles"] = nlohmann::json::array();
+    for (const auto& c : result.cycles) {
+      out["cycles"].push_back({{"cycle", c.cycle},
+                               {"plan_status", planner::to_string(c.plan_status)},
+                               {"planned_cycle_time_s", c.planned_cycle_time_s},
+                               {"simulated_cycle_time_s", c.simulated_cycle_time_s},
+                               {"steady", c.comparison.steady},
+                               {"steady_max_abs_error_percent", c.comparison.steady_max_abs_error_percent},
+                               {"steady_rms_error_percent", c.comparison.steady_rms_error_percent},
+                               {"held", c.comparison.held},
+                               {"held_max_abs_error_percent", c.comparison.max_abs_error_percent},
+                               {"held_rms_error_percent", c.comparison.rms_error_percent},
+                               {"max_overshoot_percent", c.comparison.max_overshoot_percent},
+                               {"model_rms_error_before_percent", c.model_errors_before.rms_percent},
+                               {"model_rms_error_after_percent", c.model_errors_after.rms_percent},
+                               {"learned", learning::to_string(c.update_status)},
+                               {"messages", c.messages}});
+    }
+    std::cout << out.dump(2) << "\n";
+    return 0;
+  }
+  std::printf("%s: %s, target %s N, virtual machine forces × %s of the material's, start model id %lld v%d%s\n",
+              o.spec_path.c_str(), spec.cycle.c_str(), shortest_number_text(target_force_n).c_str(),
+              shortest_number_text(o.machine_scale).c_str(), static_cast<long long>(chosen->record.id),
+              chosen->record.version, o.cautious > 0 ? (", cautious first cut (r " + shortest_number_text(o.cautious) +
+                                                        ", z " + shortest_number_text(o.sigmas) + ")").c_str()
+                                                     : "");
+  std::printf("%5s %9s %9s | %8s %7s %7s | %8s %7s %7s | %9s | %15s\n", "cycle", "plan_s", "vm_s", "steady", "max%",
+              "rms%", "held", "max%", "rms%", "overshoot", "model p95% b→a");
+  for (const auto& c : result.cycles) {
+    std::printf("%5d %9.2f %9.2f | %8d %7.2f %7.2f | %8d %7.2f %7.2f | %+8.2f%% | %6.1f → %6.1f\n", c.cycle,
+                c.planned_cycle_time_s, c.simulated_cycle_time_s, c.comparison.steady,
+                c.comparison.steady_max_abs_error_percent, c.comparison.steady_rms_error_percent, c.comparison.held,
+                c.comparison.max_abs_error_percent, c.comparison.rms_error_percent, c.comparison.max_overshoot_percent,
+                c.model_errors_before.p95_abs_percent, c.model_errors_after.p95_abs_percent);
+  }
+  return 0;
+}
+
+}  // namespace feedplan::cli

@@ -1,0 +1,33 @@
+#pragma once
+// `feedplan loop SPEC.yaml --cycles N …`: plan → cut on the virtual machine → learn → re-plan, N times,
+// from a model that is deliberately wrong for the virtual machine (its cutting coefficients scaled by
+// --machine-scale), printing per cycle the per-revolution force error and the cycle time. Nothing is
+// written to the database.
+
+#include <CLI/CLI.hpp>
+
+#include <cstdint>
+#include <string>
+
+namespace feedplan::cli {
+
+struct LoopOptions {
+  std::string spec_path;            //!< the cycle spec
+  std::string db_path;              //!< --db
+  int cycles = 3;                   //!< --cycles
+  double machine_scale = 1.4;       //!< --machine-scale: the virtual machine's true forces ≈ this × the model's
+  double target_force_n = 0.0;      //!< --target-force; 0: the spec's
+  double cautious = 0.0;            //!< --cautious R: first cut on F̂ + z·σ with relative uncertainty R; 0: off
+  double sigmas = 2.0;              //!< --sigmas z
+  std::int64_t model_id = 0;        //!< --model-id
+  std::string materials_path;       //!< --materials
+  bool json = false;                //!< --json
+};
+
+//! Registers the subcommand.
+void add_loop_command(CLI::App& app, LoopOptions& options);
+
+//! Runs it. Returns 0 (done) or 1 (no model); throws InputError on bad input.
+int run_loop_command(const LoopOptions& options);
+
+}  // namespace feedplan::cli

@@ -1,0 +1,57 @@
+#pragma once
+// The demo a user runs before trusting feedplan on a machine (`feedplan loop`): plan → cut on the
+// virtual machine → learn from its force log → re-plan, N times, from a model that is deliberately
+// wrong for the machine's true physics. Per cycle: the per-revolution force error against the target
+// and the cycle time.
+
+#include <functional>
+#include <optional>
+#include <vector>
+
+#include "feedplan/learning/model_update.hpp"
+#include "feedplan/learning/virtual_machine_run.hpp"
+#include "feedplan/planner/feed_plan.hpp"
+
+namespace feedplan::learning {
+
+//! What to loop.
+struct LoopRequest {
+  planner::PlanGeometry geometry;     //!< path, tool and engagement (analysed once)
+  planner::PlanSettings settings;     //!< the starting model, target, spindle, machine limits, options
+  VirtualMachine machine;             //!< the true physics the cycles are cut with
+  int cycles = 3;                     //!< repetitions (≥ 1)
+  //! Cautious first cut: plan on F̂ + z·σ with the starting model's covariance widened by this relative
+  //! uncertainty (planner::transferred_covariance); later cycles use the refit's covariance. 0: off.
+  double first_cut_uncertainty = 0.0;
+  double sigmas = 2.0;                //!< z of the cautious bound
+  std::array<double, 36> start_fit_covariance{};  //!< the starting model's own fit covariance, N²
+  ModelUpdateOptions update;          //!< how to learn
+  //! Called after each cycle with its number (1-based); may be empty.
+  std::function<void(int)> on_cycle_done;
+};
+
+//! One cycle.
+struct LoopCycle {
+  int cycle = 0;                          //!< 1-based
+  planner::PlanStatus plan_status = planner::PlanStatus::kOk;  //!< the plan's status
+  double planned_cycle_time_s = 0.0;      //!< the plan's prediction, s
+  double simulated_cycle_time_s = 0.0;    //!< on the virtual machine, s
+  planner::PeakComparison comparison;     //!< true per-revolution peaks against the target
+  PredictionErrors model_errors_before;   //!< the model it was planned with, on this cycle's samples
+  PredictionErrors model_errors_after;    //!< the learned model, on the same samples
+  ModelUpdateStatus update_status = ModelUpdateStatus::kNoEvidence;  //!< whether learning gave a model
+  std::vector<std::string> messages;      //!< plan and learning messages
+  model_db::ResponseSurfaceModel model_used;  //!< the model the cycle was planned with
+};
+
+//! The whole loop.
+struct LoopResult {
+  std::vector<LoopCycle> cycles;             //!< in order
+  model_db::ResponseSurfaceModel final_model; //!< after the last cycle's learning
+  std::array<double, 36> final_covariance{};  //!< its covariance, N²
+};
+
+//! Runs the loop. Throws InputError on invalid settings (planner::validate) or cycles < 1.
+LoopResult run_learning_loop(const LoopRequest& request);
+
+}  // namespace feedplan::learning

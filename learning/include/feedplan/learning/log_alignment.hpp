@@ -1,0 +1,93 @@
+#pragma once
+// Where on the planned path each row of a force log was measured (DESIGN.md §2 learning, §4 force log):
+// the arc length s of the plan for every log row, so measured forces can be paired with the model's
+// inputs there (measured_revolutions.hpp).
+//
+// Two methods:
+//   1. Positions (our CSV format, the virtual machine's logs): each row's logged tool position is matched
+//      to the planned path (the polyline through PlannedSample::position, projected onto the segment
+//      between neighbouring samples for a sub-sample s). Progress is monotonic: a row is matched to the
+//      first stretch of the path, at or after the previous match (less a small tolerance for position
+//      noise), that comes within AlignmentOptions::max_distance_mm, and there to the nearest point. So a
+//      path that crosses itself (trochoid loops, a return over the cut at another height) is followed in
+//      order. XY and Z are compared when the row has z_mm, XY only otherwise. Rows before the first match
+//      are the machine before the program (not aligned, NaN, not off the path) when that match is at the
+//      path's start — the machine arrives there; otherwise the log started after the path start and such
+//      rows left the path. The same for rows after the last match and the path's end. Every other row
+//      farther than max_distance_mm from the path is off the path; too many → kNotThisProgram.
+//   2. Time profile (Kistler DynoWare exports: no positions): the log's |F_xy| is cross-correlated with the
+//      plan's predicted force over the plan's predicted time (PlannedSample::time_s) to find when the
+//      program started on the log's clock; then s(t) is the plan's time → s. Only as good as the plan's
+//      timing prediction (the controller model against the real machine): typically a few mm.
+//
+// Force delay (positions only): the force signal may lag the positions (filters, a separate acquisition).
+// The measured |F_xy| is cross-correlated with the plan's predicted force mapped to the rows through the
+// alignment, over lags in [−max_delay_s, max_delay_s]; both are smoothed over one spindle revolution
+// first (a centred moving average: no shift) so tooth ripple does not dominate. delay_s is the estimate;
+// the alignment itself is not shifted: the force of row i belongs to the place of time t_i − delay_s
+// (measured_revolutions applies this).
+
+#include <string>
+#include <vector>
+
+#include "feedplan/planner/feed_plan.hpp"
+#include "feedplan/sim/force_log.hpp"
+
+namespace feedplan::learning {
+
+//! How a log is aligned with a plan.
+struct AlignmentOptions {
+  double max_distance_mm = 0.5;         //!< a logged position farther than this from the path is off the path, mm (> 0)
+  double max_off_path_fraction = 0.02;  //!< larger share of rows off the path (of those that should follow it) → not this program, in [0, 1]
+  bool estimate_delay = true;           //!< estimate the force signal's lag behind the positions
+  double max_delay_s = 0.5;             //!< largest |delay| searched, s (≥ 0)
+};
+
+//! How the rows were placed on the path.
+enum class AlignmentMethod {
+  kPositions,    //!< logged positions matched to the planned path
+  kTimeProfile,  //!< no positions: the plan's predicted time profile, offset by cross-correlating forces
+};
+
+//! "positions", "time profile".
+std::string to_string(AlignmentMethod method);
+
+//! Outcome of an alignment.
+enum class AlignmentStatus {
+  kOk,               //!< the log covers the whole in-cut part of the path
+  kNotThisProgram,   //!< the positions do not follow the path (s_mm all NaN)
+  kNoCut,            //!< no aligned row lies in the in-cut part of the path (or the plan has none)
+  kTruncated,        //!< the log covers only part of the in-cut path: usable for that part (covered_fraction)
+  kUnitsLookWrong,   //!< the positions fit the path after ×25.4 (inches) or ÷25.4: convert the log (s_mm all NaN)
+};
+
+//! "ok", "not this program", "no cut", "truncated", "units look wrong".
+std::string to_string(AlignmentStatus status);
+
+//! True when `status` leaves aligned rows to learn from (kOk or kTruncated).
+bool usable(AlignmentStatus status);
+
+//! Each log row's place on the planned path.
+struct Alignment {
+  AlignmentStatus status = AlignmentStatus::kOk;  //!< outcome
+  std::string message;                   //!< what was done and found, for people (method, coverage, delay, problems)
+  AlignmentMethod method = AlignmentMethod::kPositions;  //!< how
+  std::vector<double> s_mm;              //!< per log row: arc length on the plan's path, mm; NaN where not aligned
+  double delay_s = 0.0;                  //!< estimated lag of the force signal behind the positions, s (0 when not estimated)
+  double delay_correlation = 0.0;        //!< correlation coefficient at delay_s (0 when not estimated), in [−1, 1]
+  int rows = 0;                          //!< rows in the log
+  int rows_aligned = 0;                  //!< rows with a finite s_mm
+  int rows_with_nan = 0;                 //!< rows with a NaN position (when the log has positions) or force (when it has forces): skipped
+  int rows_off_path = 0;                 //!< rows off the path (not counting those before or after the program)
+  int gaps = 0;                          //!< time steps longer than 3 × the median step
+  double covered_fraction = 0.0;         //!< share of the in-cut path length the aligned rows cover, in [0, 1]
+};
+
+//! Aligns `log` with `plan` (the method at the top of this file; positions when log.has_positions, else
+//! the time profile). Needs a plan with samples and a log with rows in strictly increasing time (what
+//! sim::read_force_log guarantees; asserted). Throws InputError when the options are out of range, or the
+//! log has neither positions nor forces (nothing to align by). Every other outcome — another program,
+//! inches, no cut, a truncated log — is a status with a message naming rows, times and distances.
+Alignment align_log(const sim::ForceLog& log, const planner::PlanResult& plan, const AlignmentOptions& options = {});
+
+}  // namespace feedplan::learning

@@ -1,0 +1,66 @@
+#pragma once
+// Per-revolution peak forces of an aligned log paired with the force model's inputs where and at the feed
+// they were measured (DESIGN.md §5.3–5.4): the samples the RLS and the batch refit learn from, and the
+// revolutions compare_peaks judges a plan by.
+//
+// Step by step:
+//   1. Revolution windows by time at the given spindle speed, counted from the first row: revolution k
+//      covers [t0 + k T, t0 + (k + 1) T), T = 60 / rpm — the rule of sim::revolution_peaks (used as it is
+//      when no force is NaN). Only complete windows; a window with a NaN force or with fewer than half
+//      the rows it should hold (a gap) is skipped (skipped_nan).
+//   2. Place: the force of a row at time t was measured where the tool was at t − delay_s (the
+//      alignment's estimated force lag). The window's span s_start..s_end and the place of its peak are
+//      the alignment's s at those shifted times, interpolated between rows. A window with any row
+//      unaligned over its shifted span is skipped (skipped_not_aligned) — so is one shifted past the log.
+//   3. Model inputs at the peak's place (the planned sample nearest to it): chip factor, XY speed ratio
+//      (from the planned positions around it), contact length and axial depth. The feed is the one
+//      actually run: the log's feed_mm_per_min at the shifted peak time when present and finite, else
+//      ds/dt over the window. t_m = planner::chip_thickness_mm, L = planner::model_contact_length_mm
+//      (evaluated as the planner evaluates the model), force = peak / planner::axial_depth_ratio (on the
+//      model's axial depth) unless disabled.
+//   4. A revolution becomes a LearningSample when the plan has it engaged at the peak's place with at
+//      least min_engagement_rad and a chip (chip factor × XY ratio ≥ planner::kMinChipFactor) and a
+//      positive feed; otherwise skipped_not_engaged. Every aligned revolution (engaged or not) is in
+//      `revolutions` with its raw peak, for planner::compare_peaks.
+
+#include <string>
+#include <vector>
+
+#include "feedplan/learning/learning_sample.hpp"
+#include "feedplan/learning/log_alignment.hpp"
+#include "feedplan/model_db/response_surface_model.hpp"
+#include "feedplan/planner/feed_plan.hpp"
+#include "feedplan/planner/peak_comparison.hpp"
+#include "feedplan/sim/force_log.hpp"
+
+namespace feedplan::learning {
+
+//! Which revolutions count and how forces are scaled.
+struct MeasuredRevolutionOptions {
+  double min_engagement_rad = 0.05;       //!< smaller planned engagement at the peak's place: not engaged, rad (≥ 0)
+  bool scale_to_model_axial_depth = true; //!< divide forces by a_p / a_p,model (planner::axial_depth_ratio)
+};
+
+//! The revolutions of one log.
+struct MeasuredRevolutions {
+  std::vector<LearningSample> samples;                    //!< engaged, fully aligned revolutions, in time order
+  std::vector<planner::MeasuredRevolution> revolutions;   //!< every aligned revolution: s span and raw peak, N
+  //! For each entry of `samples`, the time its revolution starts on the log's clock, s.
+  std::vector<double> sample_t_start_s;
+  int skipped_not_engaged = 0;   //!< aligned revolutions the plan has out of the material (or without a chip or feed)
+  int skipped_nan = 0;           //!< revolutions with a NaN force or a gap in the rows
+  int skipped_not_aligned = 0;   //!< revolutions with a row off the path, before or after it (after the delay shift)
+  std::string message;           //!< counts and reasons, for people
+};
+
+//! Extracts the per-revolution samples of `log` (aligned by `alignment`, which must come from align_log
+//! on the same log and `plan`, asserted by size) with the rule at the top of this file. `model` gives the
+//! contact-length floor and the axial depth scale; `flutes` and `spindle_rpm` the tool and the speed the
+//! log was cut at. Throws InputError when flutes < 1, the spindle speed is not finite and > 0, the log
+//! has no forces, or the options are out of range. An alignment that is not usable (usable(status)
+//! false) gives no samples and says so in the message.
+MeasuredRevolutions measured_revolutions(const sim::ForceLog& log, const Alignment& alignment,
+                                         const planner::PlanResult& plan, const model_db::ResponseSurfaceModel& model,
+                                         int flutes, double spindle_rpm, const MeasuredRevolutionOptions& options = {});
+
+}  // namespace feedplan::learning

@@ -1,0 +1,53 @@
+#include "feedplan/learning/learning_loop.hpp"
+
+#include "feedplan/planner/force_bound.hpp"
+
+namespace feedplan::learning {
+
+LoopResult run_learning_loop(const LoopRequest& request) {
+  if (request.cycles < 1) throw InputError("cycles", "= " + std::to_string(request.cycles) + ": must be ≥ 1");
+  LoopResult result;
+  planner::PlanSettings settings = request.settings;
+  std::optional<std::array<double, 36>> covariance;
+  if (request.first_cut_uncertainty > 0.0) {
+    covariance = planner::transferred_covariance(settings.model, request.start_fit_covariance, request.first_cut_uncertainty);
+  }
+  std::vector<LearningSample> earlier;
+  for (int cycle = 1; cycle <= request.cycles; ++cycle) {
+    settings.uncertainty.reset();
+    if (covariance && request.first_cut_uncertainty > 0.0) {
+      settings.uncertainty = planner::ForceUncertainty{*covariance, request.sigmas};
+    }
+    const planner::PlanResult plan = planner::plan(request.geometry, settings);
+    const VirtualMachineRun run = run_on_virtual_machine(plan.program, request.machine, plan, settings.target_force_n);
+
+    LoopCycle out;
+    out.cycle = cycle;
+    out.plan_status = plan.status;
+    out.planned_cycle_time_s = plan.summary.cycle_time_s;
+    out.simulated_cycle_time_s = run.simulation.summary.cycle_time_s;
+    out.comparison = run.comparison;
+    out.model_used = settings.model;
+    out.messages = plan.messages;
+
+    const ModelUpdate update = update_model(plan, settings, request.geometry.tool.flutes,
+                                            {NamedLog{"cycle " + std::to_string(cycle), run.simulation.log}}, earlier,
+                                            covariance, request.update);
+    out.update_status = update.status;
+    out.model_errors_before = update.before;
+    out.model_errors_after = update.after_batch;
+    out.messages.insert(out.messages.end(), update.messages.begin(), update.messages.end());
+    if (update.status == ModelUpdateStatus::kOk) {
+      earlier.insert(earlier.end(), update.samples.begin(), update.samples.end());
+      settings.model = update.model;
+      covariance = update.covariance;
+    }
+    result.cycles.push_back(std::move(out));
+    if (request.on_cycle_done) request.on_cycle_done(cycle);
+  }
+  result.final_model = settings.model;
+  if (covariance) result.final_covariance = *covariance;
+  return result;
+}
+
+}  // namespace feedplan::learning

@@ -1,0 +1,200 @@
+#include "feedplan/learning/measured_revolutions.hpp"
+
+#include <algorithm>
+#include <cassert>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+
+#include "feedplan/core/input_error.hpp"
+#include "feedplan/core/number_text.hpp"
+#include "feedplan/geometry/engagement.hpp"
+#include "feedplan/planner/feed_limit.hpp"
+#include "feedplan/sim/revolution_peaks.hpp"
+
+namespace feedplan::learning {
+
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+// A window holding fewer than this share of the rows one revolution should hold has a gap.
+constexpr double kMinRowShare = 0.5;
+
+// Row times with a per-row quantity, read at any time inside the log by linear interpolation between the
+// two rows around it; NaN when either is NaN or the time is outside the rows.
+class RowSeries {
+ public:
+  explicit RowSeries(const std::vector<double>& t_s) : t_s_(t_s) {}
+
+  // First row at or after t.
+  std::size_t first_at_or_after(double t) const {
+    return static_cast<std::size_t>(std::lower_bound(t_s_.begin(), t_s_.end(), t) - t_s_.begin());
+  }
+
+  double at(const std::vector<double>& value, double t) const {
+    if (t_s_.empty() || !(t >= t_s_.front()) || !(t <= t_s_.back())) return kNaN;
+    const std::size_t j = first_at_or_after(t);
+    if (t_s_[j] == t) return value[j];
+    const double w = (t - t_s_[j - 1]) / (t_s_[j] - t_s_[j - 1]);
+    return value[j - 1] + w * (value[j] - value[j - 1]);  // NaN when either is NaN
+  }
+
+  // True when every row in [t0, t1] and the rows just around the ends have a finite value.
+  bool all_finite(const std::vector<double>& value, double t0, double t1) const {
+    if (t_s_.empty() || !(t0 >= t_s_.front()) || !(t1 <= t_s_.back())) return false;
+    std::size_t j = first_at_or_after(t0);
+    if (j > 0 && t_s_[j] > t0) --j;
+    for (; j < t_s_.size(); ++j) {
+      if (!std::isfinite(value[j])) return false;
+      if (t_s_[j] >= t1) break;
+    }
+    return true;
+  }
+
+ private:
+  const std::vector<double>& t_s_;
+};
+
+std::string fixed(double value, int decimals) {
+  char text[64];
+  std::snprintf(text, sizeof text, "%.*f", decimals, value);
+  return text;
+}
+
+}  // namespace
+
+MeasuredRevolutions measured_revolutions(const sim::ForceLog& log, const Alignment& alignment,
+                                         const planner::PlanResult& plan, const model_db::ResponseSurfaceModel& model,
+                                         int flutes, double spindle_rpm, const MeasuredRevolutionOptions& options) {
+  std::vector<InputProblem> problems;
+  if (flutes < 1) problems.push_back({"flutes", "= " + std::to_string(flutes) + ": must be >= 1"});
+  if (!(std::isfinite(spindle_rpm) && spindle_rpm > 0.0)) {
+    problems.push_back({"spindle_rpm", "= " + shortest_number_text(spindle_rpm) + ": must be > 0"});
+  }
+  if (!(options.min_engagement_rad >= 0.0 && std::isfinite(options.min_engagement_rad))) {
+    problems.push_back({"min_engagement_rad", "= " + shortest_number_text(options.min_engagement_rad) + ": must be >= 0"});
+  }
+  if (!log.has_forces) {
+    problems.push_back({"log", "has no forces (only servo currents?): turn them into forces first (forces_from_currents)"});
+  }
+  if (!problems.empty()) throw InputError(std::move(problems));
+  assert(alignment.s_mm.size() == log.rows.size());
+
+  MeasuredRevolutions out;
+  if (!usable(alignment.status)) {
+    out.message = "no revolutions: the alignment is not usable (" + to_string(alignment.status) + ": " +
+                  alignment.message + ")";
+    return out;
+  }
+  const std::size_t n = log.rows.size();
+  if (n < 2 || plan.samples.empty()) {
+    out.message = "no revolutions: too few rows or an empty plan";
+    return out;
+  }
+
+  // 1. Windows. NaN forces read as 0 for sim::revolution_peaks; windows holding one are skipped below.
+  std::vector<double> t(n), fx(n), fy(n), feed(n), nan_rows(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const auto& row = log.rows[i];
+    t[i] = row.t_s;
+    const bool finite = std::isfinite(row.fx_n) && std::isfinite(row.fy_n);
+    fx[i] = finite ? row.fx_n : 0.0;
+    fy[i] = finite ? row.fy_n : 0.0;
+    nan_rows[i] = finite ? 0.0 : kNaN;
+    feed[i] = row.feed_mm_per_min;
+  }
+  const std::vector<sim::RevolutionPeak> peaks = sim::revolution_peaks(t, fx, fy, spindle_rpm);
+  const double period_s = 60.0 / spindle_rpm;
+  const double mean_step_s = (t.back() - t.front()) / static_cast<double>(n - 1);
+  const double rows_per_revolution = period_s / mean_step_s;
+  const RowSeries rows(t);
+
+  const auto& samples = plan.samples;
+  auto nearest_sample = [&](double s_mm) {
+    const auto it = std::lower_bound(samples.begin(), samples.end(), s_mm,
+                                     [](const planner::PlannedSample& p, double s) { return p.s_mm < s; });
+    std::size_t j = static_cast<std::size_t>(it - samples.begin());
+    if (j == samples.size()) return samples.size() - 1;
+    if (j > 0 && s_mm - samples[j - 1].s_mm < samples[j].s_mm - s_mm) --j;
+    return j;
+  };
+  // XY speed / path speed around s (the plan's samples carry the chip factor without it).
+  auto xy_speed_ratio = [&](double s_mm) {
+    if (samples.size() < 2) return 1.0;
+    const auto it = std::upper_bound(samples.begin(), samples.end(), s_mm,
+                                     [](double s, const planner::PlannedSample& p) { return s < p.s_mm; });
+    std::size_t k = static_cast<std::size_t>(std::max<long>(0, (it - samples.begin()) - 1));
+    k = std::min(k, samples.size() - 2);
+    const auto& a = samples[k];
+    const auto& b = samples[k + 1];
+    const double ds = b.s_mm - a.s_mm;
+    if (ds <= 1e-12) return 1.0;
+    return std::min(1.0, std::hypot(b.position.x_mm - a.position.x_mm, b.position.y_mm - a.position.y_mm) / ds);
+  };
+
+  const double delay_s = alignment.delay_s;
+  for (const sim::RevolutionPeak& peak : peaks) {
+    const std::size_t first = rows.first_at_or_after(peak.t_start_s);
+    const std::size_t end = rows.first_at_or_after(peak.t_end_s);
+    bool has_nan = static_cast<double>(end - first) < kMinRowShare * rows_per_revolution;
+    for (std::size_t i = first; i < end && !has_nan; ++i) has_nan = std::isnan(nan_rows[i]);
+    if (has_nan) {
+      ++out.skipped_nan;
+      continue;
+    }
+    // 2. Place, with the force's lag behind the positions.
+    const double t0 = peak.t_start_s - delay_s, t1 = peak.t_end_s - delay_s, tp = peak.t_peak_s - delay_s;
+    if (!rows.all_finite(alignment.s_mm, t0, std::min(t1, t.back()))) {
+      ++out.skipped_not_aligned;
+      continue;
+    }
+    const double s0 = rows.at(alignment.s_mm, t0);
+    // The last window may end a fraction of a row past the last row (sim::revolution_peaks' rule).
+    const double s1 = rows.at(alignment.s_mm, std::min(t1, t.back()));
+    const double s_peak = rows.at(alignment.s_mm, tp);
+    if (!std::isfinite(s0) || !std::isfinite(s1) || !std::isfinite(s_peak)) {
+      ++out.skipped_not_aligned;
+      continue;
+    }
+    out.revolutions.push_back({std::min(s0, s1), std::max(s0, s1), peak.peak_xy_n});
+
+    // 3. Model inputs at the peak's place, at the feed run there.
+    const planner::PlannedSample& planned = samples[nearest_sample(s_peak)];
+    geometry::EngagementSample place;
+    place.s_mm = s_peak;
+    place.position = planned.position;
+    place.cutting = planned.engaged;
+    place.engagement_rad = planned.engagement_rad;
+    place.chip_factor = planned.chip_factor;
+    place.xy_speed_ratio = xy_speed_ratio(s_peak);
+    place.contact_length_mm = planned.contact_length_mm;
+    place.axial_depth_mm = planned.axial_depth_mm;
+    double feed_mm_per_min = rows.at(feed, tp);
+    if (!std::isfinite(feed_mm_per_min)) feed_mm_per_min = std::abs(s1 - s0) / (t1 - t0) * 60.0;
+
+    // 4. Engaged revolutions only.
+    if (!planned.engaged || planned.engagement_rad < options.min_engagement_rad ||
+        place.chip_factor * place.xy_speed_ratio < planner::kMinChipFactor || !(feed_mm_per_min > 0.0)) {
+      ++out.skipped_not_engaged;
+      continue;
+    }
+    LearningSample sample;
+    sample.chip_mm = planner::chip_thickness_mm(place, feed_mm_per_min, flutes, spindle_rpm);
+    sample.contact_length_mm = planner::model_contact_length_mm(model, planned.contact_length_mm);
+    sample.force_n = peak.peak_xy_n;
+    if (options.scale_to_model_axial_depth) sample.force_n /= planner::axial_depth_ratio(model, planned.axial_depth_mm);
+    sample.weight = 1.0;
+    sample.s_mm = 0.5 * (s0 + s1);
+    out.samples.push_back(sample);
+    out.sample_t_start_s.push_back(peak.t_start_s);
+  }
+
+  out.message = std::to_string(peaks.size()) + " complete revolutions at " + fixed(spindle_rpm, 0) + " rpm: " +
+                std::to_string(out.samples.size()) + " engaged samples; skipped " +
+                std::to_string(out.skipped_not_engaged) + " out of the material, " + std::to_string(out.skipped_nan) +
+                " with NaN forces or gaps, " + std::to_string(out.skipped_not_aligned) + " not aligned";
+  if (delay_s != 0.0) out.message += "; places shifted by the force delay " + fixed(1e3 * delay_s, 1) + " ms";
+  return out;
+}
+
+}  // namespace feedplan::learning
