@@ -1,6 +1,5 @@
 #include "feedplan/learning/learning_loop.hpp"
 
-#include "feedplan/planner/force_bound.hpp"
 
 namespace feedplan::learning {
 
@@ -8,15 +7,16 @@ LoopResult run_learning_loop(const LoopRequest& request) {
   if (request.cycles < 1) throw InputError("cycles", "= " + std::to_string(request.cycles) + ": must be ≥ 1");
   LoopResult result;
   planner::PlanSettings settings = request.settings;
+  // The first cycle: the starting model's fit covariance and the relative uncertainty of a model not yet
+  // checked on this machine; later cycles: the refit's covariance alone.
   std::optional<std::array<double, 36>> covariance;
-  if (request.first_cut_uncertainty > 0.0) {
-    covariance = planner::transferred_covariance(settings.model, request.start_fit_covariance, request.first_cut_uncertainty);
-  }
+  double relative = request.first_cut_uncertainty;
+  if (request.first_cut_uncertainty > 0.0) covariance = request.start_fit_covariance;
   std::vector<LearningSample> earlier;
   for (int cycle = 1; cycle <= request.cycles; ++cycle) {
     settings.uncertainty.reset();
     if (covariance && request.first_cut_uncertainty > 0.0) {
-      settings.uncertainty = planner::ForceUncertainty{*covariance, request.sigmas};
+      settings.uncertainty = planner::ForceUncertainty{*covariance, request.sigmas, relative};
     }
     const planner::PlanResult plan = planner::plan(request.geometry, settings);
     const VirtualMachineRun run = run_on_virtual_machine(plan.program, request.machine, plan, settings.target_force_n);
@@ -41,6 +41,7 @@ LoopResult run_learning_loop(const LoopRequest& request) {
       earlier.insert(earlier.end(), update.samples.begin(), update.samples.end());
       settings.model = update.model;
       covariance = update.covariance;
+      relative = 0.0;
     }
     result.cycles.push_back(std::move(out));
     if (request.on_cycle_done) request.on_cycle_done(cycle);

@@ -4,7 +4,6 @@
 #include <cassert>
 #include <cmath>
 #include <cstdio>
-#include <cstdlib>
 #include <limits>
 #include <optional>
 #include <utility>
@@ -30,6 +29,8 @@ constexpr double kMinDelayBinS = 0.5e-3;
 // Time-profile search: at most this many bins over log + plan (keeps the full search quadratic but small).
 constexpr double kMaxTimeProfileBins = 8000.0;
 constexpr double kMinTimeProfileBinS = 2e-3;
+// Correlations this close to the maximum belong to its flat top (rounding in the sums).
+constexpr double kFlatTop = 1e-9;
 // The tool is in contact where the measured peak envelope exceeds this share of its (robust) maximum.
 constexpr double kContactFraction = 0.1;
 
@@ -125,7 +126,8 @@ class PathIndex {
     return std::max(0, static_cast<int>(it - s_.begin()) - 1);
   }
 
-  // Segments within reach of q could be anywhere in this list (sorted by index); empty outside the grid.
+  // Every segment within reach of q is in this list (sorted by index), with others near it; empty
+  // outside the grid.
   const std::vector<int>& candidates(double x, double y) const {
     static const std::vector<int> none;
     const double fx = (x - x0_) / cell_mm_, fy = (y - y0_) / cell_mm_;
@@ -309,11 +311,10 @@ CorrelationPeak correlate(const std::vector<double>& x, const std::vector<double
   if (best == r.size()) return peak;
   peak.found = true;
   peak.correlation = r[best];
-  if (std::getenv("ALIGN_DEBUG")) for (std::size_t k = best >= 40 ? best - 40 : 0; k < std::min(r.size(), best + 40); ++k) std::fprintf(stderr, "lag %ld r %.5f\n", lag_min + (long)k, r[k]);
   // A flat top (contact signals of different length): its middle.
   std::size_t lo = best, hi = best;
-  while (lo > 0 && r[lo - 1] >= r[best] - 1e-12) --lo;
-  while (hi + 1 < r.size() && r[hi + 1] >= r[best] - 1e-12) ++hi;
+  while (lo > 0 && r[lo - 1] >= r[best] - kFlatTop) --lo;
+  while (hi + 1 < r.size() && r[hi + 1] >= r[best] - kFlatTop) ++hi;
   peak.lag_bins = static_cast<double>(lag_min) + 0.5 * static_cast<double>(lo + hi);
   peak.at_edge = lo == 0 || hi + 1 == r.size();
   if (lo == hi && !peak.at_edge && std::isfinite(r[best - 1]) && std::isfinite(r[best + 1])) {
@@ -399,6 +400,15 @@ double covered_fraction(const InCut& cut, std::vector<std::pair<double, double>>
   return std::clamp(covered / cut.length_mm, 0.0, 1.0);
 }
 
+// Median time step of the rows, s.
+double median_step_s(const sim::ForceLog& log) {
+  std::vector<double> dt;
+  for (std::size_t i = 1; i < log.rows.size(); ++i) dt.push_back(log.rows[i].t_s - log.rows[i - 1].t_s);
+  if (dt.empty()) return 1e-3;
+  std::nth_element(dt.begin(), dt.begin() + static_cast<long>(dt.size() / 2), dt.end());
+  return dt[dt.size() / 2];
+}
+
 // Rows, NaN rows and gaps (shared by both methods).
 void count_rows(const sim::ForceLog& log, Alignment& out) {
   out.rows = static_cast<int>(log.rows.size());
@@ -410,20 +420,10 @@ void count_rows(const sim::ForceLog& log, Alignment& out) {
     if (i > 0) dt.push_back(row.t_s - log.rows[i - 1].t_s);
   }
   if (dt.empty()) return;
-  std::vector<double> sorted = dt;
-  std::nth_element(sorted.begin(), sorted.begin() + static_cast<long>(sorted.size() / 2), sorted.end());
-  const double median = sorted[sorted.size() / 2];
+  const double median = median_step_s(log);
   for (double step : dt) {
     if (step > kGapFactor * median) ++out.gaps;
   }
-}
-
-double median_step_s(const sim::ForceLog& log) {
-  std::vector<double> dt;
-  for (std::size_t i = 1; i < log.rows.size(); ++i) dt.push_back(log.rows[i].t_s - log.rows[i - 1].t_s);
-  if (dt.empty()) return 1e-3;
-  std::nth_element(dt.begin(), dt.begin() + static_cast<long>(dt.size() / 2), dt.end());
-  return dt[dt.size() / 2];
 }
 
 std::string row_text(const sim::ForceLog& log, std::size_t i) {
@@ -596,7 +596,7 @@ void estimate_delay(const sim::ForceLog& log, const planner::PlanResult& plan, c
   const std::vector<double> measured = in_contact(bin_means(t, measured_rows, t.front(), bin_s, bins), width);
   const std::vector<double> expected = moving_max(bin_means(t, predicted, t.front(), bin_s, bins), width);
   const long max_lag = static_cast<long>(std::ceil(options.max_delay_s / bin_s));
-  const CorrelationPeak peak = correlate(measured, expected, -max_lag, max_lag, kNaN);
+  const CorrelationPeak peak = correlate(measured, expected, -max_lag, max_lag, 0.0);
   if (!peak.found) {
     text += "; force delay not estimated (no contact, or contact throughout, in the measured or planned force)";
     return;

@@ -37,7 +37,7 @@ double upper_force_n(const model_db::ResponseSurfaceModel& model, const geometry
   const double force_n = predicted_force_n(model, sample, feed_mm_per_min, flutes, spindle_rpm);
   if (!uncertainty || !is_engaged(sample)) return force_n;
   const double chip_mm = chip_thickness_mm(sample, feed_mm_per_min, flutes, spindle_rpm);
-  const double sigma_n = force_standard_deviation_n(model, uncertainty->covariance, chip_mm,
+  const double sigma_n = force_standard_deviation_n(model, *uncertainty, chip_mm,
                                                     model_contact_length_mm(model, sample.contact_length_mm));
   return force_n + uncertainty->sigmas * sigma_n * axial_depth_ratio(model, sample.axial_depth_mm);
 }

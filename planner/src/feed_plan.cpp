@@ -151,6 +151,9 @@ std::vector<InputProblem> validate(const PlanSettings& settings, const geometry:
     if (!(std::isfinite(u.sigmas) && u.sigmas >= 0.0)) {
       problems.push_back({"uncertainty.sigmas", "= " + num(u.sigmas) + ": must be a finite number ≥ 0"});
     }
+    if (!(std::isfinite(u.relative) && u.relative >= 0.0)) {
+      problems.push_back({"uncertainty.relative", "= " + num(u.relative) + ": must be a finite number ≥ 0"});
+    }
     for (std::size_t k = 0; k < 36; ++k) {
       if (!std::isfinite(u.covariance[k]) || (k % 7 == 0 && u.covariance[k] < 0.0)) {
         problems.push_back({"uncertainty.covariance[" + std::to_string(k) + "]",

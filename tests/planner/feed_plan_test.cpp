@@ -291,14 +291,18 @@ TEST(CautiousPlan, HoldsTheUpperBoundAtTheTargetAndTightensWithTheCovariance) {
   const PlanGeometry geometry = geometry_for(spec);
   PlanSettings settings = settings_for(spec, testing::s50c_like_model());
   const PlanResult plain = plan(geometry, settings);
-  settings.uncertainty = ForceUncertainty{transferred_covariance(settings.model, {}, 0.2), 2.0};
+  ForceUncertainty uncertainty;
+  for (std::size_t j = 0; j < 6; ++j) uncertainty.covariance[7 * j] = std::pow(0.1 * settings.model.beta[j], 2);
+  uncertainty.relative = 0.1;
+  settings.uncertainty = uncertainty;
   const PlanResult cautious = plan(geometry, settings);
-  settings.uncertainty->covariance = transferred_covariance(settings.model, {}, 0.05);
+  for (double& c : settings.uncertainty->covariance) c *= 0.25;
+  settings.uncertainty->relative = 0.05;
   const PlanResult tighter = plan(geometry, settings);
   EXPECT_GT(cautious.summary.cycle_time_s, tighter.summary.cycle_time_s);
   EXPECT_GT(tighter.summary.cycle_time_s, plain.summary.cycle_time_s);
-  // Independently of the planner: F̂ + 2σ, σ² = ψᵀCψ with C = diag((0.2 β)²), at every engaged sample at
-  // the feed the plan runs, never above the target, and close to it somewhere.
+  // Independently of the planner: F̂ + 2σ, σ² = ψᵀCψ + (0.1 F̂)² with C = diag((0.1 β)²), at every engaged
+  // sample at the feed the plan runs, never above the target, and close to it somewhere.
   const auto& model = settings.model;
   double worst = 0.0;
   for (std::size_t i = 0; i < cautious.samples.size(); ++i) {
@@ -307,8 +311,10 @@ TEST(CautiousPlan, HoldsTheUpperBoundAtTheTargetAndTightensWithTheCovariance) {
     const double length = std::max(p.contact_length_mm, model.range.contact_length_min_mm);
     const auto psi = model_db::regressors(model, p.chip_thickness_mm, length);
     double variance = 0.0;
-    for (int j = 0; j < 6; ++j) variance += std::pow(0.2 * model.beta[j] * psi[j], 2);
-    worst = std::max(worst, model_db::predict(model, p.chip_thickness_mm, length).force_n + 2.0 * std::sqrt(variance));
+    for (int j = 0; j < 6; ++j) variance += std::pow(0.1 * model.beta[j] * psi[j], 2);
+    const double force = model_db::predict(model, p.chip_thickness_mm, length).force_n;
+    variance += std::pow(0.1 * force, 2);
+    worst = std::max(worst, force + 2.0 * std::sqrt(variance));
   }
   EXPECT_LE(worst, settings.target_force_n * (1.0 + 1e-6));
   EXPECT_GE(worst, settings.target_force_n * 0.97);

@@ -20,8 +20,8 @@ struct LoopRequest {
   planner::PlanSettings settings;     //!< the starting model, target, spindle, machine limits, options
   VirtualMachine machine;             //!< the true physics the cycles are cut with
   int cycles = 3;                     //!< repetitions (≥ 1)
-  //! Cautious first cut: plan on F̂ + z·σ with the starting model's covariance widened by this relative
-  //! uncertainty (planner::transferred_covariance); later cycles use the refit's covariance. 0: off.
+  //! Cautious first cut: plan on F̂ + z·σ with the starting model's fit covariance and this relative
+  //! uncertainty r (planner::ForceUncertainty); later cycles use the refit's covariance alone. 0: off.
   double first_cut_uncertainty = 0.0;
   double sigmas = 2.0;                //!< z of the cautious bound
   std::array<double, 36> start_fit_covariance{};  //!< the starting model's own fit covariance, N²

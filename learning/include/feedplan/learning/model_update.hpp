@@ -26,7 +26,14 @@ struct ModelUpdateOptions {
   AlignmentOptions alignment;              //!< log → path
   MeasuredRevolutionOptions revolutions;   //!< path → per-revolution samples
   RlsOptions rls;                          //!< recursive least squares
-  BatchRefitOptions batch;                 //!< robust refit with a prior
+  //! Robust refit with a prior; Cauchy by default: revolutions the quadratic cannot represent (entries
+  //! into the material, where t_m and L pair unlike any straight cut) are outliers to it, and a Huber
+  //! loss still lets their many large residuals bend the shape where the plan runs next.
+  BatchRefitOptions batch = [] {
+    BatchRefitOptions options;
+    options.loss = model_db::FitOptions::kCauchy;
+    return options;
+  }();
 };
 
 //! A log with its name (for messages).

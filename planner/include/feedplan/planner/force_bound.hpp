@@ -7,8 +7,9 @@
 //
 // A model fitted on cutting tests of this very tool and material knows its own fit covariance; one
 // taken from another tool or material, or never checked on this machine, is wrong by more than its
-// fit says. transferred_covariance() adds that: a relative uncertainty r on every coefficient,
-// C = C_fit + diag((r·|β_j|)²) — so σ is about r·|F̂| where one term dominates.
+// fit says — mostly by a factor (a harder lot, another machine's stiffness). That part is a relative
+// standard deviation r of F̂ added in quadrature: σ² = ψᵀCψ + (r·F̂)². After learning, r is 0 and C is the
+// refit's covariance, which shrinks as logs arrive.
 
 #include <array>
 
@@ -20,15 +21,11 @@ namespace feedplan::planner {
 struct ForceUncertainty {
   std::array<double, 36> covariance{};  //!< 6×6 covariance of β (row-major, BetaIndex order), N²
   double sigmas = 2.0;                  //!< z: the bound is F̂ + z·σ (≥ 0)
+  double relative = 0.0;                //!< r: relative standard deviation of F̂ not in the covariance (≥ 0)
 };
 
-//! σ(F̂) = √(ψᵀ C ψ) at t_m = chip_mm and L = contact_length_mm, N (0 for a zero covariance).
-double force_standard_deviation_n(const model_db::ResponseSurfaceModel& model, const std::array<double, 36>& covariance,
+//! σ(F̂) = √(ψᵀ C ψ + (r·F̂)²) at t_m = chip_mm and L = contact_length_mm, N.
+double force_standard_deviation_n(const model_db::ResponseSurfaceModel& model, const ForceUncertainty& uncertainty,
                                   double chip_mm, double contact_length_mm);
-
-//! C_fit + diag((relative_uncertainty · |β_j|)²): the covariance of a model used away from the tests it
-//! was fitted on. relative_uncertainty ≥ 0 (asserted).
-std::array<double, 36> transferred_covariance(const model_db::ResponseSurfaceModel& model,
-                                              const std::array<double, 36>& fit_covariance, double relative_uncertainty);
 
 }  // namespace feedplan::planner
