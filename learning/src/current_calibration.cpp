@@ -96,8 +96,8 @@ AxisCalibration fit_axis(const sim::ForceLog& log, const AxisData& axis, double 
   const auto [f_min, f_max] = std::minmax_element(f.begin(), f.end());
   if (*f_max - *f_min < kMinForceSpreadN) {
     if (required) {
-      problems.push_back({field, "force varies by " + six_digit_number_text(*f_max - *f_min) + " N over the log: need at least " +
-                                     six_digit_number_text(kMinForceSpreadN) +
+      problems.push_back({field, "force varies by " + six_digit_number_text(*f_max - *f_min) +
+                                     " N over the log: need at least " + six_digit_number_text(kMinForceSpreadN) +
                                      " N (cutting and not cutting) to fit a slope"});
     }
     return calibration;
@@ -127,7 +127,8 @@ AxisCalibration fit_axis(const sim::ForceLog& log, const AxisData& axis, double 
   calibration.r_squared = sii > 0.0 ? std::clamp(1.0 - residual / sii, 0.0, 1.0) : 0.0;
   if (!(calibration.b_a_per_n > 0.0)) {
     if (required) {
-      problems.push_back({field, "current falls as the force rises (slope " + six_digit_number_text(calibration.b_a_per_n) +
+      problems.push_back({field, "current falls as the force rises (slope " +
+                                     six_digit_number_text(calibration.b_a_per_n) +
                                      " A/N): not a current of this axis?"});
     }
     return AxisCalibration{};
@@ -139,8 +140,12 @@ AxisCalibration fit_axis(const sim::ForceLog& log, const AxisData& axis, double 
 
 CurrentCalibration fit_current_calibration(const sim::ForceLog& log) {
   std::vector<InputProblem> problems;
-  if (!log.has_forces) problems.push_back({"log", "has no forces (fx_n, fy_n): a calibration needs forces and currents"});
-  if (!log.has_currents) problems.push_back({"log", "has no servo currents (ix_a, iy_a): a calibration needs forces and currents"});
+  if (!log.has_forces) {
+    problems.push_back({"log", "has no forces (fx_n, fy_n): a calibration needs forces and currents"});
+  }
+  if (!log.has_currents) {
+    problems.push_back({"log", "has no servo currents (ix_a, iy_a): a calibration needs forces and currents"});
+  }
   if (!problems.empty()) throw InputError(std::move(problems));
   const double rpm = log_spindle_rpm(log);
   double window_s = kCalibrationWindowS;
@@ -151,7 +156,8 @@ CurrentCalibration fit_current_calibration(const sim::ForceLog& log) {
   CurrentCalibration calibration;
   calibration.x = fit_axis(log, {&sim::ForceLogRow::fx_n, &sim::ForceLogRow::ix_a, "x axis"}, window_s, true, problems);
   calibration.y = fit_axis(log, {&sim::ForceLogRow::fy_n, &sim::ForceLogRow::iy_a, "y axis"}, window_s, true, problems);
-  calibration.z = fit_axis(log, {&sim::ForceLogRow::fz_n, &sim::ForceLogRow::iz_a, "z axis"}, window_s, false, problems);
+  calibration.z =
+      fit_axis(log, {&sim::ForceLogRow::fz_n, &sim::ForceLogRow::iz_a, "z axis"}, window_s, false, problems);
   if (!problems.empty()) throw InputError(std::move(problems));
   return calibration;
 }
@@ -160,10 +166,12 @@ sim::ForceLog forces_from_currents(const sim::ForceLog& current_log, const Curre
   std::vector<InputProblem> problems;
   if (!current_log.has_currents) problems.push_back({"log", "has no servo currents (ix_a, iy_a)"});
   if (!(calibration.x.b_a_per_n > 0.0)) {
-    problems.push_back({"calibration.x.b_a_per_n", "= " + shortest_number_text(calibration.x.b_a_per_n) + ": must be > 0"});
+    problems.push_back(
+        {"calibration.x.b_a_per_n", "= " + shortest_number_text(calibration.x.b_a_per_n) + ": must be > 0"});
   }
   if (!(calibration.y.b_a_per_n > 0.0)) {
-    problems.push_back({"calibration.y.b_a_per_n", "= " + shortest_number_text(calibration.y.b_a_per_n) + ": must be > 0"});
+    problems.push_back(
+        {"calibration.y.b_a_per_n", "= " + shortest_number_text(calibration.y.b_a_per_n) + ": must be > 0"});
   }
   if (!problems.empty()) throw InputError(std::move(problems));
   sim::ForceLog log = current_log;

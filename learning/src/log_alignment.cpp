@@ -40,7 +40,9 @@ std::string fixed(double value, int decimals) {
   return text;
 }
 
-std::string percent(double fraction) { return fixed(100.0 * fraction, fraction > 0.995 && fraction < 1.0 ? 1 : 0) + " %"; }
+std::string percent(double fraction) {
+  return fixed(100.0 * fraction, fraction > 0.995 && fraction < 1.0 ? 1 : 0) + " %";
+}
 
 bool finite_xy(const sim::ForceLogRow& row) { return std::isfinite(row.x_mm) && std::isfinite(row.y_mm); }
 bool finite_force(const sim::ForceLogRow& row) { return std::isfinite(row.fx_n) && std::isfinite(row.fy_n); }
@@ -138,7 +140,9 @@ class PathIndex {
  private:
   int cell_x(double x) const { return std::clamp(static_cast<int>((x - x0_) / cell_mm_), 0, nx_ - 1); }
   int cell_y(double y) const { return std::clamp(static_cast<int>((y - y0_) / cell_mm_), 0, ny_ - 1); }
-  std::size_t index(int i, int j) const { return static_cast<std::size_t>(j) * static_cast<std::size_t>(nx_) + static_cast<std::size_t>(i); }
+  std::size_t index(int i, int j) const {
+    return static_cast<std::size_t>(j) * static_cast<std::size_t>(nx_) + static_cast<std::size_t>(i);
+  }
 
   double reach_mm_;
   std::vector<geometry::Point3> points_;
@@ -267,9 +271,9 @@ std::vector<double> in_contact(const std::vector<double>& force_bins, int width)
 }
 
 struct CorrelationPeak {
-  double lag_bins = 0.0;      // interpolated lag of the maximum
-  double correlation = 0.0;   // Pearson coefficient there
-  bool at_edge = false;       // the maximum lies on the edge of the searched range
+  double lag_bins = 0.0;     // interpolated lag of the maximum
+  double correlation = 0.0;  // Pearson coefficient there
+  bool at_edge = false;      // the maximum lies on the edge of the searched range
   bool found = false;
 };
 
@@ -464,8 +468,8 @@ void finish_coverage(const planner::PlanResult& plan, const sim::ForceLog& log, 
             " mm): nothing to learn from";
   } else if (out.covered_fraction < kFullCoverage) {
     out.status = AlignmentStatus::kTruncated;
-    text += "; truncated: the log covers " + percent(out.covered_fraction) + " of the in-cut path (s = " +
-            fixed(cut.first_mm, 1) + " to " + fixed(cut.last_mm, 1) + " mm)";
+    text += "; truncated: the log covers " + percent(out.covered_fraction) +
+            " of the in-cut path (s = " + fixed(cut.first_mm, 1) + " to " + fixed(cut.last_mm, 1) + " mm)";
     if (s_max < cut.last_mm - kCoverageBridgeMm) text += ", it ends before the cut does";
     if (s_min > cut.first_mm + kCoverageBridgeMm) text += ", it starts after the cut has begun";
     text += "; usable for the part covered";
@@ -486,8 +490,8 @@ struct PositionMatch {
   std::size_t first = 0, last = 0;  // first and last matched rows (first > last: none)
   int off_path = 0;                 // unmatched rows among those
   std::size_t first_off_path = 0;
-  int leading = 0, trailing = 0;    // rows before the program (first match at the path's start) / after it
-  int span_rows = 0;                // rows with positions that should follow the path
+  int leading = 0, trailing = 0;  // rows before the program (first match at the path's start) / after it
+  int span_rows = 0;              // rows with positions that should follow the path
 };
 
 PositionMatch match_positions(const sim::ForceLog& log, const PathIndex& path, double scale, double reach_mm) {
@@ -504,8 +508,8 @@ PositionMatch match_positions(const sim::ForceLog& log, const PathIndex& path, d
     const auto& row = log.rows[i];
     if (!finite_xy(row)) continue;
     const int k_min = anchor_mm > -1e299 ? path.segment_at(anchor_mm - back_mm) : 0;
-    const auto match = match_row(path, scale * row.x_mm, scale * row.y_mm, scale * row.z_mm, k_min, reach_mm,
-                                 window_mm, tie_mm);
+    const auto match =
+        match_row(path, scale * row.x_mm, scale * row.y_mm, scale * row.z_mm, k_min, reach_mm, window_mm, tie_mm);
     if (!match) continue;
     m.s_mm[i] = match->s_mm;
     anchor_mm = std::max(anchor_mm, match->s_mm);
@@ -524,7 +528,8 @@ PositionMatch match_positions(const sim::ForceLog& log, const PathIndex& path, d
   m.span_rows = 0;
   for (std::size_t i = 0; i < n; ++i) {
     if (!finite_xy(log.rows[i])) continue;
-    const bool before = i < m.first, after = i > m.last;
+    const bool before = i < m.first;
+    const bool after = i > m.last;
     if ((before && arrives_at_start) || (after && leaves_at_end)) {
       ++(before ? m.leading : m.trailing);
       continue;
@@ -555,10 +560,10 @@ std::string not_this_program(const sim::ForceLog& log, const PathIndex& path, co
   }
   const double span_rows = static_cast<double>(m.span_rows);
   if (m.off_path > options.max_off_path_fraction * span_rows) {
-    return std::to_string(m.off_path) + " of " + std::to_string(m.span_rows) + " rows (" + percent(m.off_path / span_rows) +
-           ", allowed " + percent(options.max_off_path_fraction) + ") are more than " + reach +
-           " from the planned path; the first, " + row_text(log, m.first_off_path) + ", is " +
-           fixed(distance_of(m.first_off_path), 2) + " mm from it";
+    return std::to_string(m.off_path) + " of " + std::to_string(m.span_rows) + " rows (" +
+           percent(m.off_path / span_rows) + ", allowed " + percent(options.max_off_path_fraction) +
+           ") are more than " + reach + " from the planned path; the first, " + row_text(log, m.first_off_path) +
+           ", is " + fixed(distance_of(m.first_off_path), 2) + " mm from it";
   }
   return "";
 }
@@ -604,7 +609,10 @@ void estimate_delay(const sim::ForceLog& log, const planner::PlanResult& plan, c
   out.delay_s = std::clamp(peak.lag_bins * bin_s, -options.max_delay_s, options.max_delay_s);
   out.delay_correlation = peak.correlation;
   text += "; force delay " + fixed(1e3 * out.delay_s, 1) + " ms (correlation " + fixed(peak.correlation, 2) + ")";
-  if (peak.at_edge) text += " at the edge of the searched range +-" + fixed(1e3 * options.max_delay_s, 0) + " ms: the true delay may be larger";
+  if (peak.at_edge) {
+    text += " at the edge of the searched range +-" + fixed(1e3 * options.max_delay_s, 0) +
+            " ms: the true delay may be larger";
+  }
   if (peak.correlation < 0.5) text += ", weak: check that the log belongs to this plan";
 }
 
@@ -623,10 +631,11 @@ Alignment align_by_positions(const sim::ForceLog& log, const planner::PlanResult
         const PositionMatch scaled = match_positions(log, path, scale, options.max_distance_mm);
         if (scaled.first < log.rows.size() && not_this_program(log, path, scaled, options, scale).empty()) {
           out.status = AlignmentStatus::kUnitsLookWrong;
-          out.message = scale > 1.0 ? "the logged positions fit the planned path after x 25.4: the log looks like inches; "
-                                      "convert it to mm"
-                                    : "the logged positions fit the planned path after / 25.4: the log is scaled by "
-                                      "25.4 (mm read as inches?); convert it to mm";
+          out.message = scale > 1.0
+                            ? "the logged positions fit the planned path after x 25.4: the log looks like inches; "
+                              "convert it to mm"
+                            : "the logged positions fit the planned path after / 25.4: the log is scaled by "
+                              "25.4 (mm read as inches?); convert it to mm";
           return out;
         }
       }
@@ -681,10 +690,13 @@ Alignment align_by_time_profile(const sim::ForceLog& log, const planner::PlanRes
   expected = moving_max(expected, width);
   // measured[i] (log time t0 + i h) pairs with expected[i − lag] (plan time (i − lag) h): the program
   // started at log time t0 + lag h. Outside the plan the machine does not cut: 0.
-  const CorrelationPeak peak = correlate(measured, expected, -static_cast<long>(plan_bins), static_cast<long>(log_bins), 0.0);
+  const CorrelationPeak peak =
+      correlate(measured, expected, -static_cast<long>(plan_bins), static_cast<long>(log_bins), 0.0);
   if (!peak.found) {
     out.status = AlignmentStatus::kNoCut;
-    out.message = method + "; the measured force shows no contact to align by";
+    out.message = method +
+                  "; the measured force never changes between air and contact (no cut, or in the cut throughout): "
+                  "nothing to align the plan's time profile by";
     return out;
   }
   const double start_s = t.front() + peak.lag_bins * bin_s - plan_t.front();
@@ -692,8 +704,9 @@ Alignment align_by_time_profile(const sim::ForceLog& log, const planner::PlanRes
     const double tau = t[i] - start_s;
     if (tau >= plan_t.front() && tau <= plan_t.back()) out.s_mm[i] = interpolate(plan_t, plan_s, tau, kNaN);
   }
-  std::string text = method + ": the program starts at t = " + fixed(start_s, 3) + " s on the log's clock (correlation " +
-                     fixed(peak.correlation, 2) + "); s follows the predicted speeds, good to a few mm";
+  std::string text = method + ": the program starts at t = " + fixed(start_s, 3) +
+                     " s on the log's clock (correlation " + fixed(peak.correlation, 2) +
+                     "); s follows the predicted speeds, good to a few mm";
   if (peak.correlation < 0.5) text += "; weak correlation: check that the log belongs to this plan";
   finish_coverage(plan, log, out, text);
   return out;
@@ -732,7 +745,8 @@ bool usable(AlignmentStatus status) { return status == AlignmentStatus::kOk || s
 Alignment align_log(const sim::ForceLog& log, const planner::PlanResult& plan, const AlignmentOptions& options) {
   std::vector<InputProblem> problems;
   if (!(std::isfinite(options.max_distance_mm) && options.max_distance_mm > 0.0)) {
-    problems.push_back({"alignment.max_distance_mm", "= " + shortest_number_text(options.max_distance_mm) + ": must be > 0"});
+    problems.push_back(
+        {"alignment.max_distance_mm", "= " + shortest_number_text(options.max_distance_mm) + ": must be > 0"});
   }
   if (!(options.max_off_path_fraction >= 0.0 && options.max_off_path_fraction <= 1.0)) {
     problems.push_back({"alignment.max_off_path_fraction",
@@ -742,8 +756,9 @@ Alignment align_log(const sim::ForceLog& log, const planner::PlanResult& plan, c
     problems.push_back({"alignment.max_delay_s", "= " + shortest_number_text(options.max_delay_s) + ": must be >= 0"});
   }
   if (!log.has_positions && !log.has_forces) {
-    problems.push_back({"log", "has neither positions nor forces: nothing to align by (turn currents into forces "
-                               "first, forces_from_currents)"});
+    problems.push_back({"log",
+                        "has neither positions nor forces: nothing to align by (turn currents into forces "
+                        "first, forces_from_currents)"});
   }
   if (log.rows.empty()) problems.push_back({"log", "has no rows"});
   for (std::size_t i = 1; i < log.rows.size(); ++i) {

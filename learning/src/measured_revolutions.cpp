@@ -72,18 +72,20 @@ MeasuredRevolutions measured_revolutions(const sim::ForceLog& log, const Alignme
     problems.push_back({"spindle_rpm", "= " + shortest_number_text(spindle_rpm) + ": must be > 0"});
   }
   if (!(options.min_engagement_rad >= 0.0 && std::isfinite(options.min_engagement_rad))) {
-    problems.push_back({"min_engagement_rad", "= " + shortest_number_text(options.min_engagement_rad) + ": must be >= 0"});
+    problems.push_back(
+        {"min_engagement_rad", "= " + shortest_number_text(options.min_engagement_rad) + ": must be >= 0"});
   }
   if (!log.has_forces) {
-    problems.push_back({"log", "has no forces (only servo currents?): turn them into forces first (forces_from_currents)"});
+    problems.push_back(
+        {"log", "has no forces (only servo currents?): turn them into forces first (forces_from_currents)"});
   }
   if (!problems.empty()) throw InputError(std::move(problems));
   assert(alignment.s_mm.size() == log.rows.size());
 
   MeasuredRevolutions out;
   if (!usable(alignment.status)) {
-    out.message = "no revolutions: the alignment is not usable (" + to_string(alignment.status) + ": " +
-                  alignment.message + ")";
+    out.message =
+        "no revolutions: the alignment is not usable (" + to_string(alignment.status) + ": " + alignment.message + ")";
     return out;
   }
   const std::size_t n = log.rows.size();
@@ -189,8 +191,8 @@ MeasuredRevolutions measured_revolutions(const sim::ForceLog& log, const Alignme
     out.sample_t_start_s.push_back(peak.t_start_s);
   }
 
-  out.message = std::to_string(peaks.size()) + " complete revolutions at " + fixed(spindle_rpm, 0) + " rpm: " +
-                std::to_string(out.samples.size()) + " engaged samples; skipped " +
+  out.message = std::to_string(peaks.size()) + " complete revolutions at " + fixed(spindle_rpm, 0) +
+                " rpm: " + std::to_string(out.samples.size()) + " engaged samples; skipped " +
                 std::to_string(out.skipped_not_engaged) + " out of the material, " + std::to_string(out.skipped_nan) +
                 " with NaN forces or gaps, " + std::to_string(out.skipped_not_aligned) + " not aligned";
   if (delay_s != 0.0) out.message += "; places shifted by the force delay " + fixed(1e3 * delay_s, 1) + " ms";

@@ -19,10 +19,10 @@ namespace feedplan::learning {
 
 //! I = a + b·|F| for one feed axis.
 struct AxisCalibration {
-  double a_a = 0.0;          //!< current with the axis moving and no cutting force, A
-  double b_a_per_n = 0.0;    //!< current per newton of cutting force along the axis, A/N (> 0 when usable)
-  double r_squared = 0.0;    //!< coefficient of determination of the fit over the windows, in [0, 1]
-  int windows = 0;           //!< windows (whole revolutions, ≈ 50 ms) the fit used
+  double a_a = 0.0;        //!< current with the axis moving and no cutting force, A
+  double b_a_per_n = 0.0;  //!< current per newton of cutting force along the axis, A/N (> 0 when usable)
+  double r_squared = 0.0;  //!< coefficient of determination of the fit over the windows, in [0, 1]
+  int windows = 0;         //!< windows (whole revolutions, ≈ 50 ms) the fit used
 };
 
 //! The three axes.

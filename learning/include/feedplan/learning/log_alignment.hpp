@@ -45,10 +45,11 @@ namespace feedplan::learning {
 
 //! How a log is aligned with a plan.
 struct AlignmentOptions {
-  double max_distance_mm = 0.5;         //!< a logged position farther than this from the path is off the path, mm (> 0)
-  double max_off_path_fraction = 0.02;  //!< larger share of rows off the path (of those that should follow it) → not this program, in [0, 1]
-  bool estimate_delay = true;           //!< estimate the force signal's lag behind the positions
-  double max_delay_s = 0.5;             //!< largest |delay| searched, s (≥ 0)
+  double max_distance_mm = 0.5;  //!< a logged position farther than this from the path is off the path, mm (> 0)
+  //! Larger share of off-path rows (of those that should follow the path) → not this program, in [0, 1].
+  double max_off_path_fraction = 0.02;
+  bool estimate_delay = true;  //!< estimate the force signal's lag behind the positions
+  double max_delay_s = 0.5;    //!< largest |delay| searched, s (≥ 0)
 };
 
 //! How the rows were placed on the path.
@@ -62,11 +63,13 @@ std::string to_string(AlignmentMethod method);
 
 //! Outcome of an alignment.
 enum class AlignmentStatus {
-  kOk,               //!< the log covers the whole in-cut part of the path
-  kNotThisProgram,   //!< the positions do not follow the path (s_mm all NaN)
-  kNoCut,            //!< no aligned row lies in the in-cut part of the path (or the plan has none)
-  kTruncated,        //!< the log covers only part of the in-cut path: usable for that part (covered_fraction)
-  kUnitsLookWrong,   //!< the positions fit the path after ×25.4 (inches) or ÷25.4: convert the log (s_mm all NaN)
+  kOk,              //!< the log covers the whole in-cut part of the path
+  kNotThisProgram,  //!< the positions do not follow the path (s_mm all NaN)
+  //! No aligned row lies in the in-cut part of the path (or the plan has none; or, by time profile, the
+  //! force never changes between air and contact).
+  kNoCut,
+  kTruncated,       //!< the log covers only part of the in-cut path: usable for that part (covered_fraction)
+  kUnitsLookWrong,  //!< the positions fit the path after ×25.4 (inches) or ÷25.4: convert the log (s_mm all NaN)
 };
 
 //! "ok", "not this program", "no cut", "truncated", "units look wrong".
@@ -78,17 +81,18 @@ bool usable(AlignmentStatus status);
 //! Each log row's place on the planned path.
 struct Alignment {
   AlignmentStatus status = AlignmentStatus::kOk;  //!< outcome
-  std::string message;                   //!< what was done and found, for people (method, coverage, delay, problems)
+  std::string message;  //!< what was done and found, for people (method, coverage, delay, problems)
   AlignmentMethod method = AlignmentMethod::kPositions;  //!< how
-  std::vector<double> s_mm;              //!< per log row: arc length on the plan's path, mm; NaN where not aligned
-  double delay_s = 0.0;                  //!< estimated lag of the force signal behind the positions, s (0 when not estimated)
-  double delay_correlation = 0.0;        //!< correlation coefficient at delay_s (0 when not estimated), in [−1, 1]
-  int rows = 0;                          //!< rows in the log
-  int rows_aligned = 0;                  //!< rows with a finite s_mm
-  int rows_with_nan = 0;                 //!< rows with a NaN position (when the log has positions) or force (when it has forces): skipped
-  int rows_off_path = 0;                 //!< rows off the path (not counting those before or after the program)
-  int gaps = 0;                          //!< time steps longer than 3 × the median step
-  double covered_fraction = 0.0;         //!< share of the in-cut path length the aligned rows cover, in [0, 1]
+  std::vector<double> s_mm;        //!< per log row: arc length on the plan's path, mm; NaN where not aligned
+  double delay_s = 0.0;            //!< estimated lag of the force signal behind the positions, s (0 when not estimated)
+  double delay_correlation = 0.0;  //!< correlation coefficient at delay_s (0 when not estimated), in [−1, 1]
+  int rows = 0;                    //!< rows in the log
+  int rows_aligned = 0;            //!< rows with a finite s_mm
+  //! Rows with a NaN position (when the log has positions) or force (when it has forces): skipped.
+  int rows_with_nan = 0;
+  int rows_off_path = 0;          //!< rows off the path (not counting those before or after the program)
+  int gaps = 0;                   //!< time steps longer than 3 × the median step
+  double covered_fraction = 0.0;  //!< share of the in-cut path length the aligned rows cover, in [0, 1]
 };
 
 //! Aligns `log` with `plan` (the method at the top of this file; positions when log.has_positions, else

@@ -5,9 +5,9 @@
 //
 // Step by step:
 //   1. Revolution windows by time at the given spindle speed, counted from the first row: revolution k
-//      covers [t0 + k T, t0 + (k + 1) T), T = 60 / rpm — the rule of sim::revolution_peaks (used as it is
-//      when no force is NaN). Only complete windows; a window with a NaN force or with fewer than half
-//      the rows it should hold (a gap) is skipped (skipped_nan).
+//      covers [t0 + k T, t0 + (k + 1) T), T = 60 / rpm — sim::revolution_peaks, with NaN forces read as 0
+//      there. Only complete windows; a window with a NaN force or with fewer than half the rows it should
+//      hold (a gap) is skipped (skipped_nan).
 //   2. Place: the force of a row at time t was measured where the tool was at t − delay_s (the
 //      alignment's estimated force lag). The window's span s_start..s_end and the place of its peak are
 //      the alignment's s at those shifted times, interpolated between rows. A window with any row
@@ -37,20 +37,20 @@ namespace feedplan::learning {
 
 //! Which revolutions count and how forces are scaled.
 struct MeasuredRevolutionOptions {
-  double min_engagement_rad = 0.05;       //!< smaller planned engagement at the peak's place: not engaged, rad (≥ 0)
-  bool scale_to_model_axial_depth = true; //!< divide forces by a_p / a_p,model (planner::axial_depth_ratio)
+  double min_engagement_rad = 0.05;        //!< smaller planned engagement at the peak's place: not engaged, rad (≥ 0)
+  bool scale_to_model_axial_depth = true;  //!< divide forces by a_p / a_p,model (planner::axial_depth_ratio)
 };
 
 //! The revolutions of one log.
 struct MeasuredRevolutions {
-  std::vector<LearningSample> samples;                    //!< engaged, fully aligned revolutions, in time order
-  std::vector<planner::MeasuredRevolution> revolutions;   //!< every aligned revolution: s span and raw peak, N
+  std::vector<LearningSample> samples;                   //!< engaged, fully aligned revolutions, in time order
+  std::vector<planner::MeasuredRevolution> revolutions;  //!< every aligned revolution: s span and raw peak, N
   //! For each entry of `samples`, the time its revolution starts on the log's clock, s.
   std::vector<double> sample_t_start_s;
-  int skipped_not_engaged = 0;   //!< aligned revolutions the plan has out of the material (or without a chip or feed)
-  int skipped_nan = 0;           //!< revolutions with a NaN force or a gap in the rows
-  int skipped_not_aligned = 0;   //!< revolutions with a row off the path, before or after it (after the delay shift)
-  std::string message;           //!< counts and reasons, for people
+  int skipped_not_engaged = 0;  //!< aligned revolutions the plan has out of the material (or without a chip or feed)
+  int skipped_nan = 0;          //!< revolutions with a NaN force or a gap in the rows
+  int skipped_not_aligned = 0;  //!< revolutions with a row off the path, before or after it (after the delay shift)
+  std::string message;          //!< counts and reasons, for people
 };
 
 //! Extracts the per-revolution samples of `log` (aligned by `alignment`, which must come from align_log

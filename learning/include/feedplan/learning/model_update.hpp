@@ -28,10 +28,13 @@ struct ModelUpdateOptions {
   RlsOptions rls;                          //!< recursive least squares
   //! Robust refit with a prior; Cauchy by default: revolutions the quadratic cannot represent (entries
   //! into the material, where t_m and L pair unlike any straight cut) are outliers to it, and a Huber
-  //! loss still lets their many large residuals bend the shape where the plan runs next.
+  //! loss still lets their many large residuals bend the shape where the plan runs next. The prior holds
+  //! the shape (σ_j = 0.1 |β_j| around the rescaled model): one cycle's data lie along one curve in
+  //! (t_m, L), and a loose prior lets the quadratic wander where the next plan goes.
   BatchRefitOptions batch = [] {
     BatchRefitOptions options;
     options.loss = model_db::FitOptions::kCauchy;
+    options.prior_sigma_fraction = 0.1;
     return options;
   }();
 };

@@ -1,0 +1,95 @@
+// The learning loop on the virtual machine (issue 6 acceptance, the corner-rounding case): plan with
+// the sample database's S50C model, cut on a virtual machine whose true cutting coefficients are 1.5 ×
+// the material's (the model is 33 % soft), learn, re-plan. The truth the test judges by is the virtual
+// machine's own per-revolution peak force — mechanistic physics, not the response-surface model.
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <unistd.h>
+
+#include "feedplan/cycles/cycle.hpp"
+#include "feedplan/cycles/spec_reader.hpp"
+#include "feedplan/learning/learning_loop.hpp"
+#include "feedplan/model_db/model_exchange.hpp"
+#include "feedplan/model_db/store.hpp"
+#include "feedplan/sim/material.hpp"
+
+namespace feedplan::learning {
+namespace {
+
+namespace fs = std::filesystem;
+
+class LearningLoop : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() / ("feedplan_loop_test_" + std::to_string(::getpid()));
+    fs::create_directories(dir_);
+    auto store = model_db::Store::open(dir_ / "t.db", model_db::OpenMode::kCreate);
+    model_db::import_from_file(store, fs::path(FEEDPLAN_TEST_DATA_DIR) / "cli" / "s50c_d10_model.json");
+    record_ = *store.active_model("SC EM D10 Z4", "S50C");
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+
+  LoopRequest corner_request(double machine_scale, double target_force_n) {
+    const cycles::CycleSpec spec = cycles::load_cycle_spec(std::string(FEEDPLAN_SAMPLES_DIR) + "/corner.yaml");
+    const cycles::Cycle cycle = cycles::generate(spec);
+    LoopRequest request;
+    request.geometry = planner::analyse(cycle.path, cycle.stock, spec.tool);
+    request.settings.model = record_.model;
+    request.settings.target_force_n = target_force_n;
+    request.settings.spindle_rpm = spec.spindle_rpm;
+    request.settings.machine = spec.machine;
+    const sim::MaterialLibrary materials = sim::load_materials(std::string(FEEDPLAN_SAMPLES_DIR) + "/../data/materials.yaml");
+    request.machine.tool = spec.tool;
+    request.machine.coefficients = materials.get("S50C").coefficients;
+    for (double* k : {&request.machine.coefficients.ktc_n_per_mm2, &request.machine.coefficients.krc_n_per_mm2,
+                      &request.machine.coefficients.kac_n_per_mm2, &request.machine.coefficients.kte_n_per_mm,
+                      &request.machine.coefficients.kre_n_per_mm, &request.machine.coefficients.kae_n_per_mm}) {
+      *k *= machine_scale;
+    }
+    request.machine.stock = cycle.stock;
+    request.machine.machine = spec.machine;
+    request.machine.spindle_rpm = spec.spindle_rpm;
+    request.start_fit_covariance = record_.fit.covariance;
+    return request;
+  }
+
+  fs::path dir_;
+  model_db::ModelRecord record_;
+};
+
+TEST_F(LearningLoop, ThirdCycleHoldsTheTargetWithinFivePercentOnSteadyCuts) {
+  LoopRequest request = corner_request(1.5, 600.0);
+  request.cycles = 3;
+  const LoopResult result = run_learning_loop(request);
+  ASSERT_EQ(result.cycles.size(), 3u);
+  // The first cycle is planned with a model 33 % soft: the true force overshoots by about 50 %.
+  EXPECT_GT(result.cycles[0].comparison.steady_max_abs_error_percent, 30.0);
+  EXPECT_EQ(result.cycles[0].update_status, ModelUpdateStatus::kOk);
+  const auto& third = result.cycles[2].comparison;
+  EXPECT_GT(third.steady, 100);
+  EXPECT_LE(third.steady_max_abs_error_percent, 5.0);
+  EXPECT_LE(third.steady_rms_error_percent, 2.5);
+}
+
+TEST_F(LearningLoop, CautiousFirstCutStaysWithinFivePercentWhenTheModelIsFortyPercentSoft) {
+  LoopRequest request = corner_request(1.0 / 0.6, 600.0);
+  request.cycles = 1;
+  request.first_cut_uncertainty = 0.35;
+  request.sigmas = 2.0;
+  const LoopResult cautious = run_learning_loop(request);
+  ASSERT_GT(cautious.cycles[0].comparison.steady, 100);
+  double worst_steady_overshoot = -100.0;
+  for (const auto& r : cautious.cycles[0].comparison.revolutions) {
+    if (r.steady) worst_steady_overshoot = std::max(worst_steady_overshoot, r.error_percent);
+  }
+  EXPECT_LE(worst_steady_overshoot, 5.0);
+  // Without the bound the same first cut overloads the tool.
+  request.first_cut_uncertainty = 0.0;
+  const LoopResult bold = run_learning_loop(request);
+  EXPECT_GT(bold.cycles[0].comparison.steady_max_abs_error_percent, 40.0);
+}
+
+}  // namespace
+}  // namespace feedplan::learning
