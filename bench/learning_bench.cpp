@@ -1,0 +1,79 @@
+// Learning speed: one learning step (align the force log, per-revolution samples, RLS, robust batch
+// refit) plus the re-plan of the 10-loop trochoid sample (seed 003 Table 2) — what seed 003 did in the
+// air cut between two cycles. The log is the virtual machine's, simulated once before timing.
+
+#include <benchmark/benchmark.h>
+
+#include <string>
+
+#include "feedplan/cycles/cycle.hpp"
+#include "feedplan/cycles/spec_reader.hpp"
+#include "feedplan/learning/model_update.hpp"
+#include "feedplan/learning/virtual_machine_run.hpp"
+#include "feedplan/planner/feed_plan.hpp"
+#include "feedplan/sim/material.hpp"
+
+namespace {
+
+using namespace feedplan;
+
+struct Setup {
+  planner::PlanGeometry geometry;
+  planner::PlanSettings settings;
+  planner::PlanResult plan;
+  sim::ForceLog log;
+};
+
+const Setup& setup() {
+  static const Setup s = [] {
+    Setup out;
+    const auto spec = cycles::load_cycle_spec(std::string(FEEDPLAN_SAMPLES_DIR) + "/trochoid.yaml");
+    const auto cycle = cycles::generate(spec);
+    out.geometry = planner::analyse(cycle.path, cycle.stock, spec.tool);
+    model_db::ResponseSurfaceModel model;  // the sample database's magnitude for S50C, D10 Z4, a_p 10 mm
+    model.beta = {300.0, 180.0, 40.0, -8.0, -4.0, 12.0};
+    model.chip_center_mm = 0.05;
+    model.chip_scale_mm = 0.04;
+    model.contact_length_center_mm = 4.0;
+    model.contact_length_scale_mm = 2.0;
+    model.range = {0.005, 0.15, 0.0, 8.0};
+    model.axial_depth_mm = 10.0;
+    out.settings.model = model;
+    out.settings.target_force_n = spec.target_force_n;
+    out.settings.spindle_rpm = spec.spindle_rpm;
+    out.settings.machine = spec.machine;
+    out.plan = planner::plan(out.geometry, out.settings);
+    learning::VirtualMachine machine;
+    machine.tool = spec.tool;
+    machine.coefficients =
+        sim::load_materials(std::string(FEEDPLAN_SAMPLES_DIR) + "/../data/materials.yaml").get("S50C").coefficients;
+    machine.stock = cycle.stock;
+    machine.machine = spec.machine;
+    machine.spindle_rpm = spec.spindle_rpm;
+    out.log = learning::run_on_virtual_machine(out.plan.program, machine, out.plan, spec.target_force_n).simulation.log;
+    return out;
+  }();
+  return s;
+}
+
+void BM_LearnAndReplanTrochoid(benchmark::State& state) {
+  const Setup& s = setup();
+  std::size_t samples = 0;
+  for (auto _ : state) {
+    const learning::ModelUpdate update =
+        learning::update_model(s.plan, s.settings, s.geometry.tool.flutes, {{"cycle", s.log}}, {}, std::nullopt);
+    planner::PlanSettings next = s.settings;
+    next.model = update.model;
+    auto result = planner::plan(s.geometry, next);
+    samples = update.samples.size();
+    benchmark::DoNotOptimize(result);
+  }
+  state.counters["revolutions"] = static_cast<double>(samples);
+  state.counters["log_rows"] = static_cast<double>(s.log.rows.size());
+}
+
+BENCHMARK(BM_LearnAndReplanTrochoid)->Unit(benchmark::kMillisecond);
+
+}  // namespace
+
+BENCHMARK_MAIN();
