@@ -6,12 +6,14 @@
 #include <filesystem>
 #include <iostream>
 
+#include "calibration_command.hpp"
 #include "database_path.hpp"
 #include "feedplan/core/atomic_file.hpp"
 #include "feedplan/core/input_error.hpp"
 #include "feedplan/cycles/cycle.hpp"
 #include "feedplan/cycles/spec_reader.hpp"
 #include "feedplan/gcode/writer.hpp"
+#include "feedplan/learning/current_calibration.hpp"
 #include "feedplan/learning/model_update.hpp"
 #include "feedplan/model_db/store.hpp"
 #include "feedplan/planner/plan_plot.hpp"
@@ -51,6 +53,8 @@ void add_learn_command(CLI::App& app, LearnOptions& options) {
   cmd->add_option("--report", options.report_path, "Write the re-planned plan's report (JSON)");
   cmd->add_option("--plot", options.plot_path, "Write the re-planned plan's plot (SVG) with the measured peaks");
   cmd->add_option("--note", options.note, "Note stored with the new model version");
+  cmd->add_option("--calibration", options.calibration_path,
+                  "Servo-current calibration (feedplan calibrate-currents -o) for logs with currents but no forces");
   cmd->add_flag("--json", options.json, "Print the summary as JSON");
 }
 
@@ -59,7 +63,20 @@ int run_learn_command(const LearnOptions& o) {
   const planner::PlanReport report = planner::read_plan_report(o.plan_path);
   const cycles::CycleSpec spec = cycles::load_cycle_spec(resolve_spec(report.context.spec_path, o.plan_path));
   std::vector<learning::NamedLog> logs;
-  for (const std::string& path : o.log_paths) logs.push_back({fs::path(path).filename().string(), sim::load_force_log(path)});
+  std::optional<learning::CurrentCalibration> calibration;
+  if (!o.calibration_path.empty()) calibration = load_current_calibration(o.calibration_path);
+  for (const std::string& path : o.log_paths) {
+    sim::ForceLog log = sim::load_force_log(path);
+    if (!log.has_forces) {
+      if (!log.has_currents || !calibration) {
+        throw InputError(path, log.has_currents ? "has servo currents but no forces: give --calibration (feedplan calibrate-currents)"
+                                                : "has no force columns");
+      }
+      // Currents see the mean force (≈ 62 Hz), not the tooth peaks: what is learned is then the model of that.
+      log = learning::forces_from_currents(log, *calibration);
+    }
+    logs.push_back({fs::path(path).filename().string(), std::move(log)});
+  }
   const std::string db_path = !o.db_path.empty() ? o.db_path
                               : !report.context.database_path.empty() ? report.context.database_path
                                                                       : database_path("");

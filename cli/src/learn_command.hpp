@@ -19,6 +19,7 @@ struct LearnOptions {
   std::string report_path;             //!< --report: the re-planned plan's report
   std::string plot_path;               //!< --plot
   std::string note;                    //!< --note: stored with the new version
+  std::string calibration_path;        //!< --calibration: turns current-only logs into force logs
   bool json = false;                   //!< --json
 };
 

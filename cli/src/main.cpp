@@ -8,6 +8,7 @@
 
 #include "cycle_command.hpp"
 #include "db_command.hpp"
+#include "calibration_command.hpp"
 #include "learn_command.hpp"
 #include "loop_command.hpp"
 #include "plan_command.hpp"
@@ -35,6 +36,8 @@ int main(int argc, char** argv) {
   feedplan::cli::add_simulate_command(app, simulate_options);
   feedplan::cli::PlanCommandOptions plan_options;
   feedplan::cli::add_plan_command(app, plan_options);
+  feedplan::cli::CalibrationOptions calibration_options;
+  feedplan::cli::add_calibration_command(app, calibration_options);
   feedplan::cli::LearnOptions learn_options;
   feedplan::cli::add_learn_command(app, learn_options);
   feedplan::cli::LoopOptions loop_options;
@@ -59,6 +62,7 @@ int main(int argc, char** argv) {
     if (app.got_subcommand("cycle")) return feedplan::cli::run_cycle_command(cycle_options);
     if (app.got_subcommand("simulate")) return feedplan::cli::run_simulate_command(simulate_options);
     if (app.got_subcommand("plan")) return feedplan::cli::run_plan_command(plan_options);
+    if (app.got_subcommand("calibrate-currents")) return feedplan::cli::run_calibration_command(calibration_options);
     if (app.got_subcommand("learn")) return feedplan::cli::run_learn_command(learn_options);
     if (app.got_subcommand("loop")) return feedplan::cli::run_loop_command(loop_options);
     if (app.got_subcommand("db")) return feedplan::cli::run_db_command(app, db_options);
