@@ -1,5 +1,7 @@
 #include "feedplan/learning/learning_loop.hpp"
 
+#include "feedplan/learning/path_correction.hpp"
+
 
 namespace feedplan::learning {
 
@@ -42,6 +44,11 @@ LoopResult run_learning_loop(const LoopRequest& request) {
       settings.model = update.model;
       covariance = update.covariance;
       relative = 0.0;
+      if (request.path_correction) {
+        std::vector<MeasuredRevolutions> measured;
+        for (const LogEvidence& log : update.logs) measured.push_back(log.revolutions);
+        settings.force_correction = path_correction(plan, update.model, measured, settings.force_correction);
+      }
     }
     result.cycles.push_back(std::move(out));
     if (request.on_cycle_done) request.on_cycle_done(cycle);

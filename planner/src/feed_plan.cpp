@@ -161,6 +161,13 @@ std::vector<InputProblem> validate(const PlanSettings& settings, const geometry:
       }
     }
   }
+  for (std::size_t i = 0; i < settings.force_correction.size(); ++i) {
+    const double c = settings.force_correction[i];
+    if (!(std::isfinite(c) && c >= 0.2 && c <= 5.0)) {
+      problems.push_back({"force_correction[" + std::to_string(i) + "]", "= " + num(c) + ": must be in [0.2, 5]"});
+      break;
+    }
+  }
   const PlanOptions& o = settings.options;
   if (!(std::isfinite(o.air_feed_mm_per_min) && o.air_feed_mm_per_min >= 0.0)) {
     problems.push_back({"options.air_feed_mm_per_min", "= " + num(o.air_feed_mm_per_min) +
@@ -187,7 +194,16 @@ std::vector<InputProblem> validate(const PlanSettings& settings, const geometry:
 }
 
 PlanResult plan(const PlanGeometry& geometry, const PlanSettings& settings) {
-  if (auto problems = validate(settings, geometry.tool); !problems.empty()) throw InputError(std::move(problems));
+  {
+    std::vector<InputProblem> problems = validate(settings, geometry.tool);
+    const std::size_t n_samples = geometry.engagement.samples.size();
+    if (!settings.force_correction.empty() && settings.force_correction.size() != n_samples) {
+      problems.push_back({"force_correction", "has " + std::to_string(settings.force_correction.size()) +
+                                                  " values for " + std::to_string(n_samples) +
+                                                  " engagement samples: it belongs to another path or sampling"});
+    }
+    if (!problems.empty()) throw InputError(std::move(problems));
+  }
   const auto& samples = geometry.engagement.samples;
   const geometry::ToolPath& path = geometry.path;
   assert(!samples.empty());
@@ -198,6 +214,9 @@ PlanResult plan(const PlanGeometry& geometry, const PlanSettings& settings) {
   const double rpm = settings.spindle_rpm;
   const double air_feed = options.air_feed_mm_per_min > 0.0 ? options.air_feed_mm_per_min : machine.max_feed_mm_per_min;
   const ForceUncertainty* uncertainty = settings.uncertainty ? &*settings.uncertainty : nullptr;
+  const auto correction = [&](std::size_t i) {
+    return settings.force_correction.empty() ? 1.0 : settings.force_correction[i];
+  };
 
   PlanResult result;
   result.samples.resize(n);
@@ -231,7 +250,7 @@ PlanResult plan(const PlanGeometry& geometry, const PlanSettings& settings) {
       planned.feed_limit_mm_per_min = machine.rapid_feed_mm_per_min;
       continue;
     }
-    const SampleFeedLimit limit = sample_feed_limit(settings.model, sample, settings.target_force_n, flutes, rpm, air_feed,
+    const SampleFeedLimit limit = sample_feed_limit(settings.model, sample, settings.target_force_n / correction(i), flutes, rpm, air_feed,
                                                     uncertainty);
     double feed = limit.feed_mm_per_min;
     FeedLimitReason reason = limit.reason;
@@ -338,9 +357,9 @@ PlanResult plan(const PlanGeometry& geometry, const PlanSettings& settings) {
     planned.feed_mm_per_min = run.speed_mm_per_s[i] * 60.0;
     planned.time_s = run.time_s[i];
     planned.chip_thickness_mm = planned.engaged ? chip_thickness_mm(samples[i], planned.feed_mm_per_min, flutes, rpm) : 0.0;
-    planned.predicted_force_n = predicted_force_n(settings.model, samples[i], planned.feed_mm_per_min, flutes, rpm);
+    planned.predicted_force_n = correction(i) * predicted_force_n(settings.model, samples[i], planned.feed_mm_per_min, flutes, rpm);
     planned.upper_force_n =
-        uncertainty ? upper_force_n(settings.model, samples[i], planned.feed_mm_per_min, flutes, rpm, uncertainty)
+        uncertainty ? correction(i) * upper_force_n(settings.model, samples[i], planned.feed_mm_per_min, flutes, rpm, uncertainty)
                     : planned.predicted_force_n;
     planned.within_model_range = planned.engaged && !model_db::chip_outside(settings.model.range, planned.chip_thickness_mm) &&
                                  !model_db::contact_length_outside(settings.model.range, planned.contact_length_mm);
@@ -374,7 +393,7 @@ PlanResult plan(const PlanGeometry& geometry, const PlanSettings& settings) {
     for (std::size_t i = 0; i < n; ++i) {
       if (!result.samples[i].engaged) continue;
       const SampleFeedLimit limit =
-          sample_feed_limit(settings.model, samples[i], summary.max_predicted_force_n, flutes, rpm, air_feed);
+          sample_feed_limit(settings.model, samples[i], summary.max_predicted_force_n / correction(i), flutes, rpm, air_feed);
       if (limit.reason == FeedLimitReason::kAirFeed) continue;
       feed = std::min(feed, limit.target_below_model ? machine.min_feed_mm_per_min : limit.feed_mm_per_min);
     }
@@ -400,7 +419,7 @@ PlanResult plan(const PlanGeometry& geometry, const PlanSettings& settings) {
     for (std::size_t i = 0; i < n; ++i) {
       baseline.peak_force_n = std::max(
           baseline.peak_force_n,
-          predicted_force_n(settings.model, samples[i], base_run.speed_mm_per_s[i] * 60.0, flutes, rpm));
+          correction(i) * predicted_force_n(settings.model, samples[i], base_run.speed_mm_per_s[i] * 60.0, flutes, rpm));
     }
   }
   summary.time_saved_percent =

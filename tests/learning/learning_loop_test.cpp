@@ -73,6 +73,20 @@ TEST_F(LearningLoop, ThirdCycleHoldsTheTargetWithinFivePercentOnSteadyCuts) {
   EXPECT_LE(third.steady_rms_error_percent, 2.5);
 }
 
+TEST_F(LearningLoop, LearningAlongThePathRemovesMostOfTheEntryOvershoot) {
+  // Where the tool enters the wall the response surface cannot be right (t_m and L pair unlike any
+  // straight cut); repeated parts let the plan learn the place itself.
+  LoopRequest request = corner_request(1.5, 600.0);
+  request.cycles = 4;
+  request.path_correction = false;
+  const LoopResult model_only = run_learning_loop(request);
+  request.path_correction = true;
+  const LoopResult along_path = run_learning_loop(request);
+  EXPECT_GT(model_only.cycles[3].comparison.max_overshoot_percent, 30.0);
+  EXPECT_LT(along_path.cycles[3].comparison.max_overshoot_percent, 10.0);
+  EXPECT_LE(along_path.cycles[3].comparison.steady_max_abs_error_percent, 5.0);
+}
+
 TEST_F(LearningLoop, CautiousFirstCutStaysWithinFivePercentWhenTheModelIsFortyPercentSoft) {
   LoopRequest request = corner_request(1.0 / 0.6, 600.0);
   request.cycles = 1;

@@ -102,6 +102,11 @@ struct PlanSettings {
   PlanOptions options;                   //!< mode, air feed, merging, resolution, jerk
   //! When set, the cautious plan: the upper bound F̂ + z·σ is held at the target (force_bound.hpp).
   std::optional<ForceUncertainty> uncertainty;
+  //! Iterative learning along this very path: per engagement sample, the measured / model force ratio
+  //! earlier cycles of the same program showed there (learning/path_correction.hpp); the planner uses
+  //! F̂ · c. Empty: 1 everywhere. Where the geometry leaves the straight-cut data a response surface is
+  //! fitted on (entries into material), the model alone cannot be right; repeated parts can.
+  std::vector<double> force_correction;
 };
 
 //! Every problem with the settings (model via model_db::validate as "model.…", "target_force_n",
