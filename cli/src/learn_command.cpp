@@ -15,6 +15,7 @@
 #include "feedplan/gcode/writer.hpp"
 #include "feedplan/learning/current_calibration.hpp"
 #include "feedplan/learning/model_update.hpp"
+#include "feedplan/learning/path_correction.hpp"
 #include "feedplan/model_db/store.hpp"
 #include "feedplan/planner/plan_plot.hpp"
 #include "feedplan/planner/plan_report.hpp"
@@ -119,6 +120,12 @@ int run_learn_command(const LearnOptions& o) {
   // 4. Re-plan with the learned model before storing anything, so that a plan problem stores nothing.
   planner::PlanSettings next_settings = report.settings;
   next_settings.model = update.model;
+  {
+    // Learning along this path too (learning/path_correction.hpp), carried in the report to the next part.
+    std::vector<learning::MeasuredRevolutions> measured;
+    for (const auto& log : update.logs) measured.push_back(log.revolutions);
+    next_settings.force_correction = learning::path_correction(plan, update.model, measured, report.settings.force_correction);
+  }
   const planner::PlanResult next = planner::plan(geometry, next_settings);
   gcode::WriterOptions writer;
   writer.dialect = gcode::dialect_from_string(report.context.dialect).value_or(gcode::Dialect::kLinuxCnc);

@@ -220,6 +220,22 @@ class Node {
   }
 
   //! An array of exactly N finite numbers.
+  //! An optional array of finite numbers: empty when the member is absent.
+  std::vector<double> optional_numbers(const std::string& key) const {
+    std::vector<double> values;
+    if (value_ == nullptr || value_->find(key) == value_->end()) return values;
+    const Node list = array(key);
+    for (std::size_t i = 0; i < list.size(); ++i) {
+      const Json& value = (*list.value_)[i];
+      if (value.is_number() && std::isfinite(value.get<double>())) {
+        values.push_back(value.get<double>());
+      } else {
+        report(list.path_ + "[" + std::to_string(i) + "]", "= " + shown(value) + ": must be a finite number");
+      }
+    }
+    return values;
+  }
+
   template <std::size_t N>
   std::array<double, N> numbers(const std::string& key) const {
     const Node list = array(key);
@@ -390,6 +406,11 @@ std::string plan_report_json(const PlanResult& result, const PlanSettings& setti
                          {"feed_resolution_mm_per_min", json_number(options.feed_resolution_mm_per_min)},
                          {"jerk_limit_mm_per_s3", json_number(options.jerk_limit_mm_per_s3)},
                          {"ds_mm", json_number(options.ds_mm)}};
+  if (!settings.force_correction.empty()) {
+    Json correction = Json::array();
+    for (double c : settings.force_correction) correction.push_back(json_number(c));
+    root["force_correction"] = std::move(correction);
+  }
   root["summary"] = summary_json(result.summary);
   root["program"] = Json{{"path", context.program_path},
                          {"dialect", context.dialect},
@@ -524,6 +545,7 @@ PlanReport parse_plan_report(std::string_view json_text, const std::string& sour
   settings.options.feed_resolution_mm_per_min = options.number("feed_resolution_mm_per_min");
   settings.options.jerk_limit_mm_per_s3 = options.number("jerk_limit_mm_per_s3");
   settings.options.ds_mm = options.number("ds_mm");
+  settings.force_correction = root.optional_numbers("force_correction");
 
   report.summary = read_summary(root.object("summary"));
   const Node program = root.object("program");
