@@ -494,7 +494,23 @@ struct PositionMatch {
   int span_rows = 0;              // rows with positions that should follow the path
 };
 
-PositionMatch match_positions(const sim::ForceLog& log, const PathIndex& path, double scale, double reach_mm) {
+// The part of the path where the tool is in material: from the first to the last engaged plan sample
+// (the whole path when none is engaged).
+struct CutSpan {
+  double first_mm = 0.0;
+  double last_mm = 0.0;
+};
+
+CutSpan cut_span(const planner::PlanResult& plan) {
+  CutSpan span{plan.samples.empty() ? 0.0 : plan.samples.front().s_mm, plan.samples.empty() ? 0.0 : plan.samples.back().s_mm};
+  const auto first = std::find_if(plan.samples.begin(), plan.samples.end(), [](const auto& p) { return p.engaged; });
+  if (first == plan.samples.end()) return span;
+  const auto last = std::find_if(plan.samples.rbegin(), plan.samples.rend(), [](const auto& p) { return p.engaged; });
+  return {first->s_mm, last->s_mm};
+}
+
+PositionMatch match_positions(const sim::ForceLog& log, const PathIndex& path, double scale, double reach_mm,
+                              const CutSpan& cut) {
   PositionMatch m;
   const std::size_t n = log.rows.size();
   m.s_mm.assign(n, kNaN);
@@ -520,18 +536,29 @@ PositionMatch match_positions(const sim::ForceLog& log, const PathIndex& path, d
     for (std::size_t i = 0; i < n; ++i) m.leading += finite_xy(log.rows[i]) ? 1 : 0;
     return m;
   }
-  // Rows before the first match are the machine before the program only when the match is at the
-  // path's start (it arrives there); otherwise they left the path. The same for rows after the last one.
+  // Rows before the machine reaches the part of the path in material are the machine arriving — from
+  // its home, through the program's own approach moves, which a forward match cannot follow back up a
+  // plunge — and are neither matched nor off the path, when that first arrival lies before the cut
+  // starts; the same for rows after the cut when the last match lies after it. Otherwise rows before
+  // the first match or after the last one left the path.
   const double near_mm = 2.0 * reach_mm + 1.0;
-  const bool arrives_at_start = m.s_mm[m.first] <= path.s_of_segment_start(0) + near_mm;
-  const bool leaves_at_end = m.s_mm[m.last] >= path.s_of_segment_start(0) + path.length_mm() - near_mm;
+  std::size_t cut_first = m.first;
+  while (cut_first <= m.last && !(std::isfinite(m.s_mm[cut_first]) && m.s_mm[cut_first] >= cut.first_mm - near_mm)) {
+    ++cut_first;
+  }
+  std::size_t cut_last = m.last;
+  while (cut_last > cut_first && !(std::isfinite(m.s_mm[cut_last]) && m.s_mm[cut_last] <= cut.last_mm + near_mm)) {
+    --cut_last;
+  }
+  const bool arrives_before_cut = m.s_mm[m.first] <= cut.first_mm + near_mm;
+  const bool leaves_after_cut = m.s_mm[m.last] >= cut.last_mm - near_mm;
   m.span_rows = 0;
   for (std::size_t i = 0; i < n; ++i) {
     if (!finite_xy(log.rows[i])) continue;
-    const bool before = i < m.first;
-    const bool after = i > m.last;
-    if ((before && arrives_at_start) || (after && leaves_at_end)) {
-      ++(before ? m.leading : m.trailing);
+    const bool before = i < (arrives_before_cut ? cut_first : m.first);
+    const bool after = i > (leaves_after_cut ? cut_last : m.last);
+    if ((before && arrives_before_cut) || (after && leaves_after_cut)) {
+      if (!std::isfinite(m.s_mm[i])) ++(before ? m.leading : m.trailing);  // off the path, not on its approach
       continue;
     }
     ++m.span_rows;
@@ -622,13 +649,14 @@ Alignment align_by_positions(const sim::ForceLog& log, const planner::PlanResult
   out.method = AlignmentMethod::kPositions;
   count_rows(log, out);
   const PathIndex path(plan, options.max_distance_mm);
-  const PositionMatch m = match_positions(log, path, 1.0, options.max_distance_mm);
+  const CutSpan cut = cut_span(plan);
+  const PositionMatch m = match_positions(log, path, 1.0, options.max_distance_mm, cut);
   const std::string problem = not_this_program(log, path, m, options, 1.0);
   if (!problem.empty()) {
     out.s_mm.assign(log.rows.size(), kNaN);
     if (check_units) {
       for (const double scale : {kMmPerInch, 1.0 / kMmPerInch}) {
-        const PositionMatch scaled = match_positions(log, path, scale, options.max_distance_mm);
+        const PositionMatch scaled = match_positions(log, path, scale, options.max_distance_mm, cut);
         if (scaled.first < log.rows.size() && not_this_program(log, path, scaled, options, scale).empty()) {
           out.status = AlignmentStatus::kUnitsLookWrong;
           out.message = scale > 1.0

@@ -5,6 +5,7 @@
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <cmath>
 #include <cstdio>
@@ -78,7 +79,8 @@ const CornerPlan& corner_plan() {
 }
 
 fs::path temporary_path(const std::string& name) {
-  const fs::path directory = fs::temp_directory_path() / "feedplan_plan_report_test";
+  // One directory per process: ctest runs each test case in its own process, two at a time.
+  const fs::path directory = fs::temp_directory_path() / ("feedplan_plan_report_test_" + std::to_string(::getpid()));
   fs::create_directories(directory);
   return directory / name;
 }

@@ -1,0 +1,421 @@
+// End-to-end tests of `feedplan learn` and `feedplan loop` on a database holding the sample model of the
+// Ø10 4-flute end mill in S50C (tests/data/cli/s50c_d10_model.json). The corner sample is planned with it
+// and cut on the virtual machine; learning from that log stores version 2 (learned, parent 1) with one
+// learning entry and writes the re-planned program and report. Logs that cannot be learned from — another
+// program, positions in inches, no cut, broken cells, a missing file — and a malformed plan report exit
+// 2 (bad input) or 1 (nothing to learn) with the database content unchanged and no program written.
+// The logs are edited here, from the CSV text, not through the log reader under test.
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <functional>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "feedplan/gcode/reader.hpp"
+#include "run_feedplan.hpp"
+
+namespace {
+
+using namespace feedplan::cli_test;
+using nlohmann::json;
+
+const std::string kSamples = FEEDPLAN_SAMPLES_DIR;
+const std::string kToolMaterial = "--tool \"SC EM D10 Z4\" --material S50C";
+
+// A force log as CSV text: the lines before the data (metadata, header), the column names, the rows' cells.
+struct CsvLog {
+  std::vector<std::string> head;
+  std::vector<std::string> columns;
+  std::vector<std::vector<std::string>> rows;
+
+  int column(const std::string& name) const {
+    for (std::size_t i = 0; i < columns.size(); ++i) {
+      if (columns[i] == name) return static_cast<int>(i);
+    }
+    ADD_FAILURE() << "no column " << name;
+    return 0;
+  }
+  double number(std::size_t row, const std::string& name) const { return std::stod(rows[row][column(name)]); }
+  //! The 1-based line of the file data row `row` is on.
+  std::size_t line_of(std::size_t row) const { return head.size() + row + 1; }
+  std::string text() const {
+    std::string out;
+    for (const auto& line : head) out += line + "\n";
+    for (const auto& cells : rows) {
+      for (std::size_t i = 0; i < cells.size(); ++i) out += (i ? "," : "") + cells[i];
+      out += "\n";
+    }
+    return out;
+  }
+};
+
+std::vector<std::string> split_cells(const std::string& line) {
+  std::vector<std::string> cells(1);
+  for (char c : line) {
+    if (c == ',') {
+      cells.emplace_back();
+    } else {
+      cells.back() += c;
+    }
+  }
+  return cells;
+}
+
+CsvLog parse_csv_log(const std::string& text) {
+  CsvLog log;
+  std::istringstream in(text);
+  std::string line;
+  while (std::getline(in, line)) {
+    if (!line.empty() && line.back() == '\r') line.pop_back();
+    if (log.columns.empty()) {
+      log.head.push_back(line);
+      if (!line.empty() && line[0] != '#') log.columns = split_cells(line);
+      continue;
+    }
+    EXPECT_FALSE(!line.empty() && line[0] == '#') << "metadata among the rows: " << line;
+    if (!line.empty()) log.rows.push_back(split_cells(line));
+  }
+  EXPECT_FALSE(log.columns.empty());
+  return log;
+}
+
+std::string fixed(double value, int decimals) {
+  char text[64];
+  std::snprintf(text, sizeof text, "%.*f", decimals, value);
+  return text;
+}
+
+// The JSON object printed on stdout; messages on stderr (merged into the output) come before it.
+json json_of(const std::string& output) {
+  const auto begin = output.find("\n{") != std::string::npos && output[0] != '{' ? output.find("\n{") + 1 : 0;
+  const auto end = output.rfind('}');
+  if (end == std::string::npos || end < begin) {
+    ADD_FAILURE() << "no JSON in:\n" << output;
+    return json::object();
+  }
+  try {
+    return json::parse(output.substr(begin, end - begin + 1));
+  } catch (const json::exception& e) {
+    ADD_FAILURE() << e.what() << " in:\n" << output;
+    return json::object();
+  }
+}
+
+// A database holding the sample model (version 1).
+class ModelDbCliTest : public CliTest {
+ protected:
+  void SetUp() override {
+    CliTest::SetUp();
+    db_ = (dir_ / "t.db").string();
+    ASSERT_EQ(run_feedplan("db init --db " + db_).exit_code, 0);
+    const RunResult imported =
+        run_feedplan("db import " + std::string(FEEDPLAN_TEST_DATA_DIR) + "/cli/s50c_d10_model.json --db " + db_);
+    ASSERT_EQ(imported.exit_code, 0) << imported.output;
+  }
+
+  // Every tool, material, model version, cutting test and learning entry, as `db export` writes them.
+  std::string content() {
+    const fs::path out = dir_ / "content.json";
+    const RunResult r = run_feedplan("db export " + out.string() + " --all-versions --db " + db_);
+    EXPECT_EQ(r.exit_code, 0) << r.output;
+    return read_text(out);
+  }
+
+  std::string db_;
+};
+
+// And the corner sample planned with it (c.nc, c.json) and cut on the virtual machine (log.csv).
+class LearnCliTest : public ModelDbCliTest {
+ protected:
+  void SetUp() override {
+    ModelDbCliTest::SetUp();
+    if (HasFatalFailure()) return;
+    plan_ = dir_ / "c.json";
+    log_ = dir_ / "log.csv";
+    plan_and_cut(kSamples + "/corner.yaml", dir_ / "c.nc", plan_, log_);
+    next_ = dir_ / "next.nc";
+  }
+
+  // Plans `spec` with the test database and cuts the program on the virtual machine.
+  void plan_and_cut(const std::string& spec, const fs::path& program, const fs::path& report, const fs::path& log) {
+    const RunResult planned =
+        run_feedplan("plan " + spec + " --db " + db_ + " -o " + program.string() + " --report " + report.string());
+    ASSERT_EQ(planned.exit_code, 0) << planned.output;
+    const RunResult cut = run_feedplan("simulate " + program.string() + " --spec " + spec + " --log " + log.string());
+    ASSERT_EQ(cut.exit_code, 0) << cut.output;
+  }
+
+  std::string learn_args(const fs::path& log) {
+    return "learn " + plan_.string() + " " + log.string() + " -o " + next_.string() + " --db " + db_;
+  }
+
+  fs::path write(const std::string& name, const std::string& text) {
+    const fs::path path = dir_ / name;
+    std::ofstream(path) << text;
+    return path;
+  }
+
+  // Runs `arguments`, expects `exit_code` with every fragment in the output, the database content as it
+  // was and no program written.
+  void expect_refused(const std::string& arguments, int exit_code, const std::vector<std::string>& fragments) {
+    const std::string before = content();
+    const RunResult r = run_feedplan(arguments);
+    EXPECT_EQ(r.exit_code, exit_code) << arguments << "\n" << r.output;
+    for (const auto& fragment : fragments) {
+      EXPECT_NE(r.output.find(fragment), std::string::npos) << "expected '" << fragment << "' in:\n" << r.output;
+    }
+    EXPECT_EQ(content(), before) << arguments;
+    EXPECT_FALSE(fs::exists(next_)) << arguments;
+  }
+
+  fs::path plan_;
+  fs::path log_;
+  fs::path next_;
+};
+
+using LoopCliTest = ModelDbCliTest;
+
+TEST_F(LearnCliTest, StoresVersionTwoWithItsLearningEntryAndReplans) {
+  const fs::path next_report = dir_ / "next.json";
+  const RunResult r = run_feedplan(learn_args(log_) + " --report " + next_report.string() + " --json");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const json out = json_of(r.output);
+  ASSERT_TRUE(out.contains("model_after")) << r.output;
+  EXPECT_EQ(out["model_before"]["version"], 1);
+  EXPECT_EQ(out["model_after"]["version"], 2);
+  EXPECT_GT(out["samples"].get<int>(), 100);
+
+  // The store: version 2, learned, parent 1, active; version 1 kept.
+  const RunResult history = run_feedplan("db history " + kToolMaterial + " --db " + db_ + " --json");
+  ASSERT_EQ(history.exit_code, 0) << history.output;
+  const json h = json_of(history.output);
+  ASSERT_EQ(h["versions"].size(), 2u) << history.output;
+  EXPECT_EQ(h["versions"][0]["version"], 1);
+  EXPECT_EQ(h["versions"][0]["active"], false);
+  EXPECT_EQ(h["versions"][1]["version"], 2);
+  EXPECT_EQ(h["versions"][1]["source"], "learned");
+  EXPECT_EQ(h["versions"][1]["parent_version"], 1);
+  EXPECT_EQ(h["versions"][1]["active"], true);
+  EXPECT_EQ(h["versions"][1]["id"], out["model_after"]["id"]);
+  EXPECT_EQ(h["versions"][0]["id"], out["model_before"]["id"]);
+  ASSERT_EQ(h["learning"].size(), 1u) << history.output;
+  EXPECT_EQ(h["learning"][0]["part"], "c.json");
+  EXPECT_GT(h["learning"][0]["n_samples"].get<int>(), 100);
+  EXPECT_EQ(h["learning"][0]["n_samples"], out["samples"]);
+
+  const RunResult list = run_feedplan("db list --db " + db_ + " --json");
+  ASSERT_EQ(list.exit_code, 0) << list.output;
+  const json l = json_of(list.output);
+  int s50c_models = 0;
+  for (const auto& m : l["models"]) {
+    if (m["material"] != "S50C") continue;
+    ++s50c_models;
+    EXPECT_EQ(m["version"], 2);
+    EXPECT_EQ(m["source"], "learned");
+  }
+  EXPECT_EQ(s50c_models, 1) << list.output;
+
+  // The learning entry as exported: the model before and after by version.
+  const json exported = json::parse(content());
+  ASSERT_EQ(exported["learning_history"].size(), 1u);
+  const json& entry = exported["learning_history"][0];
+  EXPECT_EQ(entry["model_before"]["version"], 1);
+  EXPECT_EQ(entry["model_after"]["version"], 2);
+  EXPECT_EQ(entry["model_after"]["material"], "S50C");
+  EXPECT_GT(entry["n_samples"].get<int>(), 100);
+
+  // The program reads back; the report is a plan report naming the learned version.
+  const feedplan::geometry::Program program = feedplan::gcode::load_program(next_);
+  int feeds = 0;
+  for (const auto& block : program.blocks) {
+    if (block.feed_mm_per_min > 0.0) ++feeds;
+  }
+  EXPECT_GT(feeds, 10);
+  const std::string report_text = read_text(next_report);
+  EXPECT_NE(report_text.find("feedplan-plan"), std::string::npos);
+  const json report = json::parse(report_text);
+  EXPECT_EQ(report["model"]["version"], 2);
+  EXPECT_EQ(report["model"]["id"], out["model_after"]["id"]);
+}
+
+TEST_F(LearnCliTest, ALogOfAnotherProgramIsRefused) {
+  std::string text = read_text(kSamples + "/corner.yaml");
+  const std::string angle = "corner_angle_deg: 90";
+  ASSERT_NE(text.find(angle), std::string::npos);
+  text.replace(text.find(angle), angle.size(), "corner_angle_deg: 60");
+  const fs::path spec = write("corner60.yaml", text);
+  const fs::path other_log = dir_ / "corner60.csv";
+  plan_and_cut(spec.string(), dir_ / "c60.nc", dir_ / "c60.json", other_log);
+  expect_refused(learn_args(other_log), 2, {"corner60.csv", "not this program"});
+}
+
+TEST_F(LearnCliTest, PositionsInInchesAreRefused) {
+  CsvLog log = parse_csv_log(read_text(log_));
+  ASSERT_GT(log.rows.size(), 1000u);
+  const int x = log.column("x_mm");
+  const int y = log.column("y_mm");
+  const int z = log.column("z_mm");
+  for (auto& cells : log.rows) {
+    for (int c : {x, y, z}) {
+      if (!cells[c].empty()) cells[c] = fixed(std::stod(cells[c]) / 25.4, 6);
+    }
+  }
+  const fs::path inches = write("inches.csv", log.text());
+  expect_refused(learn_args(inches), 2, {"inches.csv", "units look wrong", "inches"});
+}
+
+// Landmarks of the virtual machine's log of the corner, found from the log itself.
+struct LogLandmarks {
+  std::size_t contact = 0;        //!< first row with |F_xy| above 10 % of its largest value
+  double contact_s = 0.0;         //!< its time, s
+  std::size_t program_start = 0;  //!< the highest row before contact: the machine at the program's first point
+  std::vector<double> force_n;    //!< |F_xy| per row, N
+  double max_force_n = 0.0;       //!< its largest value, N
+};
+
+LogLandmarks landmarks_of(const CsvLog& log) {
+  LogLandmarks m;
+  m.force_n.resize(log.rows.size());
+  for (std::size_t i = 0; i < log.rows.size(); ++i) {
+    m.force_n[i] = std::hypot(log.number(i, "fx_n"), log.number(i, "fy_n"));
+    m.max_force_n = std::max(m.max_force_n, m.force_n[i]);
+  }
+  while (m.contact < m.force_n.size() && m.force_n[m.contact] < 0.1 * m.max_force_n) ++m.contact;
+  EXPECT_LT(m.contact, m.force_n.size());
+  if (m.contact == m.force_n.size()) return m;
+  m.contact_s = log.number(m.contact, "t_s");
+  for (std::size_t i = 0; i < m.contact; ++i) {
+    if (log.number(i, "z_mm") > log.number(m.program_start, "z_mm")) m.program_start = i;
+  }
+  return m;
+}
+
+// The rows from `first` to 0.1 s (1.5 mm at the entry feed) before the tool touches the stock, each checked
+// to be in the air.
+std::vector<std::vector<std::string>> air_rows(const CsvLog& log, const LogLandmarks& m, std::size_t first) {
+  std::vector<std::vector<std::string>> air;
+  for (std::size_t i = first; i < log.rows.size() && log.number(i, "t_s") < m.contact_s - 0.1; ++i) {
+    EXPECT_LT(m.force_n[i], 0.05 * m.max_force_n) << "row " << i;
+    air.push_back(log.rows[i]);
+  }
+  return air;
+}
+
+// The log starts where the machine reaches the program's first point (acquisition started with the program):
+// see the disabled test below for one that starts at the machine's home position.
+TEST_F(LearnCliTest, ALogWithoutTheCutHasNothingToLearn) {
+  CsvLog log = parse_csv_log(read_text(log_));
+  const LogLandmarks m = landmarks_of(log);
+  ASSERT_GT(m.contact_s, 0.15) << "the log should start before the tool reaches the stock";
+  log.rows = air_rows(log, m, m.program_start);
+  ASSERT_GT(log.rows.size(), 100u);
+  const fs::path approach = write("approach.csv", log.text());
+  expect_refused(learn_args(approach), 1, {"nothing to learn", "no cut"});
+}
+
+TEST_F(LearnCliTest, ATruncatedLogIsLearnedFromAndSaysSo) {
+  CsvLog log = parse_csv_log(read_text(log_));
+  const LogLandmarks m = landmarks_of(log);
+  const std::size_t half = log.rows.size() / 2;
+  ASSERT_LT(m.program_start, half);
+  log.rows = std::vector<std::vector<std::string>>(log.rows.begin() + static_cast<long>(m.program_start),
+                                                   log.rows.begin() + static_cast<long>(half));
+  const fs::path first_half = write("half.csv", log.text());
+  const RunResult r = run_feedplan(learn_args(first_half) + " --json");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("truncated"), std::string::npos) << r.output;
+  const json out = json_of(r.output);
+  EXPECT_EQ(out["model_after"]["version"], 2);
+  EXPECT_GT(out["samples"].get<int>(), 100);
+  const json h = json_of(run_feedplan("db history " + kToolMaterial + " --db " + db_ + " --json").output);
+  ASSERT_EQ(h["versions"].size(), 2u);
+  EXPECT_EQ(h["versions"][1]["source"], "learned");
+  EXPECT_EQ(h["versions"][1]["parent_version"], 1);
+  ASSERT_EQ(h["learning"].size(), 1u);
+  EXPECT_EQ(h["learning"][0]["n_samples"], out["samples"]);
+  EXPECT_TRUE(fs::exists(next_));
+}
+
+// Known problem (learning/src/log_alignment.cpp, match_positions): the virtual machine starts at (0, 0, 0)
+// and its first rapid, G0 X-50 Y5 at Z0, ends on the plan's plunge line (X-50 Y5, Z5 → Z-10) at s ≈ 4.9 mm.
+// That first match is not "at the path's start" (≤ 2 mm), so every row before it, and the rise to Z5 that
+// progress can no longer go back to, counts as off the path: 2674 rows. The whole log passes (1.7 % of its
+// rows, 2 % allowed); its first half (3.5 %) or its approach alone is called "not this program" (exit 2)
+// instead of truncated (exit 0) or no cut (exit 1). Enable when the alignment treats the approach as the
+// machine before the program.
+TEST_F(LearnCliTest, TheApproachFromTheMachinesHomeIsNotOffThePath) {
+  CsvLog log = parse_csv_log(read_text(log_));
+  const LogLandmarks m = landmarks_of(log);
+  CsvLog approach = log;
+  approach.rows = air_rows(log, m, 0);
+  expect_refused(learn_args(write("approach.csv", approach.text())), 1, {"nothing to learn", "no cut"});
+  log.rows.resize(log.rows.size() / 2);
+  const RunResult r = run_feedplan(learn_args(write("half.csv", log.text())));
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("truncated"), std::string::npos) << r.output;
+}
+
+TEST_F(LearnCliTest, MissingOrNonNumericForceCellsNameTheLine) {
+  CsvLog log = parse_csv_log(read_text(log_));
+  ASSERT_GT(log.rows.size(), 2000u);
+  const std::size_t empty_row = log.rows.size() / 2;
+  const std::size_t nan_row = empty_row + 7;
+  log.rows[empty_row][log.column("fx_n")] = "";
+  log.rows[nan_row][log.column("fy_n")] = "nan";
+  const fs::path broken = write("broken.csv", log.text());
+  expect_refused(learn_args(broken), 2,
+                 {"broken.csv line " + std::to_string(log.line_of(empty_row)), "fx_n",
+                  "broken.csv line " + std::to_string(log.line_of(nan_row)), "fy_n"});
+}
+
+TEST_F(LearnCliTest, AMissingLogOrAMalformedPlanIsBadInput) {
+  const fs::path missing = dir_ / "no_such_log.csv";
+  expect_refused(learn_args(missing), 2, {missing.string()});
+
+  const std::string report = read_text(plan_);
+  // Not JSON at all: cut in the middle.
+  write("c.json", report.substr(0, report.size() / 2));
+  expect_refused(learn_args(log_), 2, {plan_.string(), "JSON"});
+  // A field of the wrong type.
+  std::string wrong = report;
+  const std::string key = "\"target_force_n\": ";
+  ASSERT_NE(wrong.find(key), std::string::npos) << report.substr(0, 2000);
+  wrong.insert(wrong.find(key) + key.size(), "\"lots\", \"was\": ");
+  write("c.json", wrong);
+  expect_refused(learn_args(log_), 2, {"target_force_n"});
+}
+
+TEST_F(LoopCliTest, LearnsTheMachineAndLeavesTheDatabaseAlone) {
+  const std::string before = content();
+  const RunResult r = run_feedplan("loop " + kSamples + "/corner.yaml --cycles 2 --db " + db_ +
+                                   " --machine-scale 1.5 --target-force 600 --json");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const json out = json_of(r.output);
+  ASSERT_EQ(out["cycles"].size(), 2u) << r.output;
+  const double first = out["cycles"][0]["steady_max_abs_error_percent"].get<double>();
+  const double second = out["cycles"][1]["steady_max_abs_error_percent"].get<double>();
+  // The machine cuts 1.5 × harder than the model says: the first cycle's steady peaks sit near +50 %.
+  EXPECT_GT(first, 30.0) << r.output;
+  EXPECT_LT(second, first) << r.output;
+  EXPECT_LT(second, 0.5 * first) << r.output;
+  EXPECT_EQ(content(), before);
+}
+
+TEST_F(LoopCliTest, BadFlagsNameTheFlag) {
+  const std::string loop = "loop " + kSamples + "/corner.yaml --db " + db_;
+  const RunResult zero = run_feedplan(loop + " --cycles 0");
+  EXPECT_EQ(zero.exit_code, 2) << zero.output;
+  EXPECT_NE(zero.output.find("--cycles"), std::string::npos) << zero.output;
+  const RunResult negative = run_feedplan(loop + " --machine-scale -1");
+  EXPECT_EQ(negative.exit_code, 2) << negative.output;
+  EXPECT_NE(negative.output.find("--machine-scale"), std::string::npos) << negative.output;
+}
+
+}  // namespace
