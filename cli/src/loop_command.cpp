@@ -87,9 +87,16 @@ int run_loop_command(const LoopOptions& o) {
   request.sigmas = o.sigmas;
   request.start_fit_covariance = chosen->record.fit.covariance;
   const bool terminal = ::isatty(STDERR_FILENO) != 0;
-  request.on_cycle_done = [&](int done) {
-    if (terminal) std::fprintf(stderr, "\rcycle %d/%d done", done, o.cycles);
+  const auto show_progress = [&](int done) {
+    if (!terminal) return;
+    constexpr int kWidth = 30;
+    const int filled = kWidth * done / o.cycles;
+    std::fprintf(stderr, "\r[%.*s%.*s] %d/%d cycles planned, cut on the virtual machine and learned", filled,
+                 "##############################", kWidth - filled, "..............................", done, o.cycles);
+    std::fflush(stderr);
   };
+  show_progress(0);
+  request.on_cycle_done = show_progress;
   const learning::LoopResult result = learning::run_learning_loop(request);
   if (terminal) std::fprintf(stderr, "\n");
 
