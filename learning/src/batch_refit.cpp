@@ -29,20 +29,6 @@ std::string rounded(double value) {
   return buffer;
 }
 
-//! Problems with one sample's numbers, fields named `prefix` + member.
-void check_sample(const LearningSample& s, const std::string& prefix, std::vector<InputProblem>& problems) {
-  if (!std::isfinite(s.chip_mm) || s.chip_mm < 0.0) {
-    problems.push_back({prefix + "chip_mm", "= " + text(s.chip_mm) + ": must be finite and ≥ 0"});
-  }
-  if (!std::isfinite(s.contact_length_mm) || s.contact_length_mm < 0.0) {
-    problems.push_back({prefix + "contact_length_mm", "= " + text(s.contact_length_mm) + ": must be finite and ≥ 0"});
-  }
-  if (!std::isfinite(s.force_n)) problems.push_back({prefix + "force_n", "= " + text(s.force_n) + ": must be finite"});
-  if (!std::isfinite(s.weight) || s.weight <= 0.0) {
-    problems.push_back({prefix + "weight", "= " + text(s.weight) + ": must be finite and > 0"});
-  }
-}
-
 std::string loss_text(const BatchRefitOptions& options) {
   switch (options.loss) {
     case FitOptions::kSquared: return "squared loss";
@@ -213,7 +199,7 @@ BatchRefitResult batch_refit(const model_db::ResponseSurfaceModel& prior, const 
   std::vector<InputProblem> problems = validate(options);
   for (InputProblem& p : model_db::validate(prior)) problems.push_back(std::move(p));
   for (std::size_t i = 0; i < samples.size(); ++i) {
-    check_sample(samples[i], "samples[" + std::to_string(i) + "].", problems);
+    validate(samples[i], "samples[" + std::to_string(i) + "].", problems);
   }
   if (!problems.empty()) throw InputError(std::move(problems));
 

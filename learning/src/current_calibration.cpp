@@ -1,5 +1,7 @@
 #include "feedplan/learning/current_calibration.hpp"
 
+#include "feedplan/learning/logged_spindle_speed.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -20,23 +22,6 @@ constexpr double kMinForceSpreadN = 1.0;
 // A window needs at least this share of the rows it should hold.
 constexpr double kMinRowShare = 0.5;
 
-// Spindle speed from the log's column (median) or metadata; 0 when unknown.
-double log_spindle_rpm(const sim::ForceLog& log) {
-  std::vector<double> rpm;
-  for (const auto& row : log.rows) {
-    if (std::isfinite(row.spindle_rpm) && row.spindle_rpm > 0.0) rpm.push_back(row.spindle_rpm);
-  }
-  if (!rpm.empty()) {
-    std::nth_element(rpm.begin(), rpm.begin() + static_cast<long>(rpm.size() / 2), rpm.end());
-    return rpm[rpm.size() / 2];
-  }
-  try {
-    const double value = std::stod(log.metadata_value("spindle_rpm"));
-    if (std::isfinite(value) && value > 0.0) return value;
-  } catch (const std::exception&) {
-  }
-  return 0.0;
-}
 
 struct AxisData {
   double sim::ForceLogRow::*force;
@@ -147,7 +132,7 @@ CurrentCalibration fit_current_calibration(const sim::ForceLog& log) {
     problems.push_back({"log", "has no servo currents (ix_a, iy_a): a calibration needs forces and currents"});
   }
   if (!problems.empty()) throw InputError(std::move(problems));
-  const double rpm = log_spindle_rpm(log);
+  const double rpm = logged_spindle_rpm(log);
   double window_s = kCalibrationWindowS;
   if (rpm > 0.0) {
     const double period_s = 60.0 / rpm;

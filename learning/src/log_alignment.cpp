@@ -1,5 +1,7 @@
 #include "feedplan/learning/log_alignment.hpp"
 
+#include "feedplan/learning/logged_spindle_speed.hpp"
+
 #include <algorithm>
 #include <cassert>
 #include <cmath>
@@ -331,19 +333,7 @@ CorrelationPeak correlate(const std::vector<double>& x, const std::vector<double
 
 // Spindle speed for smoothing over one revolution: the log's column, its metadata, else the program's.
 double spindle_rpm_for(const sim::ForceLog& log, const planner::PlanResult& plan) {
-  std::vector<double> rpm;
-  for (const auto& row : log.rows) {
-    if (std::isfinite(row.spindle_rpm) && row.spindle_rpm > 0.0) rpm.push_back(row.spindle_rpm);
-  }
-  if (!rpm.empty()) {
-    std::nth_element(rpm.begin(), rpm.begin() + static_cast<long>(rpm.size() / 2), rpm.end());
-    return rpm[rpm.size() / 2];
-  }
-  try {
-    const double value = std::stod(log.metadata_value("spindle_rpm"));
-    if (std::isfinite(value) && value > 0.0) return value;
-  } catch (const std::exception&) {
-  }
+  if (const double logged = logged_spindle_rpm(log); logged > 0.0) return logged;
   double most = 0.0;
   for (const auto& block : plan.program.blocks) most = std::max(most, block.spindle_rpm);
   return most;

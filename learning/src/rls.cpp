@@ -17,20 +17,6 @@ using Vector6 = Eigen::Matrix<double, 6, 1>;
 
 std::string text(double value) { return shortest_number_text(value); }
 
-//! Problems with one sample's numbers, fields named `prefix` + member.
-void check_sample(const LearningSample& s, const std::string& prefix, std::vector<InputProblem>& problems) {
-  if (!std::isfinite(s.chip_mm) || s.chip_mm < 0.0) {
-    problems.push_back({prefix + "chip_mm", "= " + text(s.chip_mm) + ": must be finite and ≥ 0"});
-  }
-  if (!std::isfinite(s.contact_length_mm) || s.contact_length_mm < 0.0) {
-    problems.push_back({prefix + "contact_length_mm", "= " + text(s.contact_length_mm) + ": must be finite and ≥ 0"});
-  }
-  if (!std::isfinite(s.force_n)) problems.push_back({prefix + "force_n", "= " + text(s.force_n) + ": must be finite"});
-  if (!std::isfinite(s.weight) || s.weight <= 0.0) {
-    problems.push_back({prefix + "weight", "= " + text(s.weight) + ": must be finite and > 0"});
-  }
-}
-
 void throw_if_any(std::vector<InputProblem> problems) {
   if (!problems.empty()) throw InputError(std::move(problems));
 }
@@ -106,7 +92,7 @@ RecursiveLeastSquares::RecursiveLeastSquares(const model_db::ResponseSurfaceMode
 
 RlsStep RecursiveLeastSquares::add(const LearningSample& sample) {
   std::vector<InputProblem> problems;
-  check_sample(sample, "sample.", problems);
+  validate(sample, "sample.", problems);
   throw_if_any(std::move(problems));
 
   extend_range(model_.range, sample);
@@ -148,7 +134,7 @@ RlsResult rls_update(const model_db::ResponseSurfaceModel& start, const std::vec
   std::vector<InputProblem> problems = validate(options);
   for (InputProblem& p : model_db::validate(start)) problems.push_back(std::move(p));
   for (std::size_t i = 0; i < samples.size(); ++i) {
-    check_sample(samples[i], "samples[" + std::to_string(i) + "].", problems);
+    validate(samples[i], "samples[" + std::to_string(i) + "].", problems);
   }
   throw_if_any(std::move(problems));
 

@@ -2,6 +2,11 @@
 // One measured point for learning: a spindle revolution's peak XY force paired with the force model's
 // inputs at the place and feed where it was measured (DESIGN.md §5.4).
 
+#include <string>
+#include <vector>
+
+#include "feedplan/core/input_error.hpp"
+
 namespace feedplan::learning {
 
 //! A per-revolution measurement with the model inputs it belongs to.
@@ -12,5 +17,10 @@ struct LearningSample {
   double weight = 1.0;             //!< relative precision (> 0)
   double s_mm = 0.0;               //!< where on the planned path (middle of the revolution), mm
 };
+
+//! Appends the problems with one sample's numbers to `problems`, fields named `prefix` + member
+//! ("samples[3].force_n = nan: must be finite"): t_m and L finite and ≥ 0, the force finite, the weight
+//! finite and > 0.
+void validate(const LearningSample& sample, const std::string& prefix, std::vector<InputProblem>& problems);
 
 }  // namespace feedplan::learning

@@ -1,0 +1,23 @@
+#include "feedplan/learning/learning_sample.hpp"
+
+#include <cmath>
+
+#include "feedplan/core/number_text.hpp"
+
+namespace feedplan::learning {
+
+void validate(const LearningSample& s, const std::string& prefix, std::vector<InputProblem>& problems) {
+  const auto text = [](double value) { return shortest_number_text(value); };
+  if (!std::isfinite(s.chip_mm) || s.chip_mm < 0.0) {
+    problems.push_back({prefix + "chip_mm", "= " + text(s.chip_mm) + ": must be finite and ≥ 0"});
+  }
+  if (!std::isfinite(s.contact_length_mm) || s.contact_length_mm < 0.0) {
+    problems.push_back({prefix + "contact_length_mm", "= " + text(s.contact_length_mm) + ": must be finite and ≥ 0"});
+  }
+  if (!std::isfinite(s.force_n)) problems.push_back({prefix + "force_n", "= " + text(s.force_n) + ": must be finite"});
+  if (!std::isfinite(s.weight) || s.weight <= 0.0) {
+    problems.push_back({prefix + "weight", "= " + text(s.weight) + ": must be finite and > 0"});
+  }
+}
+
+}  // namespace feedplan::learning
