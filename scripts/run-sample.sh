@@ -14,6 +14,8 @@ if [[ ! -s "$root/build/sample.db" ]]; then
   echo "building the sample model database (virtual cutting tests; a few minutes, once)"
   bash "$root/scripts/build-sample-db.sh" "$root/build/sample.db"
 fi
+# A database built by an older feedplan is migrated in place (nothing in it is lost).
+"$feedplan" db init --db "$root/build/sample.db" > /dev/null
 mkdir -p "$root/out"
 "$feedplan" plan "$root/samples/trochoid.yaml" --db "$root/build/sample.db" -o "$root/out/trochoid.nc" \
     --report "$root/out/trochoid_plan.json" --csv "$root/out/trochoid_plan.csv" --plot "$root/out/trochoid_plan.svg" \

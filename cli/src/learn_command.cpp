@@ -101,8 +101,13 @@ int run_learn_command(const LearnOptions& o) {
   // 3. Learn.
   std::optional<std::array<double, 36>> prior_covariance;
   if (before->fit.covariance[0] > 0.0) prior_covariance = before->fit.covariance;
+  // Every earlier learning step of this tool and material (stored with its samples): the refit spans them all.
+  std::vector<learning::LearningSample> earlier;
+  for (const model_db::LearnedSample& stored : store.learned_samples(before->tool_name, before->material_name)) {
+    earlier.push_back({stored.chip_mm, stored.contact_length_mm, stored.force_n, stored.weight, stored.s_mm});
+  }
   const learning::ModelUpdate update =
-      learning::update_model(plan, report.settings, spec.tool.flutes, logs, {}, prior_covariance);
+      learning::update_model(plan, report.settings, spec.tool.flutes, logs, earlier, prior_covariance);
   std::vector<InputProblem> problems;
   for (std::size_t i = 0; i < update.logs.size(); ++i) {
     const auto status = update.logs[i].alignment.status;
@@ -150,7 +155,11 @@ int run_learn_command(const LearnOptions& o) {
   entry.error_before_n = update.before.rms_n;
   entry.error_after_n = update.after_batch.rms_n;
   entry.note = learned.note;
-  const auto [stored, stored_entry] = store.add_learned_model(learned, entry);
+  std::vector<model_db::LearnedSample> learned_samples;
+  for (const learning::LearningSample& sample : update.samples) {
+    learned_samples.push_back({sample.chip_mm, sample.contact_length_mm, sample.force_n, sample.weight, sample.s_mm});
+  }
+  const auto [stored, stored_entry] = store.add_learned_model(learned, entry, learned_samples);
   if (auto error = write_file_atomically(o.program_path, text); !error.empty()) {
     std::cerr << "feedplan: failed: " << error << "\n";
     return 1;

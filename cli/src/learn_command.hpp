@@ -1,8 +1,9 @@
 #pragma once
 // `feedplan learn PLAN.json LOG.csv [LOG2.csv …] -o NEXT.nc [--db PATH] [--report NEXT.json] [--plot NEXT.svg]`:
 // the force logs of parts cut with a plan refit its model (RLS and a robust batch refit with a prior),
-// the result is stored as a new model version with lineage and a learning entry (one transaction), and
-// the cycle is re-planned with it.
+// the result is stored as a new model version with lineage, a learning entry and the per-revolution
+// samples (one transaction), and the cycle is re-planned with it. The batch refit spans these logs and
+// every sample stored by earlier learning steps of the same tool and material.
 
 #include <CLI/CLI.hpp>
 

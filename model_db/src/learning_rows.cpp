@@ -1,5 +1,7 @@
 #include "learning_rows.hpp"
 
+#include <cstdint>
+
 namespace feedplan::model_db::detail {
 
 RowId insert_learning_entry(Connection& db, const LearningEntry& entry, const std::string& created_at) {
@@ -43,6 +45,33 @@ std::vector<LearningEntry> select_learning_entries(const Connection& db, RowId t
     entries.push_back(entry);
   }
   return entries;
+}
+
+void insert_learned_samples(Connection& db, RowId learning_entry_id, const std::vector<LearnedSample>& samples) {
+  Statement statement(db,
+                      "INSERT INTO learning_samples (learning_entry_id, sample_index, chip_mm, contact_length_mm, "
+                      "force_n, weight, s_mm) VALUES (?, ?, ?, ?, ?, ?, ?)");
+  for (std::size_t i = 0; i < samples.size(); ++i) {
+    const LearnedSample& sample = samples[i];
+    statement.bind_all(learning_entry_id, static_cast<std::int64_t>(i), sample.chip_mm, sample.contact_length_mm,
+                       sample.force_n, sample.weight, sample.s_mm);
+    statement.run();
+    statement.reset();
+  }
+}
+
+std::vector<LearnedSample> select_learned_samples(const Connection& db, RowId tool_id, RowId material_id) {
+  Statement statement(db,
+                      "SELECT s.chip_mm, s.contact_length_mm, s.force_n, s.weight, s.s_mm FROM learning_samples s "
+                      "JOIN learning_history h ON h.id = s.learning_entry_id JOIN models a ON a.id = h.model_id_after "
+                      "WHERE a.tool_id = ?1 AND a.material_id = ?2 ORDER BY h.created_at, h.id, s.sample_index");
+  statement.bind_all(tool_id, material_id);
+  std::vector<LearnedSample> samples;
+  while (statement.step()) {
+    samples.push_back({statement.column_double(0), statement.column_double(1), statement.column_double(2),
+                       statement.column_double(3), statement.column_double(4)});
+  }
+  return samples;
 }
 
 }  // namespace feedplan::model_db::detail

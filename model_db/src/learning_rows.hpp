@@ -17,4 +17,8 @@ RowId insert_learning_entry(Connection& db, const LearningEntry& entry, const st
 //! ordered by created_at and id.
 std::vector<LearningEntry> select_learning_entries(const Connection& db, RowId tool_id, RowId material_id);
 
+void insert_learned_samples(Connection& db, RowId learning_entry_id, const std::vector<LearnedSample>& samples);
+
+std::vector<LearnedSample> select_learned_samples(const Connection& db, RowId tool_id, RowId material_id);
+
 }  // namespace feedplan::model_db::detail

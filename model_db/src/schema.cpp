@@ -128,6 +128,25 @@ CREATE TRIGGER learning_history_append_only_delete BEFORE DELETE ON learning_his
   BEGIN SELECT RAISE(ABORT, 'learning_history is append-only'); END;
 )sql";
 
+// Version 2: the per-revolution samples each learning step learned from, so that a later batch refit
+// spans every logged cycle of the tool and material.
+constexpr const char* kVersion2 = R"sql(
+CREATE TABLE learning_samples (
+  learning_entry_id INTEGER NOT NULL REFERENCES learning_history(id),
+  sample_index INTEGER NOT NULL CHECK (sample_index >= 0),
+  chip_mm REAL NOT NULL,
+  contact_length_mm REAL NOT NULL,
+  force_n REAL NOT NULL,
+  weight REAL NOT NULL CHECK (weight > 0),
+  s_mm REAL NOT NULL,
+  PRIMARY KEY (learning_entry_id, sample_index)
+) WITHOUT ROWID;
+CREATE TRIGGER learning_samples_append_only_update BEFORE UPDATE ON learning_samples
+  BEGIN SELECT RAISE(ABORT, 'learning_samples is append-only'); END;
+CREATE TRIGGER learning_samples_append_only_delete BEFORE DELETE ON learning_samples
+  BEGIN SELECT RAISE(ABORT, 'learning_samples is append-only'); END;
+)sql";
+
 int pragma_int(Connection& connection, const char* pragma) {
   Statement statement(connection, std::string("PRAGMA ") + pragma);
   return statement.step() ? statement.column_int(0) : 0;
@@ -162,12 +181,12 @@ void run_quick_check(Connection& connection) {
 }  // namespace
 
 const std::vector<std::string>& schema_migrations() {
-  static const std::vector<std::string> migrations{kVersion1};
+  static const std::vector<std::string> migrations{kVersion1, kVersion2};
   return migrations;
 }
 
 int prepare_schema(Connection& connection, OpenMode mode, bool quick_check) {
-  static_assert(kStoreSchemaVersion == 1, "add the migration step to schema_migrations()");
+  static_assert(kStoreSchemaVersion == 2, "add the migration step to schema_migrations()");
   const auto& migrations = schema_migrations();
   // Reading the header is the first access to the file: a file that is not a database fails here.
   const int application_id = pragma_int(connection, "application_id");
@@ -190,7 +209,8 @@ int prepare_schema(Connection& connection, OpenMode mode, bool quick_check) {
     if (version < kStoreSchemaVersion) {
       throw InputError(connection.path(), "has model database schema version " + std::to_string(version) +
                                               " and needs migrating to " + std::to_string(kStoreSchemaVersion) +
-                                              ": open it once for writing");
+                                              ": run `feedplan db init --db " + connection.path() +
+                                              "` once (it migrates the file and keeps everything in it)");
     }
     return version;
   }

@@ -5,6 +5,7 @@
 #include <sqlite3.h>
 
 #include <algorithm>
+#include <cmath>
 #include <system_error>
 
 #include "catalog_rows.hpp"
@@ -165,7 +166,21 @@ ModelRecord Store::add_model(const ModelRecord& model) {
   return *detail::select_model_by_id(db, id);
 }
 
-std::pair<ModelRecord, LearningEntry> Store::add_learned_model(const ModelRecord& model, const LearningEntry& entry) {
+std::pair<ModelRecord, LearningEntry> Store::add_learned_model(const ModelRecord& model, const LearningEntry& entry,
+                                                               const std::vector<LearnedSample>& samples) {
+  std::vector<InputProblem> problems;
+  for (std::size_t i = 0; i < samples.size(); ++i) {
+    const LearnedSample& sample = samples[i];
+    const std::string field = "learning_samples[" + std::to_string(i) + "].";
+    for (const auto& [name, value] : {std::pair{"chip_mm", sample.chip_mm}, std::pair{"contact_length_mm", sample.contact_length_mm},
+                                      std::pair{"force_n", sample.force_n}, std::pair{"s_mm", sample.s_mm}}) {
+      if (!std::isfinite(value)) problems.push_back({field + name, "= " + std::to_string(value) + ": must be finite"});
+    }
+    if (!(std::isfinite(sample.weight) && sample.weight > 0.0)) {
+      problems.push_back({field + "weight", "= " + std::to_string(sample.weight) + ": must be finite and > 0"});
+    }
+  }
+  throw_if_any(std::move(problems));
   auto& db = impl_->db;
   WriteTransaction transaction(db);
   const auto after_step = [this](const char* step) { impl_->after_step(step); };
@@ -173,6 +188,8 @@ std::pair<ModelRecord, LearningEntry> Store::add_learned_model(const ModelRecord
   LearningEntry linked = entry;
   linked.model_id_after = id;
   LearningEntry stored = insert_learning(db, linked, after_step);
+  detail::insert_learned_samples(db, stored.id, samples);
+  after_step("learning_samples.insert");
   transaction.commit();
   return {*detail::select_model_by_id(db, id), stored};
 }
@@ -254,6 +271,11 @@ LearningEntry Store::add_learning_entry(const LearningEntry& entry) {
   LearningEntry stored = insert_learning(db, entry, [this](const char* step) { impl_->after_step(step); });
   transaction.commit();
   return stored;
+}
+
+std::vector<LearnedSample> Store::learned_samples(std::string_view tool_name, std::string_view material_name) const {
+  const auto ids = detail::pair_ids_or_throw(impl_->db, tool_name, material_name, "");
+  return detail::select_learned_samples(impl_->db, ids.tool_id, ids.material_id);
 }
 
 std::vector<LearningEntry> Store::learning_history(std::string_view tool_name, std::string_view material_name) const {

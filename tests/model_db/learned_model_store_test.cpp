@@ -6,6 +6,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include <limits>
 #include <optional>
 #include <stdexcept>
@@ -197,6 +199,53 @@ TEST_F(LearnedModelStore, AFailureAfterBothRowsWereWrittenRollsBothBack) {
   EXPECT_GE(steps, 2);  // the model's steps ran before the entry's
   store_->set_write_hook({});
   expect_unchanged();
+}
+
+}  // namespace
+}  // namespace feedplan::model_db
+
+namespace feedplan::model_db {
+namespace {
+
+TEST(LearnedSamples, StoredWithTheirStepAndReadBackForThePair) {
+  fixtures::ScratchDir dir;
+  const auto path = dir / "samples.db";
+  {
+    Store store = Store::open(path, OpenMode::kCreate);
+    store.add_tool(fixtures::tool("SC EM D10 Z4", 10, 4, 30));
+    store.add_material(fixtures::material("S50C", IsoGroup::kP, 200));
+    const ModelRecord base = store.add_model(fixtures::model("SC EM D10 Z4", "S50C", 1.0));
+    LearningEntry entry;
+    entry.model_id_before = base.id;
+    entry.part_name = "corner";
+    entry.n_samples = 2;
+    ModelRecord learned = base;
+    learned.source = ModelSource::kLearned;
+    store.add_learned_model(learned, entry, {{0.02, 4.0, 350.0, 1.0, 25.0}, {0.03, 4.2, 380.0, 2.0, 26.0}});
+    entry.model_id_before = store.active_model("SC EM D10 Z4", "S50C")->id;
+    store.add_learned_model(learned, entry, {{0.04, 4.4, 400.0, 1.0, 27.0}});
+    // A bad sample stores nothing.
+    EXPECT_THROW(store.add_learned_model(learned, entry, {{0.04, std::nan(""), 400.0, 1.0, 27.0}}), InputError);
+    EXPECT_EQ(store.models_for("SC EM D10 Z4", "S50C").size(), 3u);
+  }
+  const Store store = Store::open(path, OpenMode::kReadOnly);
+  const std::vector<LearnedSample> samples = store.learned_samples("SC EM D10 Z4", "S50C");
+  ASSERT_EQ(samples.size(), 3u);
+  EXPECT_DOUBLE_EQ(samples[0].force_n, 350.0);
+  EXPECT_DOUBLE_EQ(samples[1].weight, 2.0);
+  EXPECT_DOUBLE_EQ(samples[2].contact_length_mm, 4.4);
+}
+
+TEST(LearnedSamples, AVersionOneDatabaseIsMigrated) {
+  fixtures::ScratchDir dir;
+  const auto path = dir / "v1.db";
+  Store::open(path, OpenMode::kCreate);
+  // What a version-1 file is: no learning_samples table, user_version 1.
+  fixtures::raw_sql(path, "DROP TABLE learning_samples");
+  fixtures::raw_sql(path, "PRAGMA user_version = 1");
+  EXPECT_THROW(Store::open(path, OpenMode::kReadOnly), InputError);  // reading never migrates
+  EXPECT_EQ(Store::open(path, OpenMode::kExisting).schema_version(), 2);
+  EXPECT_EQ(fixtures::raw_sql(path, "SELECT count(*) FROM sqlite_schema WHERE name = 'learning_samples'"), "1");
 }
 
 }  // namespace

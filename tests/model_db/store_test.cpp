@@ -33,18 +33,18 @@ TEST(Store, CreatesTheSchemaWithItsVersionInWalMode) {
   const auto path = dir / "models.db";
   {
     Store store = Store::open(path, OpenMode::kCreate);
-    EXPECT_EQ(store.schema_version(), 1);
+    EXPECT_EQ(store.schema_version(), kStoreSchemaVersion);
     EXPECT_EQ(store.path(), path);
     const auto report = store.integrity_check();
     EXPECT_TRUE(report.ok);
     EXPECT_EQ(report.messages, std::vector<std::string>{"ok"});
   }
-  EXPECT_EQ(fixtures::raw_sql(path, "PRAGMA user_version"), "1");
+  EXPECT_EQ(fixtures::raw_sql(path, "PRAGMA user_version"), std::to_string(kStoreSchemaVersion));
   EXPECT_EQ(fixtures::raw_sql(path, "PRAGMA application_id"), std::to_string(0x46504442));
   EXPECT_EQ(fixtures::raw_sql(path, "PRAGMA journal_mode"), "wal");
   EXPECT_EQ(fixtures::raw_sql(path, "SELECT group_concat(name, ',') FROM (SELECT name FROM sqlite_schema WHERE "
                                     "type = 'table' ORDER BY name)"),
-            "cutting_test_peaks,cutting_tests,learning_history,materials,model_activations,models,tools");
+            "cutting_test_peaks,cutting_tests,learning_history,learning_samples,materials,model_activations,models,tools");
 }
 
 TEST(Store, ReopensAnExistingFileAndKeepsItsContent) {
@@ -521,7 +521,7 @@ TEST(StoreOpen, EmptyFileIsNotADatabaseUnlessCreating) {
   std::ofstream(path).close();
   EXPECT_EQ(input_error_of([&] { Store::open(path, OpenMode::kExisting); }),
             path.string() + " is empty, not a model database (create one first: feedplan db init)");
-  EXPECT_EQ(Store::open(path, OpenMode::kCreate).schema_version(), 1);
+  EXPECT_EQ(Store::open(path, OpenMode::kCreate).schema_version(), kStoreSchemaVersion);
 }
 
 TEST(StoreOpen, OtherSqliteDatabaseIsAnInputError) {
@@ -544,7 +544,7 @@ TEST(StoreOpen, NewerSchemaVersionAsksToUpgradeFeedplanAndChangesNothing) {
   fixtures::raw_sql(path, "PRAGMA user_version = 7");
   const std::string before = fixtures::file_bytes(path);
   const std::string expected =
-      path.string() + " has model database schema version 7, newer than this feedplan knows (1): upgrade feedplan";
+      path.string() + " has model database schema version 7, newer than this feedplan knows (2): upgrade feedplan";
   EXPECT_EQ(input_error_of([&] { Store::open(path, OpenMode::kExisting); }), expected);
   EXPECT_EQ(input_error_of([&] { Store::open(path, OpenMode::kReadOnly); }), expected);
   EXPECT_EQ(fixtures::file_bytes(path), before);

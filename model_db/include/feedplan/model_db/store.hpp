@@ -35,7 +35,7 @@
 namespace feedplan::model_db {
 
 //! The schema version this code writes and reads (PRAGMA user_version).
-inline constexpr int kStoreSchemaVersion = 1;
+inline constexpr int kStoreSchemaVersion = 2;
 
 //! How Store::open treats the file.
 enum class OpenMode {
@@ -116,10 +116,17 @@ class Store {
   //! unknown tool; known: …") and every validate() problem. Returns the stored version.
   ModelRecord add_model(const ModelRecord& model);
 
-  //! A learned version and the learning entry that explains it, in one transaction: add_model(model), then
-  //! add_learning_entry(entry) with model_id_after = the new version's id. Either both are stored or
-  //! neither (the database is unchanged on any error). Throws as those two do.
-  std::pair<ModelRecord, LearningEntry> add_learned_model(const ModelRecord& model, const LearningEntry& entry);
+  //! A learned version, the learning entry that explains it and the per-revolution samples it was learned
+  //! from, in one transaction: add_model(model), then add_learning_entry(entry) with model_id_after = the
+  //! new version's id, then the samples. All are stored or none (the database is unchanged on any error).
+  //! Throws as those two do, and InputError naming "learning_samples[i].<field>" for a sample with a
+  //! non-finite number or a weight ≤ 0.
+  std::pair<ModelRecord, LearningEntry> add_learned_model(const ModelRecord& model, const LearningEntry& entry,
+                                                          const std::vector<LearnedSample>& samples = {});
+
+  //! Every stored learning sample whose learning step produced a version of the pair's model, oldest
+  //! first. Throws InputError for an unknown tool or material.
+  std::vector<LearnedSample> learned_samples(std::string_view tool_name, std::string_view material_name) const;
 
   //! Every version of the model of `tool_name` in `material_name`, oldest first (empty if none).
   //! Throws InputError for an unknown tool or material.

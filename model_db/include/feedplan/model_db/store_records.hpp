@@ -117,6 +117,16 @@ struct LearningEntry {
   std::string note;                     //!< free text
 };
 
+//! One per-revolution sample a learning step learned from (the model's inputs where and at the feed it
+//! was measured, and the measured peak), stored with its learning entry.
+struct LearnedSample {
+  double chip_mm = 0.0;            //!< t_m, mm
+  double contact_length_mm = 0.0;  //!< L, mm
+  double force_n = 0.0;            //!< measured peak XY force, on the model's axial-depth scale, N
+  double weight = 1.0;             //!< relative precision (> 0)
+  double s_mm = 0.0;               //!< where on the planned path, mm
+};
+
 //! Why a model version became the active one.
 enum class ActivationReason {
   kAdded,     //!< a new version was added
