@@ -10,6 +10,8 @@
 #include "data_path.hpp"
 #include "database_path.hpp"
 #include "model_choice.hpp"
+#include "output_path.hpp"
+#include "feedplan/core/atomic_file.hpp"
 #include "feedplan/core/input_error.hpp"
 #include "feedplan/core/number_text.hpp"
 #include "feedplan/cycles/cycle.hpp"
@@ -36,7 +38,29 @@ void add_loop_command(CLI::App& app, LoopOptions& options) {
   cmd->add_option("--model-id", options.model_id, "Start from this model instead of the closest");
   cmd->add_option("--materials", options.materials_path, "Materials file of the virtual machine (default: the bundled one)");
   cmd->add_flag("--json", options.json, "Print the table as JSON");
+  cmd->add_option("--revolutions", options.revolutions_path,
+                  "Also write every cycle's simulated revolutions (s span, place, peak, planned force, error) as CSV");
 }
+
+namespace {
+
+// One row per simulated revolution of every cycle: where the error is, not only how large.
+std::string revolutions_csv(const learning::LoopResult& result, double target_force_n) {
+  std::string text = "cycle,s_start_mm,s_end_mm,x_mm,y_mm,peak_n,planned_force_n,target_n,error_percent,in_cut,held,steady\n";
+  for (const auto& c : result.cycles) {
+    for (const auto& r : c.comparison.revolutions) {
+      text += std::to_string(c.cycle) + "," + shortest_number_text(r.revolution.s_start_mm) + "," +
+              shortest_number_text(r.revolution.s_end_mm) + "," + shortest_number_text(r.position.x_mm) + "," +
+              shortest_number_text(r.position.y_mm) + "," + shortest_number_text(r.revolution.peak_n) + "," +
+              shortest_number_text(r.planned_force_n) + "," + shortest_number_text(target_force_n) + "," +
+              shortest_number_text(r.error_percent) + "," + (r.in_cut ? "1" : "0") + "," + (r.held ? "1" : "0") + "," +
+              (r.steady ? "1" : "0") + "\n";
+    }
+  }
+  return text;
+}
+
+}  // namespace
 
 int run_loop_command(const LoopOptions& o) {
   const cycles::CycleSpec spec = cycles::load_cycle_spec(o.spec_path);
@@ -57,6 +81,7 @@ int run_loop_command(const LoopOptions& o) {
                         "= " + shortest_number_text(target_force_n) + ": a target force > 0 N is required"});
   }
   if (!(spec.spindle_rpm > 0.0)) problems.push_back({"spindle_rpm", "is required (rev/min > 0)"});
+  check_output_path("--revolutions", o.revolutions_path, problems);
   if (!problems.empty()) throw InputError(std::move(problems));
 
   const model_db::Store store = model_db::Store::open(database_path(o.db_path), model_db::OpenMode::kReadOnly);
@@ -99,6 +124,12 @@ int run_loop_command(const LoopOptions& o) {
   request.on_cycle_done = show_progress;
   const learning::LoopResult result = learning::run_learning_loop(request);
   if (terminal) std::fprintf(stderr, "\n");
+  if (!o.revolutions_path.empty()) {
+    if (const std::string error = write_file_atomically(o.revolutions_path, revolutions_csv(result, target_force_n));
+        !error.empty()) {
+      throw InputError("--revolutions", "= '" + o.revolutions_path + "': " + error);
+    }
+  }
 
   if (o.json) {
     nlohmann::json out;

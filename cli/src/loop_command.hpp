@@ -22,6 +22,7 @@ struct LoopOptions {
   std::int64_t model_id = 0;        //!< --model-id
   std::string materials_path;       //!< --materials
   bool json = false;                //!< --json
+  std::string revolutions_path;     //!< --revolutions: per-revolution CSV of every cycle
 };
 
 //! Registers the subcommand.

@@ -13,6 +13,7 @@
 #include "data_path.hpp"
 #include "database_path.hpp"
 #include "model_choice.hpp"
+#include "output_path.hpp"
 #include "plan_check.hpp"
 #include "feedplan/core/atomic_file.hpp"
 #include "feedplan/core/input_error.hpp"
@@ -33,19 +34,6 @@ namespace fs = std::filesystem;
 namespace mdb = model_db;
 
 constexpr int kExitFailed = 1;
-
-// An output path must name a file in an existing directory; checked before anything is written.
-void check_output(const std::string& flag, const std::string& path, std::vector<InputProblem>& problems) {
-  if (path.empty()) return;
-  const fs::path p(path);
-  const fs::path directory = p.has_parent_path() ? p.parent_path() : fs::path(".");
-  std::error_code ec;
-  if (!fs::is_directory(directory, ec)) {
-    problems.push_back({flag, "= '" + path + "': directory '" + directory.string() + "' does not exist"});
-  } else if (fs::is_directory(p, ec)) {
-    problems.push_back({flag, "= '" + path + "': is a directory, expected a file name"});
-  }
-}
 
 }  // namespace
 
@@ -126,10 +114,10 @@ int run_plan_command(const PlanCommandOptions& o) {
                                                shortest_number_text(spec.machine.min_feed_mm_per_min) + ", " +
                                                shortest_number_text(spec.machine.max_feed_mm_per_min) + "] mm/min"});
   }
-  check_output("-o", o.program_path, problems);
-  check_output("--report", o.report_path, problems);
-  check_output("--csv", o.csv_path, problems);
-  check_output("--plot", o.plot_path, problems);
+  check_output_path("-o", o.program_path, problems);
+  check_output_path("--report", o.report_path, problems);
+  check_output_path("--csv", o.csv_path, problems);
+  check_output_path("--plot", o.plot_path, problems);
   if (!problems.empty()) throw InputError(std::move(problems));
 
   // 2. The model.

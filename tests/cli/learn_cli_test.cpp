@@ -394,8 +394,9 @@ TEST_F(LearnCliTest, AMissingLogOrAMalformedPlanIsBadInput) {
 
 TEST_F(LoopCliTest, LearnsTheMachineAndLeavesTheDatabaseAlone) {
   const std::string before = content();
+  const fs::path revolutions = dir_ / "revolutions.csv";
   const RunResult r = run_feedplan("loop " + kSamples + "/corner.yaml --cycles 2 --db " + db_ +
-                                   " --machine-scale 1.5 --target-force 600 --json");
+                                   " --machine-scale 1.5 --target-force 600 --json --revolutions " + revolutions.string());
   ASSERT_EQ(r.exit_code, 0) << r.output;
   const json out = json_of(r.output);
   ASSERT_EQ(out["cycles"].size(), 2u) << r.output;
@@ -406,6 +407,32 @@ TEST_F(LoopCliTest, LearnsTheMachineAndLeavesTheDatabaseAlone) {
   EXPECT_LT(second, first) << r.output;
   EXPECT_LT(second, 0.5 * first) << r.output;
   EXPECT_EQ(content(), before);
+
+  // The per-revolution CSV holds the revolutions the table summarises: per cycle, the largest |error|
+  // of its held rows is the table's, and each error is (peak − target) / target.
+  std::istringstream csv(read_text(revolutions));
+  std::string line;
+  std::getline(csv, line);
+  EXPECT_EQ(line, "cycle,s_start_mm,s_end_mm,x_mm,y_mm,peak_n,planned_force_n,target_n,error_percent,in_cut,held,steady");
+  std::vector<double> held_max(2, 0.0);
+  std::vector<int> held(2, 0);
+  while (std::getline(csv, line)) {
+    std::vector<double> v;
+    std::istringstream fields(line);
+    for (std::string field; std::getline(fields, field, ',');) v.push_back(std::stod(field));
+    ASSERT_EQ(v.size(), 12u) << line;
+    const int cycle = static_cast<int>(v[0]);
+    ASSERT_TRUE(cycle == 1 || cycle == 2) << line;
+    EXPECT_NEAR(v[8], (v[5] - 600.0) / 600.0 * 100.0, 1e-9) << line;
+    if (v[10] == 1.0) {
+      ++held[cycle - 1];
+      held_max[cycle - 1] = std::max(held_max[cycle - 1], std::abs(v[8]));
+    }
+  }
+  for (int c = 0; c < 2; ++c) {
+    EXPECT_EQ(held[c], out["cycles"][c]["held"].get<int>());
+    EXPECT_NEAR(held_max[c], out["cycles"][c]["held_max_abs_error_percent"].get<double>(), 1e-9);
+  }
 }
 
 TEST_F(LoopCliTest, BadFlagsNameTheFlag) {
@@ -416,6 +443,9 @@ TEST_F(LoopCliTest, BadFlagsNameTheFlag) {
   const RunResult negative = run_feedplan(loop + " --machine-scale -1");
   EXPECT_EQ(negative.exit_code, 2) << negative.output;
   EXPECT_NE(negative.output.find("--machine-scale"), std::string::npos) << negative.output;
+  const RunResult nowhere = run_feedplan(loop + " --revolutions " + (dir_ / "missing" / "r.csv").string());
+  EXPECT_EQ(nowhere.exit_code, 2) << nowhere.output;
+  EXPECT_NE(nowhere.output.find("--revolutions"), std::string::npos) << nowhere.output;
 }
 
 }  // namespace
