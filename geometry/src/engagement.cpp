@@ -8,6 +8,7 @@
 #include "angle_set.hpp"
 #include "candidate_index.hpp"
 #include "feedplan/core/angle.hpp"
+#include "feedplan/geometry/chip_area_ratio.hpp"
 #include "stock_section.hpp"
 #include "swept_piece.hpp"
 #include "vec2.hpp"
@@ -268,6 +269,7 @@ EngagementProfile compute_engagement(const ToolPath& path, const Stock& stock, d
         sample.entry_rad = first->entry_rad;
         sample.exit_rad = (end - 1)->exit_rad;
         sample.chip_factor = sample.xy_speed_ratio > 0.0 ? chip_factor_of(first, end) : 0.0;
+        sample.chip_area_ratio = chip_area_ratio(first, end);
       }
       sample.contact_length_mm = r * sample.engagement_rad;
       if (!is_cutting && sample.engagement_rad > kAirContactRad && !warned[i]) {

@@ -18,7 +18,9 @@ LoopResult run_learning_loop(const LoopRequest& request) {
   for (int cycle = 1; cycle <= request.cycles; ++cycle) {
     settings.uncertainty.reset();
     if (covariance && request.first_cut_uncertainty > 0.0) {
-      settings.uncertainty = planner::ForceUncertainty{*covariance, request.sigmas, relative};
+      // Entries off the straight cuts at their worst (force_bound.hpp) until learning along the path has
+      // measured a larger factor there (PlanSettings::force_correction).
+      settings.uncertainty = planner::ForceUncertainty{*covariance, request.sigmas, relative, true};
     }
     const planner::PlanResult plan = planner::plan(request.geometry, settings);
     const VirtualMachineRun run = run_on_virtual_machine(plan.program, request.machine, plan, settings.target_force_n);

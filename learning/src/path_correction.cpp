@@ -10,7 +10,8 @@ namespace feedplan::learning {
 std::vector<double> path_correction(const planner::PlanResult& plan, const model_db::ResponseSurfaceModel& model,
                                     const std::vector<MeasuredRevolutions>& measured, const std::vector<double>& previous) {
   const auto& samples = plan.samples;
-  std::vector<double> correction = previous.size() == samples.size() ? previous : std::vector<double>(samples.size(), 1.0);
+  const bool first = previous.size() != samples.size();
+  std::vector<double> correction = first ? std::vector<double>(samples.size(), 1.0) : previous;
   const auto first_at_or_after = [&](double s_mm) {
     return static_cast<std::size_t>(std::lower_bound(samples.begin(), samples.end(), s_mm,
                                                      [](const planner::PlannedSample& p, double s) { return p.s_mm < s; }) -
@@ -28,7 +29,7 @@ std::vector<double> path_correction(const planner::PlanResult& plan, const model
       const double ratio = std::clamp(sample.force_n / predicted, kMinPathCorrection, kMaxPathCorrection);
       for (std::size_t i = first_at_or_after(revolution->s_start_mm); i < samples.size() && samples[i].s_mm <= revolution->s_end_mm;
            ++i) {
-        if (samples[i].engaged) correction[i] = std::sqrt(correction[i] * ratio);
+        if (samples[i].engaged) correction[i] = first ? ratio : std::sqrt(correction[i] * ratio);
       }
     }
   }

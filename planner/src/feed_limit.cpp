@@ -39,7 +39,8 @@ double upper_force_n(const model_db::ResponseSurfaceModel& model, const geometry
   const double chip_mm = chip_thickness_mm(sample, feed_mm_per_min, flutes, spindle_rpm);
   const double sigma_n = force_standard_deviation_n(model, *uncertainty, chip_mm,
                                                     model_contact_length_mm(model, sample.contact_length_mm));
-  return force_n + uncertainty->sigmas * sigma_n * axial_depth_ratio(model, sample.axial_depth_mm);
+  const double bound_n = force_n + uncertainty->sigmas * sigma_n * axial_depth_ratio(model, sample.axial_depth_mm);
+  return uncertainty->off_straight_cut ? std::max(sample.chip_area_ratio, 1.0) * bound_n : bound_n;
 }
 
 SampleFeedLimit sample_feed_limit(const model_db::ResponseSurfaceModel& model, const geometry::EngagementSample& sample,

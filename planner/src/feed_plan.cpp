@@ -217,6 +217,13 @@ PlanResult plan(const PlanGeometry& geometry, const PlanSettings& settings) {
   const auto correction = [&](std::size_t i) {
     return settings.force_correction.empty() ? 1.0 : settings.force_correction[i];
   };
+  // The sample the bound is evaluated on: with a correction c measured along the path, the entry factor
+  // is max(ρ, c) in all (force_bound.hpp), so its chip-area ratio becomes max(ρ / c, 1).
+  const auto bound_sample = [&](std::size_t i) {
+    geometry::EngagementSample sample = samples[i];
+    sample.chip_area_ratio = std::max(sample.chip_area_ratio / correction(i), 1.0);
+    return sample;
+  };
 
   PlanResult result;
   result.samples.resize(n);
@@ -250,7 +257,7 @@ PlanResult plan(const PlanGeometry& geometry, const PlanSettings& settings) {
       planned.feed_limit_mm_per_min = machine.rapid_feed_mm_per_min;
       continue;
     }
-    const SampleFeedLimit limit = sample_feed_limit(settings.model, sample, settings.target_force_n / correction(i), flutes, rpm, air_feed,
+    const SampleFeedLimit limit = sample_feed_limit(settings.model, bound_sample(i), settings.target_force_n / correction(i), flutes, rpm, air_feed,
                                                     uncertainty);
     double feed = limit.feed_mm_per_min;
     FeedLimitReason reason = limit.reason;
@@ -359,7 +366,7 @@ PlanResult plan(const PlanGeometry& geometry, const PlanSettings& settings) {
     planned.chip_thickness_mm = planned.engaged ? chip_thickness_mm(samples[i], planned.feed_mm_per_min, flutes, rpm) : 0.0;
     planned.predicted_force_n = correction(i) * predicted_force_n(settings.model, samples[i], planned.feed_mm_per_min, flutes, rpm);
     planned.upper_force_n =
-        uncertainty ? correction(i) * upper_force_n(settings.model, samples[i], planned.feed_mm_per_min, flutes, rpm, uncertainty)
+        uncertainty ? correction(i) * upper_force_n(settings.model, bound_sample(i), planned.feed_mm_per_min, flutes, rpm, uncertainty)
                     : planned.predicted_force_n;
     planned.within_model_range = planned.engaged && !model_db::chip_outside(settings.model.range, planned.chip_thickness_mm) &&
                                  !model_db::contact_length_outside(settings.model.range, planned.contact_length_mm);

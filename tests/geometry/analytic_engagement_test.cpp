@@ -76,6 +76,7 @@ TEST(ExactEngagement, StraightCutsMatchClosedForm) {
       ASSERT_NEAR(s.entry_rad, kPi - expected, kToleranceRad);
       ASSERT_NEAR(s.chip_factor, steady_chip_factor(expected), 1e-9);
       ASSERT_NEAR(s.contact_length_mm, r * s.engagement_rad, 1e-12);
+      ASSERT_NEAR(s.chip_area_ratio, 1.0, 1e-9);  // a straight cut is what the model is fitted on
     }
     EXPECT_GT(checked, 300);
   }

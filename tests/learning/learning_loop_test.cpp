@@ -89,17 +89,19 @@ TEST_F(LearningLoop, LearningAlongThePathRemovesMostOfTheEntryOvershoot) {
 
 TEST_F(LearningLoop, CautiousFirstCutStaysWithinFivePercentWhenTheModelIsFortyPercentSoft) {
   LoopRequest request = corner_request(1.0 / 0.6, 600.0);
-  request.cycles = 1;
+  request.cycles = 2;
   request.first_cut_uncertainty = 0.35;
   request.sigmas = 2.0;
   const LoopResult cautious = run_learning_loop(request);
   ASSERT_GT(cautious.cycles[0].comparison.steady, 100);
-  double worst_steady_overshoot = -100.0;
-  for (const auto& r : cautious.cycles[0].comparison.revolutions) {
-    if (r.steady) worst_steady_overshoot = std::max(worst_steady_overshoot, r.error_percent);
+  // Every revolution in the material — the wall entry too, where the straight-cut model is short by
+  // the chip-area ratio — in the first cycle and in the next (entries held at max(ρ, measured)).
+  for (const auto& cycle : cautious.cycles) {
+    ASSERT_GT(cycle.comparison.in_cut, 100);
+    EXPECT_LE(cycle.comparison.max_overshoot_percent, 5.0) << "cycle " << cycle.cycle;
   }
-  EXPECT_LE(worst_steady_overshoot, 5.0);
   // Without the bound the same first cut overloads the tool.
+  request.cycles = 1;
   request.first_cut_uncertainty = 0.0;
   const LoopResult bold = run_learning_loop(request);
   EXPECT_GT(bold.cycles[0].comparison.steady_max_abs_error_percent, 40.0);

@@ -320,6 +320,34 @@ TEST(CautiousPlan, HoldsTheUpperBoundAtTheTargetAndTightensWithTheCovariance) {
   EXPECT_GE(worst, settings.target_force_n * 0.97);
 }
 
+TEST(CautiousPlan, OffStraightCutMultipliesTheBoundByTheChipAreaRatio) {
+  const cycles::CycleSpec spec = testing::corner_spec();
+  const PlanGeometry geometry = geometry_for(spec);
+  PlanSettings settings = settings_for(spec, testing::s50c_like_model());
+  settings.uncertainty = ForceUncertainty{};
+  settings.uncertainty->relative = 0.1;
+  const PlanResult straight = plan(geometry, settings);
+  settings.uncertainty->off_straight_cut = true;
+  const PlanResult entries = plan(geometry, settings);
+  // The corner's wall entry is off the straight cuts; the walls and the arc are not.
+  int off = 0;
+  double worst = 0.0;
+  for (std::size_t i = 0; i < entries.samples.size(); ++i) {
+    const PlannedSample& p = entries.samples[i];
+    if (!p.engaged) continue;
+    const double rho = geometry.engagement.samples[i].chip_area_ratio;
+    if (rho > 1.05) ++off;
+    // Independently: ρ · (F̂ + 2 · 0.1 F̂) at the feed the plan runs never exceeds the target.
+    const double length = std::max(p.contact_length_mm, settings.model.range.contact_length_min_mm);
+    const double force = model_db::predict(settings.model, p.chip_thickness_mm, length).force_n;
+    worst = std::max(worst, rho * 1.2 * force);
+  }
+  EXPECT_GT(off, 10);
+  EXPECT_LE(worst, settings.target_force_n * (1.0 + 1e-6));
+  EXPECT_GT(entries.summary.cycle_time_s, straight.summary.cycle_time_s);
+  EXPECT_LT(entries.summary.cycle_time_s, 1.2 * straight.summary.cycle_time_s);  // only the entries slow down
+}
+
 TEST(CautiousPlan, BadUncertaintyIsAnInputError) {
   const cycles::CycleSpec spec = testing::corner_spec();
   PlanSettings settings = settings_for(spec, testing::s50c_like_model());

@@ -50,6 +50,9 @@ struct EngagementSample {
   double chip_factor = 0.0;          //!< k = t_m / f_z: the largest cos of a tool point's angle from the
                                      //!< feed direction over the engaged set, in [0, 1] (DESIGN.md §5.1)
   double contact_length_mm = 0.0;    //!< L = r · α_en, mm
+  //! ρ ≥ 1: uncut chip area over that of the straight cut with the same t_m and L (chip_area_ratio.hpp);
+  //! 1 on straight cuts and steady arcs, up to 2 where the tool enters material
+  double chip_area_ratio = 1.0;
   double axial_depth_mm = 0.0;       //!< axial depth of cut the force model sees here, mm
   int interval_begin = 0;            //!< first interval in EngagementProfile::intervals
   int interval_count = 0;            //!< number of engaged intervals (0 when not engaged)

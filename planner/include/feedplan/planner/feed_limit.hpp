@@ -59,8 +59,8 @@ SampleFeedLimit sample_feed_limit(const model_db::ResponseSurfaceModel& model, c
                                   double target_force_n, int flutes, double spindle_rpm, double air_feed_mm_per_min,
                                   const ForceUncertainty* uncertainty = nullptr);
 
-//! F̂ + z·σ at `sample` and path feed `feed_mm_per_min` (F̂ without `uncertainty`), with the axial-depth
-//! scaling; 0 when the sample is not engaged.
+//! F̂ + z·σ (× the chip-area ratio ρ when uncertainty->off_straight_cut) at `sample` and path feed
+//! `feed_mm_per_min` (F̂ without `uncertainty`), with the axial-depth scaling; 0 when the sample is not engaged.
 double upper_force_n(const model_db::ResponseSurfaceModel& model, const geometry::EngagementSample& sample,
                      double feed_mm_per_min, int flutes, double spindle_rpm, const ForceUncertainty* uncertainty);
 

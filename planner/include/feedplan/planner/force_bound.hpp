@@ -10,6 +10,14 @@
 // fit says — mostly by a factor (a harder lot, another machine's stiffness). That part is a relative
 // standard deviation r of F̂ added in quadrature: σ² = ψᵀCψ + (r·F̂)². After learning, r is 0 and C is the
 // refit's covariance, which shrinks as logs arrive.
+//
+// Off the straight cuts a response surface is fitted on — where the tool enters material — the model
+// under-predicts by a factor the straight-cut data cannot show, at most the chip-area ratio ρ
+// (geometry/chip_area_ratio.hpp: the force grows at most like the uncut chip area). Before any log of
+// this path that factor is taken at its worst when off_straight_cut is set: the bound is ρ·(F̂ + z·σ). It
+// multiplies, because it acts on the true force whatever the model's own error is (in quadrature, a
+// 40 % soft model still overshot +7 % at trochoid entries). Once the path has been cut, learning along
+// the path measures the entries themselves and the factor is dropped.
 
 #include <array>
 
@@ -22,6 +30,7 @@ struct ForceUncertainty {
   std::array<double, 36> covariance{};  //!< 6×6 covariance of β (row-major, BetaIndex order), N²
   double sigmas = 2.0;                  //!< z: the bound is F̂ + z·σ (≥ 0)
   double relative = 0.0;                //!< r: relative standard deviation of F̂ not in the covariance (≥ 0)
+  bool off_straight_cut = false;        //!< multiply the bound by the sample's chip-area ratio ρ
 };
 
 //! σ(F̂) = √(ψᵀ C ψ + (r·F̂)²) at t_m = chip_mm and L = contact_length_mm, N.
