@@ -219,10 +219,16 @@ PlanResult plan(const PlanGeometry& geometry, const PlanSettings& settings) {
   };
   // The sample the bound is evaluated on: with a correction c measured along the path, the entry factor
   // is max(ρ, c) in all (force_bound.hpp), so its chip-area ratio becomes max(ρ / c, 1).
-  const auto bound_sample = [&](std::size_t i) {
-    geometry::EngagementSample sample = samples[i];
-    sample.chip_area_ratio = std::max(sample.chip_area_ratio / correction(i), 1.0);
-    return sample;
+  // Copies only when both apply (ρ ≥ 1 already without a correction).
+  std::vector<geometry::EngagementSample> corrected_bound_samples;
+  if (uncertainty && uncertainty->off_straight_cut && !settings.force_correction.empty()) {
+    corrected_bound_samples = samples;
+    for (std::size_t i = 0; i < n; ++i) {
+      corrected_bound_samples[i].chip_area_ratio = std::max(samples[i].chip_area_ratio / correction(i), 1.0);
+    }
+  }
+  const auto bound_sample = [&](std::size_t i) -> const geometry::EngagementSample& {
+    return corrected_bound_samples.empty() ? samples[i] : corrected_bound_samples[i];
   };
 
   PlanResult result;
