@@ -103,16 +103,6 @@ void to_immersion(const AngleIntervals& world, double feed_direction_rad, std::v
   }
 }
 
-// Largest sin φ over the engaged intervals (the chip thickness h = f_z sin φ), clamped at 0.
-double chip_factor_of(const EngagedInterval* begin, const EngagedInterval* end) {
-  double best = 0.0;
-  for (const auto* i = begin; i != end; ++i) {
-    if (i->entry_rad <= 0.5 * kPi && i->exit_rad >= 0.5 * kPi) return 1.0;
-    best = std::max({best, std::sin(i->entry_rad), std::sin(i->exit_rad)});
-  }
-  return best;
-}
-
 // Position and feed direction along one move, with the move's constants (arc radius and start
 // angle, line direction) computed once: the same formulas as point_at and tangent_angle_rad.
 class MoveFrame {
@@ -268,7 +258,7 @@ EngagementProfile compute_engagement(const ToolPath& path, const Stock& stock, d
         for (const auto* e = first; e != end; ++e) sample.engagement_rad += e->exit_rad - e->entry_rad;
         sample.entry_rad = first->entry_rad;
         sample.exit_rad = (end - 1)->exit_rad;
-        sample.chip_factor = sample.xy_speed_ratio > 0.0 ? chip_factor_of(first, end) : 0.0;
+        sample.chip_factor = sample.xy_speed_ratio > 0.0 ? chip_factor(first, end) : 0.0;
         sample.chip_area_ratio = chip_area_ratio(first, end);
       }
       sample.contact_length_mm = r * sample.engagement_rad;

@@ -100,7 +100,9 @@ TEST(ChipAreaRatio, HeadOnEntryIntoABlock) {
       EXPECT_NEAR(s.chip_area_ratio, std::max(expected, 1.0), 1e-6) << "x " << x;
       ++entering;
     }
-    if (x > 1.0) EXPECT_NEAR(s.chip_area_ratio, 1.0, 1e-9) << "x " << x;
+    if (x > 1.0) {
+      EXPECT_NEAR(s.chip_area_ratio, 1.0, 1e-9) << "x " << x;
+    }
   }
   EXPECT_GT(entering, 90);
 }

@@ -18,6 +18,10 @@
 
 namespace feedplan::geometry {
 
+//! k = t_m / f_z of the engaged intervals [begin, end): the largest sin φ over them (h = f_z sin φ), 0 when
+//! no tooth point cuts a chip (EngagementSample::chip_factor on moves with XY motion).
+double chip_factor(const EngagedInterval* begin, const EngagedInterval* end);
+
 //! ρ (see the file comment) for the engaged intervals [begin, end) (immersion angles, rad), never below
 //! 1; 1 when nothing is engaged or no chip is cut.
 double chip_area_ratio(const EngagedInterval* begin, const EngagedInterval* end);
