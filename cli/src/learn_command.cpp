@@ -129,7 +129,10 @@ int run_learn_command(const LearnOptions& o) {
     // Learning along this path too (learning/path_correction.hpp), carried in the report to the next part.
     std::vector<learning::MeasuredRevolutions> measured;
     for (const auto& log : update.logs) measured.push_back(log.revolutions);
-    next_settings.force_correction = learning::path_correction(plan, update.model, measured, report.settings.force_correction);
+    learning::PathLearning previous;
+    previous.correction = report.settings.force_correction;
+    next_settings.force_correction =
+        learning::learn_along_path(plan, update.model, measured, report.settings.target_force_n, previous).correction;
   }
   const planner::PlanResult next = planner::plan(geometry, next_settings);
   gcode::WriterOptions writer;

@@ -15,6 +15,7 @@ LoopResult run_learning_loop(const LoopRequest& request) {
   double relative = request.first_cut_uncertainty;
   if (request.first_cut_uncertainty > 0.0) covariance = request.start_fit_covariance;
   std::vector<LearningSample> earlier;
+  PathLearning along_path;
   for (int cycle = 1; cycle <= request.cycles; ++cycle) {
     settings.uncertainty.reset();
     if (covariance && request.first_cut_uncertainty > 0.0) {
@@ -49,7 +50,8 @@ LoopResult run_learning_loop(const LoopRequest& request) {
       if (request.path_correction) {
         std::vector<MeasuredRevolutions> measured;
         for (const LogEvidence& log : update.logs) measured.push_back(log.revolutions);
-        settings.force_correction = path_correction(plan, update.model, measured, settings.force_correction);
+        along_path = learn_along_path(plan, update.model, measured, settings.target_force_n, along_path);
+        settings.force_correction = along_path.correction;
       }
     }
     result.cycles.push_back(std::move(out));

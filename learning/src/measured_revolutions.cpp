@@ -55,6 +55,15 @@ class RowSeries {
   const std::vector<double>& t_s_;
 };
 
+// What became of one window.
+enum class WindowOutcome { kNan, kNotAligned, kNotEngaged, kEngaged };
+
+struct WindowPlace {
+  WindowOutcome outcome = WindowOutcome::kNan;
+  double s_start_mm = 0.0, s_end_mm = 0.0, s_peak_mm = 0.0;
+  LearningSample sample;  // kEngaged only
+};
+
 std::string fixed(double value, int decimals) {
   char text[64];
   std::snprintf(text, sizeof text, "%.*f", decimals, value);
@@ -108,7 +117,6 @@ MeasuredRevolutions measured_revolutions(const sim::ForceLog& log, const Alignme
   const std::vector<sim::RevolutionPeak> peaks = sim::revolution_peaks(t, fx, fy, spindle_rpm);
   const double period_s = 60.0 / spindle_rpm;
   const double mean_step_s = (t.back() - t.front()) / static_cast<double>(n - 1);
-  const double rows_per_revolution = period_s / mean_step_s;
   const RowSeries rows(t);
 
   const auto& samples = plan.samples;
@@ -134,31 +142,35 @@ MeasuredRevolutions measured_revolutions(const sim::ForceLog& log, const Alignme
     return std::min(1.0, std::hypot(b.position.x_mm - a.position.x_mm, b.position.y_mm - a.position.y_mm) / ds);
   };
 
+  // One window (a revolution or a tooth period) → its place and, engaged, its sample.
   const double delay_s = alignment.delay_s;
-  for (const sim::RevolutionPeak& peak : peaks) {
+  auto evaluate = [&](const sim::RevolutionPeak& peak, double window_s) {
+    WindowPlace w;
     const std::size_t first = rows.first_at_or_after(peak.t_start_s);
     const std::size_t end = rows.first_at_or_after(peak.t_end_s);
-    bool has_nan = static_cast<double>(end - first) < kMinRowShare * rows_per_revolution;
+    bool has_nan = static_cast<double>(end - first) < kMinRowShare * window_s / mean_step_s;
     for (std::size_t i = first; i < end && !has_nan; ++i) has_nan = std::isnan(nan_rows[i]);
     if (has_nan) {
-      ++out.skipped_nan;
-      continue;
+      w.outcome = WindowOutcome::kNan;
+      return w;
     }
     // 2. Place, with the force's lag behind the positions.
     const double t0 = peak.t_start_s - delay_s, t1 = peak.t_end_s - delay_s, tp = peak.t_peak_s - delay_s;
     if (!rows.all_finite(alignment.s_mm, t0, std::min(t1, t.back()))) {
-      ++out.skipped_not_aligned;
-      continue;
+      w.outcome = WindowOutcome::kNotAligned;
+      return w;
     }
     const double s0 = rows.at(alignment.s_mm, t0);
     // The last window may end a fraction of a row past the last row (sim::revolution_peaks' rule).
     const double s1 = rows.at(alignment.s_mm, std::min(t1, t.back()));
     const double s_peak = rows.at(alignment.s_mm, tp);
     if (!std::isfinite(s0) || !std::isfinite(s1) || !std::isfinite(s_peak)) {
-      ++out.skipped_not_aligned;
-      continue;
+      w.outcome = WindowOutcome::kNotAligned;
+      return w;
     }
-    out.revolutions.push_back({std::min(s0, s1), std::max(s0, s1), peak.peak_xy_n});
+    w.s_start_mm = std::min(s0, s1);
+    w.s_end_mm = std::max(s0, s1);
+    w.s_peak_mm = s_peak;
 
     // 3. Model inputs at the peak's place, at the feed run there.
     const planner::PlannedSample& planned = samples[nearest_sample(s_peak)];
@@ -174,21 +186,77 @@ MeasuredRevolutions measured_revolutions(const sim::ForceLog& log, const Alignme
     double feed_mm_per_min = rows.at(feed, tp);
     if (!std::isfinite(feed_mm_per_min)) feed_mm_per_min = std::abs(s1 - s0) / (t1 - t0) * 60.0;
 
-    // 4. Engaged revolutions only.
+    // 4. Engaged windows only.
     if (!planned.engaged || planned.engagement_rad < options.min_engagement_rad ||
         place.chip_factor * place.xy_speed_ratio < planner::kMinChipFactor || !(feed_mm_per_min > 0.0)) {
-      ++out.skipped_not_engaged;
-      continue;
+      w.outcome = WindowOutcome::kNotEngaged;
+      return w;
     }
-    LearningSample sample;
-    sample.chip_mm = planner::chip_thickness_mm(place, feed_mm_per_min, flutes, spindle_rpm);
-    sample.contact_length_mm = planner::model_contact_length_mm(model, planned.contact_length_mm);
-    sample.force_n = peak.peak_xy_n;
-    if (options.scale_to_model_axial_depth) sample.force_n /= planner::axial_depth_ratio(model, planned.axial_depth_mm);
-    sample.weight = 1.0;
-    sample.s_mm = 0.5 * (s0 + s1);
-    out.samples.push_back(sample);
-    out.sample_t_start_s.push_back(peak.t_start_s);
+    w.outcome = WindowOutcome::kEngaged;
+    w.sample.chip_mm = planner::chip_thickness_mm(place, feed_mm_per_min, flutes, spindle_rpm);
+    w.sample.contact_length_mm = planner::model_contact_length_mm(model, planned.contact_length_mm);
+    w.sample.force_n = peak.peak_xy_n;
+    if (options.scale_to_model_axial_depth) {
+      w.sample.force_n /= planner::axial_depth_ratio(model, planned.axial_depth_mm);
+    }
+    w.sample.weight = 1.0;
+    w.sample.s_mm = 0.5 * (s0 + s1);
+    return w;
+  };
+
+  for (const sim::RevolutionPeak& peak : peaks) {
+    const WindowPlace w = evaluate(peak, period_s);
+    switch (w.outcome) {
+      case WindowOutcome::kNan: ++out.skipped_nan; continue;
+      case WindowOutcome::kNotAligned: ++out.skipped_not_aligned; continue;
+      case WindowOutcome::kNotEngaged:
+        out.revolutions.push_back({w.s_start_mm, w.s_end_mm, peak.peak_xy_n});
+        ++out.skipped_not_engaged;
+        continue;
+      case WindowOutcome::kEngaged:
+        out.revolutions.push_back({w.s_start_mm, w.s_end_mm, peak.peak_xy_n});
+        out.samples.push_back(w.sample);
+        out.sample_t_start_s.push_back(peak.t_start_s);
+        break;
+    }
+  }
+
+  // 5. Tooth periods: the same rule on windows of 1/Z turn (window k in revolution k / Z, flute window
+  //    k mod Z), and the runout factor of each flute window from the revolutions where all Z are engaged.
+  const std::vector<sim::RevolutionPeak> periods = sim::revolution_peaks(t, fx, fy, spindle_rpm * flutes);
+  const auto z = static_cast<std::size_t>(flutes);
+  std::vector<std::vector<double>> runout_ratios(z);
+  std::vector<ToothPeriodPeak> group;  // the engaged tooth periods of the current revolution
+  auto close_group = [&]() {
+    if (group.size() == z) {
+      double largest = 0.0;
+      for (const auto& g : group) largest = std::max(largest, g.sample.force_n);
+      for (const auto& g : group) {
+        if (g.sample.force_n > 0.0) runout_ratios[static_cast<std::size_t>(g.window) % z].push_back(largest / g.sample.force_n);
+      }
+    }
+    group.clear();
+  };
+  for (const sim::RevolutionPeak& period : periods) {
+    const WindowPlace w = evaluate(period, period_s / flutes);
+    if (!group.empty() && group.front().window / flutes != period.revolution / flutes) close_group();
+    if (w.outcome != WindowOutcome::kEngaged) continue;
+    ToothPeriodPeak p;
+    p.window = period.revolution;
+    p.s_start_mm = w.s_start_mm;
+    p.s_end_mm = w.s_end_mm;
+    p.s_peak_mm = w.s_peak_mm;
+    p.sample = w.sample;
+    out.tooth_periods.push_back(p);
+    group.push_back(p);
+  }
+  close_group();
+  out.runout_factor.assign(z, 1.0);
+  for (std::size_t j = 0; j < z; ++j) {
+    auto& ratios = runout_ratios[j];
+    if (ratios.empty()) continue;
+    std::nth_element(ratios.begin(), ratios.begin() + static_cast<long>(ratios.size() / 2), ratios.end());
+    out.runout_factor[j] = ratios[ratios.size() / 2];
   }
 
   out.message = std::to_string(peaks.size()) + " complete revolutions at " + fixed(spindle_rpm, 0) +

@@ -22,6 +22,14 @@
 //      least min_engagement_rad and a chip (chip factor × XY ratio ≥ planner::kMinChipFactor) and a
 //      positive feed; otherwise skipped_not_engaged. Every aligned revolution (engaged or not) is in
 //      `revolutions` with its raw peak, for planner::compare_peaks.
+//   5. Tooth periods: steps 1–4 on windows of 1/Z turn from the same first row (window k lies in
+//      revolution k / Z and belongs to flute window k mod Z) give `tooth_periods` — Z places per
+//      revolution instead of one, for learning along the path where the force changes within a
+//      revolution (entries). With runout one flute cuts more than the others, and the revolution's peak
+//      is that flute's: `runout_factor[j]` = median, over the revolutions with all Z tooth periods
+//      engaged, of (largest tooth-period peak of the revolution / flute window j's peak) — ≥ 1, and 1
+//      for every j without runout. A tooth period's peak × its factor is the revolution peak it stands
+//      for.
 
 #include <string>
 #include <vector>
@@ -41,12 +49,23 @@ struct MeasuredRevolutionOptions {
   bool scale_to_model_axial_depth = true;  //!< divide forces by a_p / a_p,model (planner::axial_depth_ratio)
 };
 
+//! One tooth period's peak (step 5).
+struct ToothPeriodPeak {
+  long window = 0;          //!< tooth-period number counted from the log's first row (flute window: window mod Z)
+  double s_start_mm = 0.0;  //!< path span of the period (after the delay shift), mm
+  double s_end_mm = 0.0;    //!< see s_start_mm
+  double s_peak_mm = 0.0;   //!< where its peak was measured, mm
+  LearningSample sample;    //!< model inputs at the peak's place and the period's peak (scaled as the revolutions')
+};
+
 //! The revolutions of one log.
 struct MeasuredRevolutions {
   std::vector<LearningSample> samples;                   //!< engaged, fully aligned revolutions, in time order
   std::vector<planner::MeasuredRevolution> revolutions;  //!< every aligned revolution: s span and raw peak, N
   //! For each entry of `samples`, the time its revolution starts on the log's clock, s.
   std::vector<double> sample_t_start_s;
+  std::vector<ToothPeriodPeak> tooth_periods;  //!< engaged, fully aligned tooth periods, in time order
+  std::vector<double> runout_factor;           //!< per flute window, ≥ 1 (step 5); Z ones when no revolution had all Z engaged
   int skipped_not_engaged = 0;  //!< aligned revolutions the plan has out of the material (or without a chip or feed)
   int skipped_nan = 0;          //!< revolutions with a NaN force or a gap in the rows
   int skipped_not_aligned = 0;  //!< revolutions with a row off the path, before or after it (after the delay shift)
