@@ -19,6 +19,11 @@ namespace {
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 // A window holding fewer than this share of the rows one revolution should hold has a gap.
 constexpr double kMinRowShare = 0.5;
+// A turn's largest tooth-period peak changing by less than this share from the turn before is steady
+// (runout factor, step 5).
+constexpr double kSteadyTurnChange = 0.02;
+// Steady turns whose runout pattern a tooth period's factor is the median of.
+constexpr std::size_t kRunoutTurns = 5;
 
 // Row times with a per-row quantity, read at any time inside the log by linear interpolation between the
 // two rows around it; NaN when either is NaN or the time is outside the rows.
@@ -54,6 +59,35 @@ class RowSeries {
  private:
   const std::vector<double>& t_s_;
 };
+
+// Windows of one tooth period (at `tooth_rate_per_min` = Z × rpm) over the rows from the first one that
+// puts the force peaks in the middle of their windows. Counted from the first row, a window boundary
+// can fall on a tooth's peak; then which flute's peak a window holds changes from revolution to
+// revolution (with runout, by the runout's share of the force). The peaks' phase in the tooth period is
+// their force-weighted circular mean over the windows holding more than a tenth of the largest peak.
+std::vector<sim::RevolutionPeak> tooth_periods_centred_on_peaks(const std::vector<double>& t, const std::vector<double>& fx,
+                                                                const std::vector<double>& fy, double tooth_rate_per_min) {
+  const std::vector<sim::RevolutionPeak> from_first = sim::revolution_peaks(t, fx, fy, tooth_rate_per_min);
+  double largest = 0.0;
+  for (const auto& p : from_first) largest = std::max(largest, p.peak_xy_n);
+  const double period_s = 60.0 / tooth_rate_per_min;
+  double sum_cos = 0.0, sum_sin = 0.0;
+  for (const auto& p : from_first) {
+    if (!(p.peak_xy_n > 0.1 * largest)) continue;
+    const double phase_rad = 2.0 * M_PI * (p.t_peak_s - t.front()) / period_s;
+    sum_cos += p.peak_xy_n * std::cos(phase_rad);
+    sum_sin += p.peak_xy_n * std::sin(phase_rad);
+  }
+  if (sum_cos == 0.0 && sum_sin == 0.0) return from_first;
+  // Start where the phase is half a period before the peaks'.
+  double start_turns = std::atan2(sum_sin, sum_cos) / (2.0 * M_PI) - 0.5;
+  start_turns -= std::floor(start_turns);
+  const std::size_t first = static_cast<std::size_t>(
+      std::lower_bound(t.begin(), t.end(), t.front() + start_turns * period_s) - t.begin());
+  if (first == 0 || first + 2 > t.size()) return from_first;
+  const auto tail = [first](const std::vector<double>& v) { return std::vector<double>(v.begin() + static_cast<long>(first), v.end()); };
+  return sim::revolution_peaks(tail(t), tail(fx), tail(fy), tooth_rate_per_min);
+}
 
 // What became of one window.
 enum class WindowOutcome { kNan, kNotAligned, kNotEngaged, kEngaged };
@@ -222,41 +256,71 @@ MeasuredRevolutions measured_revolutions(const sim::ForceLog& log, const Alignme
   }
 
   // 5. Tooth periods: the same rule on windows of 1/Z turn (window k in revolution k / Z, flute window
-  //    k mod Z), and the runout factor of each flute window from the revolutions where all Z are engaged.
-  const std::vector<sim::RevolutionPeak> periods = sim::revolution_peaks(t, fx, fy, spindle_rpm * flutes);
+  //    k mod Z), phased so that the tooth peaks lie in the middle of their windows, and the runout factor
+  //    of each flute window from the revolutions where all Z are engaged.
+  const std::vector<sim::RevolutionPeak> periods = tooth_periods_centred_on_peaks(t, fx, fy, spindle_rpm * flutes);
   const auto z = static_cast<std::size_t>(flutes);
-  std::vector<std::vector<double>> runout_ratios(z);
-  std::vector<ToothPeriodPeak> group;  // the engaged tooth periods of the current revolution
-  auto close_group = [&]() {
-    if (group.size() == z) {
-      double largest = 0.0;
-      for (const auto& g : group) largest = std::max(largest, g.sample.force_n);
-      for (const auto& g : group) {
-        if (g.sample.force_n > 0.0) runout_ratios[static_cast<std::size_t>(g.window) % z].push_back(largest / g.sample.force_n);
-      }
-    }
-    group.clear();
-  };
   for (const sim::RevolutionPeak& period : periods) {
     const WindowPlace w = evaluate(period, period_s / flutes);
-    if (!group.empty() && group.front().window / flutes != period.revolution / flutes) close_group();
     if (w.outcome != WindowOutcome::kEngaged) continue;
     ToothPeriodPeak p;
     p.window = period.revolution;
     p.s_start_mm = w.s_start_mm;
     p.s_end_mm = w.s_end_mm;
     p.s_peak_mm = w.s_peak_mm;
+    p.t_peak_s = period.t_peak_s;
     p.sample = w.sample;
     out.tooth_periods.push_back(p);
-    group.push_back(p);
   }
-  close_group();
-  out.runout_factor.assign(z, 1.0);
-  for (std::size_t j = 0; j < z; ++j) {
-    auto& ratios = runout_ratios[j];
-    if (ratios.empty()) continue;
+  // Runout: the pattern (largest / own peak per flute window) of the steady turns — Z consecutive
+  // engaged windows whose largest peak is within kSteadyTurnChange of the turn before's.
+  struct SteadyTurn {
+    long number = 0;
+    std::vector<double> ratio;  // per flute window
+  };
+  std::vector<SteadyTurn> steady;
+  double previous_largest = 0.0;
+  long previous_number = -2;
+  for (std::size_t k = 0; k + z <= out.tooth_periods.size();) {
+    const long number = out.tooth_periods[k].window / flutes;
+    std::size_t end = k;
+    while (end < out.tooth_periods.size() && out.tooth_periods[end].window / flutes == number) ++end;
+    if (end - k == z) {
+      double largest = 0.0;
+      for (std::size_t j = k; j < end; ++j) largest = std::max(largest, out.tooth_periods[j].sample.force_n);
+      if (number == previous_number + 1 && std::abs(largest / previous_largest - 1.0) < kSteadyTurnChange) {
+        SteadyTurn turn{number, std::vector<double>(z, 1.0)};
+        for (std::size_t j = k; j < end; ++j) {
+          const auto& p = out.tooth_periods[j];
+          if (p.sample.force_n > 0.0) turn.ratio[static_cast<std::size_t>(p.window % flutes)] = largest / p.sample.force_n;
+        }
+        steady.push_back(std::move(turn));
+      }
+      previous_largest = largest;
+      previous_number = number;
+    }
+    k = std::max(end, k + 1);
+  }
+  // Each tooth period: the median pattern of the kRunoutTurns steady turns nearest to its own.
+  for (auto& p : out.tooth_periods) {
+    if (steady.empty()) break;
+    const long number = p.window / flutes;
+    auto hi = std::lower_bound(steady.begin(), steady.end(), number, [](const SteadyTurn& t, long n) { return t.number < n; });
+    auto lo = hi;
+    std::vector<double> ratios;
+    const auto j = static_cast<std::size_t>(p.window % flutes);
+    while (ratios.size() < kRunoutTurns && (lo != steady.begin() || hi != steady.end())) {
+      const bool take_low = hi == steady.end() || (lo != steady.begin() && number - (lo - 1)->number <= hi->number - number);
+      if (take_low) {
+        --lo;
+        ratios.push_back(lo->ratio[j]);
+      } else {
+        ratios.push_back(hi->ratio[j]);
+        ++hi;
+      }
+    }
     std::nth_element(ratios.begin(), ratios.begin() + static_cast<long>(ratios.size() / 2), ratios.end());
-    out.runout_factor[j] = ratios[ratios.size() / 2];
+    p.runout_factor = ratios[ratios.size() / 2];
   }
 
   out.message = std::to_string(peaks.size()) + " complete revolutions at " + fixed(spindle_rpm, 0) +

@@ -82,7 +82,6 @@ PathLearning learn_along_path(const planner::PlanResult& plan, const model_db::R
   };
   for (const MeasuredRevolutions& log : measured) {
     const auto& periods = log.tooth_periods;
-    const std::size_t flutes = log.runout_factor.size();
     std::size_t k = 0;
     while (k < periods.size()) {
       // A run of consecutive tooth periods (no window between them skipped).
@@ -94,9 +93,8 @@ PathLearning learn_along_path(const planner::PlanResult& plan, const model_db::R
         const ToothPeriodPeak& p = periods[k];
         s_end_mm = std::max(s_end_mm, p.s_end_mm);
         if (!(p.sample.force_n > 0.0)) continue;
-        const double runout = flutes > 0 ? log.runout_factor[static_cast<std::size_t>(p.window) % flutes] : 1.0;
-        run.push_back({p.s_peak_mm,
-                       {p.sample.chip_mm, p.sample.contact_length_mm, runout * p.sample.force_n, p.s_end_mm - p.s_start_mm}});
+        run.push_back({p.s_peak_mm, {p.sample.chip_mm, p.sample.contact_length_mm, p.runout_factor * p.sample.force_n,
+                                     p.s_end_mm - p.s_start_mm}});
       }
       if (run.empty()) continue;
       std::stable_sort(run.begin(), run.end(), [](const Placed& a, const Placed& b) { return a.s_mm < b.s_mm; });

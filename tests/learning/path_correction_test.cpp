@@ -58,7 +58,6 @@ MeasuredRevolutions four_periods() {
   MeasuredRevolutions log;
   log.tooth_periods = {period(0, 1.5, 3.5, 3.0, 120.0), period(1, 3.5, 5.5, 5.0, 160.0), period(2, 5.5, 7.5, 7.0, 160.0),
                        period(3, 7.5, 9.5, 9.0, 100.0)};
-  log.runout_factor = {1.0, 1.0, 1.0, 1.0};
   return log;
 }
 
@@ -91,9 +90,10 @@ TEST(LearnAlongPath, FirstStepInterpolatesTheRatioBetweenPeakPlaces) {
   EXPECT_DOUBLE_EQ(ahead[0], 1.0);
 }
 
-TEST(LearnAlongPath, RunoutFactorScalesEachFluteWindowToTheRevolutionPeak) {
+TEST(LearnAlongPath, RunoutFactorScalesEachToothPeriodToTheRevolutionPeak) {
   MeasuredRevolutions log = four_periods();
-  log.runout_factor = {1.0, 1.25};  // two flutes: window 1 and 3 belong to the flute that cuts less
+  log.tooth_periods[1].runout_factor = 1.25;  // two flutes: windows 1 and 3 are the flute that cuts less
+  log.tooth_periods[3].runout_factor = 1.25;
   const PathLearning step = learn_along_path(plan_on_a_line(), flat_model(), {log}, 300.0, {});
   EXPECT_NEAR(step.place_correction[3], 1.2, 1e-12);         // window 0
   EXPECT_NEAR(step.place_correction[5], 1.6 * 1.25, 1e-12);  // window 1
@@ -105,7 +105,6 @@ TEST(LearnAlongPath, SkippedToothPeriodsAreNotBridgedAndUncoveredSamplesKeepTheP
   MeasuredRevolutions log;
   log.tooth_periods = {period(0, 1.5, 2.5, 2.0, 150.0), period(1, 2.5, 3.5, 3.0, 150.0), period(4, 6.5, 7.5, 7.0, 50.0),
                        period(5, 7.5, 8.5, 8.0, 50.0)};
-  log.runout_factor = {1.0, 1.0};
   PathLearning previous;
   previous.correction.assign(11, 1.1);  // as read back from a plan report: a correction, no measurements
   const PathLearning step = learn_along_path(plan_on_a_line(), flat_model(), {log}, 300.0, previous);
@@ -120,7 +119,6 @@ TEST(LearnAlongPath, SkippedToothPeriodsAreNotBridgedAndUncoveredSamplesKeepTheP
 MeasuredRevolutions at_sample_5(double chip_mm, double force_n) {
   MeasuredRevolutions log;
   log.tooth_periods = {period(0, 4.5, 5.5, 5.0, force_n, chip_mm)};
-  log.runout_factor = {1.0};
   return log;
 }
 

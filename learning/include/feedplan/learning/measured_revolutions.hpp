@@ -22,14 +22,18 @@
 //      least min_engagement_rad and a chip (chip factor × XY ratio ≥ planner::kMinChipFactor) and a
 //      positive feed; otherwise skipped_not_engaged. Every aligned revolution (engaged or not) is in
 //      `revolutions` with its raw peak, for planner::compare_peaks.
-//   5. Tooth periods: steps 1–4 on windows of 1/Z turn from the same first row (window k lies in
-//      revolution k / Z and belongs to flute window k mod Z) give `tooth_periods` — Z places per
-//      revolution instead of one, for learning along the path where the force changes within a
-//      revolution (entries). With runout one flute cuts more than the others, and the revolution's peak
-//      is that flute's: `runout_factor[j]` = median, over the revolutions with all Z tooth periods
-//      engaged, of (largest tooth-period peak of the revolution / flute window j's peak) — ≥ 1, and 1
-//      for every j without runout. A tooth period's peak × its factor is the revolution peak it stands
-//      for.
+//   5. Tooth periods: steps 1–4 on windows of 1/Z turn give `tooth_periods` — Z places per revolution
+//      instead of one, for learning along the path where the force changes within a revolution
+//      (entries). The windows start at the row that puts the force peaks in their middle (the peaks'
+//      force-weighted circular mean phase), so that a window boundary never splits a tooth's peak;
+//      window k belongs to flute window k mod Z and to turn k / Z. With runout one flute cuts more
+//      than the others and the revolution's peak is that flute's, so each tooth period carries the
+//      factor its peak is short of the turn's largest by: per flute window, the median of (largest /
+//      own peak) over the 5 steady turns nearest to it (all Z windows engaged, the largest peak within
+//      2 % of the turn before's) — 1 up to noise without runout. Local, not one per log, because the
+//      runout's share changes with the feed per tooth, and because the flute whose peak a window holds
+//      changes where the cutting direction turns the force (measured on a corner with 8 µm runout: one
+//      factor per log was 5–8 % off on the second wall).
 
 #include <string>
 #include <vector>
@@ -55,7 +59,9 @@ struct ToothPeriodPeak {
   double s_start_mm = 0.0;  //!< path span of the period (after the delay shift), mm
   double s_end_mm = 0.0;    //!< see s_start_mm
   double s_peak_mm = 0.0;   //!< where its peak was measured, mm
+  double t_peak_s = 0.0;    //!< when, on the log's clock (before the delay shift), s
   LearningSample sample;    //!< model inputs at the peak's place and the period's peak (scaled as the revolutions')
+  double runout_factor = 1.0;  //!< the peak × this stands for the revolution's peak (step 5), ≥ 1
 };
 
 //! The revolutions of one log.
@@ -65,7 +71,6 @@ struct MeasuredRevolutions {
   //! For each entry of `samples`, the time its revolution starts on the log's clock, s.
   std::vector<double> sample_t_start_s;
   std::vector<ToothPeriodPeak> tooth_periods;  //!< engaged, fully aligned tooth periods, in time order
-  std::vector<double> runout_factor;           //!< per flute window, ≥ 1 (step 5); Z ones when no revolution had all Z engaged
   int skipped_not_engaged = 0;  //!< aligned revolutions the plan has out of the material (or without a chip or feed)
   int skipped_nan = 0;          //!< revolutions with a NaN force or a gap in the rows
   int skipped_not_aligned = 0;  //!< revolutions with a row off the path, before or after it (after the delay shift)

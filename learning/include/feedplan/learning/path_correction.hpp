@@ -37,7 +37,7 @@ struct PathLearning {
 };
 
 //! One learning step along `plan`'s path from the tooth periods of `measured` (one or more logs cut
-//! with `plan`; MeasuredRevolutions::tooth_periods, each peak × its flute window's runout factor), with
+//! with `plan`; MeasuredRevolutions::tooth_periods, each peak × its runout factor), with
 //! `model` the refitted model the next plan uses and `previous` the state after the step before (empty
 //! the first time; with only `correction` set, as read back from a plan report, that is the previous c).
 //!
