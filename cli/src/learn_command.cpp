@@ -125,14 +125,17 @@ int run_learn_command(const LearnOptions& o) {
   // 4. Re-plan with the learned model before storing anything, so that a plan problem stores nothing.
   planner::PlanSettings next_settings = report.settings;
   next_settings.model = update.model;
+  learning::PathLearning along_path;
   {
     // Learning along this path too (learning/path_correction.hpp), carried in the report to the next part.
     std::vector<learning::MeasuredRevolutions> measured;
     for (const auto& log : update.logs) measured.push_back(log.revolutions);
     learning::PathLearning previous;
     previous.correction = report.settings.force_correction;
-    next_settings.force_correction =
-        learning::learn_along_path(plan, update.model, measured, report.settings.target_force_n, previous).correction;
+    previous.place_correction = report.context.path_place_correction;
+    for (const auto& m : report.context.path_measurements) previous.measurement.push_back({m[0], m[1], m[2], m[3]});
+    along_path = learning::learn_along_path(plan, update.model, measured, report.settings.target_force_n, previous);
+    next_settings.force_correction = along_path.correction;
   }
   const planner::PlanResult next = planner::plan(geometry, next_settings);
   gcode::WriterOptions writer;
@@ -172,6 +175,11 @@ int run_learn_command(const LearnOptions& o) {
   context.model_version = stored.version;
   context.program_path = o.program_path;
   context.database_path = db_path;
+  context.path_place_correction = along_path.place_correction;
+  context.path_measurements.clear();
+  for (const auto& m : along_path.measurement) {
+    context.path_measurements.push_back({m.chip_mm, m.contact_length_mm, m.force_n, m.window_mm});
+  }
   if (!o.report_path.empty()) {
     if (auto error = planner::write_plan_report(o.report_path, next, next_settings, context); !error.empty()) {
       std::cerr << "feedplan: failed: " << error << "\n";

@@ -163,8 +163,10 @@ std::vector<InputProblem> validate(const PlanSettings& settings, const geometry:
   }
   for (std::size_t i = 0; i < settings.force_correction.size(); ++i) {
     const double c = settings.force_correction[i];
-    if (!(std::isfinite(c) && c >= 0.2 && c <= 5.0)) {
-      problems.push_back({"force_correction[" + std::to_string(i) + "]", "= " + num(c) + ": must be in [0.2, 5]"});
+    if (!(std::isfinite(c) && c >= kMinForceCorrection && c <= kMaxForceCorrection)) {
+      problems.push_back({"force_correction[" + std::to_string(i) + "]", "= " + num(c) + ": must be in [" +
+                                                                             num(kMinForceCorrection) + ", " +
+                                                                             num(kMaxForceCorrection) + "]"});
       break;
     }
   }

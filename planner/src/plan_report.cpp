@@ -254,6 +254,34 @@ class Node {
     return values;
   }
 
+  //! An array of arrays of exactly N finite numbers each.
+  template <std::size_t N>
+  std::vector<std::array<double, N>> number_rows(const std::string& key) const {
+    const Node list = array(key);
+    std::vector<std::array<double, N>> rows;
+    for (std::size_t i = 0; i < list.size(); ++i) {
+      const Json& row = (*list.value_)[i];
+      const std::string path = list.path_ + "[" + std::to_string(i) + "]";
+      std::array<double, N> values{};
+      if (!row.is_array() || row.size() != N) {
+        report(path, "= " + shown(row) + ": must be an array of " + std::to_string(N) + " numbers");
+      } else {
+        for (std::size_t j = 0; j < N; ++j) {
+          if (row[j].is_number() && std::isfinite(row[j].get<double>())) {
+            values[j] = row[j].get<double>();
+          } else {
+            report(path + "[" + std::to_string(j) + "]", "= " + shown(row[j]) + ": must be a finite number");
+          }
+        }
+      }
+      rows.push_back(values);
+    }
+    return rows;
+  }
+
+  //! True when member `key` is there (absence is not a problem).
+  bool has(const std::string& key) const { return value_ != nullptr && value_->find(key) != value_->end(); }
+
   //! The path of member `key`, for problems found by the caller.
   std::string child_path(const std::string& key) const { return path_.empty() ? key : path_ + "." + key; }
 
@@ -411,6 +439,15 @@ std::string plan_report_json(const PlanResult& result, const PlanSettings& setti
     for (double c : settings.force_correction) correction.push_back(json_number(c));
     root["force_correction"] = std::move(correction);
   }
+  if (!context.path_place_correction.empty() || !context.path_measurements.empty()) {
+    Json place = Json::array();
+    for (double c : context.path_place_correction) place.push_back(json_number(c));
+    Json measurements = Json::array();
+    for (const auto& m : context.path_measurements) {
+      measurements.push_back(Json{json_number(m[0]), json_number(m[1]), json_number(m[2]), json_number(m[3])});
+    }
+    root["path_learning"] = Json{{"place_correction", std::move(place)}, {"measurements", std::move(measurements)}};
+  }
   root["summary"] = summary_json(result.summary);
   root["program"] = Json{{"path", context.program_path},
                          {"dialect", context.dialect},
@@ -546,6 +583,38 @@ PlanReport parse_plan_report(std::string_view json_text, const std::string& sour
   settings.options.jerk_limit_mm_per_s3 = options.number("jerk_limit_mm_per_s3");
   settings.options.ds_mm = options.number("ds_mm");
   settings.force_correction = root.optional_numbers("force_correction");
+  if (root.has("path_learning")) {
+    const Node learning = root.object("path_learning");
+    context.path_place_correction = learning.optional_numbers("place_correction");
+    context.path_measurements = learning.number_rows<4>("measurements");
+    const std::size_t n = settings.force_correction.size();
+    if (context.path_place_correction.size() != n) {
+      learning.report("path_learning.place_correction", "has " + std::to_string(context.path_place_correction.size()) +
+                                                            " values: must have " + std::to_string(n) +
+                                                            ", one per plan sample as force_correction");
+    }
+    if (context.path_measurements.size() != n) {
+      learning.report("path_learning.measurements", "has " + std::to_string(context.path_measurements.size()) +
+                                                        " rows: must have " + std::to_string(n) +
+                                                        ", one per plan sample as force_correction");
+    }
+    for (std::size_t i = 0; i < context.path_place_correction.size(); ++i) {
+      const double c = context.path_place_correction[i];
+      if (!(c >= kMinForceCorrection && c <= kMaxForceCorrection)) {
+        learning.report("path_learning.place_correction[" + std::to_string(i) + "]",
+                        "= " + shortest_number_text(c) + ": must be in [" + shortest_number_text(kMinForceCorrection) +
+                            ", " + shortest_number_text(kMaxForceCorrection) + "]");
+      }
+    }
+    for (std::size_t i = 0; i < context.path_measurements.size(); ++i) {
+      for (std::size_t j = 0; j < 4; ++j) {
+        if (context.path_measurements[i][j] < 0.0) {
+          learning.report("path_learning.measurements[" + std::to_string(i) + "][" + std::to_string(j) + "]",
+                          "= " + shortest_number_text(context.path_measurements[i][j]) + ": must be ≥ 0");
+        }
+      }
+    }
+  }
 
   report.summary = read_summary(root.object("summary"));
   const Node program = root.object("program");

@@ -243,6 +243,23 @@ TEST_F(LearnCliTest, StoresVersionTwoWithItsLearningEntryAndReplans) {
   const json report = json::parse(report_text);
   EXPECT_EQ(report["model"]["version"], 2);
   EXPECT_EQ(report["model"]["id"], out["model_after"]["id"]);
+  // Learning along the path goes with it to the next part: per plan sample, the correction and what
+  // was measured there (t_m, L, force, tooth-period window).
+  ASSERT_TRUE(report.contains("force_correction"));
+  ASSERT_TRUE(report.contains("path_learning"));
+  const std::size_t n = report["force_correction"].size();
+  EXPECT_EQ(report["path_learning"]["place_correction"].size(), n);
+  ASSERT_EQ(report["path_learning"]["measurements"].size(), n);
+  int measured = 0;
+  for (const auto& m : report["path_learning"]["measurements"]) {
+    ASSERT_EQ(m.size(), 4u);
+    if (m[2].get<double>() > 0.0) {
+      ++measured;
+      EXPECT_GT(m[0].get<double>(), 0.0);  // t_m
+      EXPECT_GT(m[3].get<double>(), 0.0);  // window
+    }
+  }
+  EXPECT_GT(measured, 100);
 }
 
 TEST_F(LearnCliTest, ALogOfAnotherProgramIsRefused) {

@@ -32,7 +32,11 @@ class LearningLoop : public ::testing::Test {
   void TearDown() override { fs::remove_all(dir_); }
 
   LoopRequest corner_request(double machine_scale, double target_force_n) {
-    const cycles::CycleSpec spec = cycles::load_cycle_spec(std::string(FEEDPLAN_SAMPLES_DIR) + "/corner.yaml");
+    return request_for("corner.yaml", machine_scale, target_force_n);
+  }
+
+  LoopRequest request_for(const std::string& sample, double machine_scale, double target_force_n) {
+    const cycles::CycleSpec spec = cycles::load_cycle_spec(std::string(FEEDPLAN_SAMPLES_DIR) + "/" + sample);
     const cycles::Cycle cycle = cycles::generate(spec);
     LoopRequest request;
     request.geometry = planner::analyse(cycle.path, cycle.stock, spec.tool);
@@ -73,7 +77,7 @@ TEST_F(LearningLoop, ThirdCycleHoldsTheTargetWithinFivePercentOnSteadyCuts) {
   EXPECT_LE(third.steady_rms_error_percent, 2.5);
 }
 
-TEST_F(LearningLoop, LearningAlongThePathRemovesMostOfTheEntryOvershoot) {
+TEST_F(LearningLoop, LearningAlongThePathHoldsTheWallEntryWithinFivePercentByTheThirdCycle) {
   // Where the tool enters the wall the response surface cannot be right (t_m and L pair unlike any
   // straight cut); repeated parts let the plan learn the place itself.
   LoopRequest request = corner_request(1.5, 600.0);
@@ -83,8 +87,25 @@ TEST_F(LearningLoop, LearningAlongThePathRemovesMostOfTheEntryOvershoot) {
   request.path_correction = true;
   const LoopResult along_path = run_learning_loop(request);
   EXPECT_GT(model_only.cycles[3].comparison.max_overshoot_percent, 30.0);
-  EXPECT_LT(along_path.cycles[3].comparison.max_overshoot_percent, 10.0);
-  EXPECT_LE(along_path.cycles[3].comparison.steady_max_abs_error_percent, 5.0);
+  for (int cycle : {3, 4}) {
+    const auto& c = along_path.cycles[static_cast<std::size_t>(cycle - 1)].comparison;
+    EXPECT_LE(c.max_overshoot_percent, 5.0) << "cycle " << cycle;  // every revolution in the material
+    EXPECT_LE(c.max_abs_error_percent, 5.0) << "cycle " << cycle;
+  }
+}
+
+TEST_F(LearningLoop, TrochoidLoopEntriesWithinFivePercentByTheThirdCycle) {
+  // Ten entries into the material per part, each rising from nothing to the target within a
+  // revolution or two — the case learning per tooth period is for (seed 003, Table 2).
+  LoopRequest request = request_for("trochoid.yaml", 1.5, 500.0);
+  request.cycles = 3;
+  const LoopResult result = run_learning_loop(request);
+  EXPECT_GT(result.cycles[0].comparison.max_overshoot_percent, 50.0);
+  const auto& third = result.cycles[2].comparison;
+  EXPECT_GT(third.in_cut, 800);
+  EXPECT_LE(third.max_overshoot_percent, 5.0);
+  EXPECT_LE(third.max_abs_error_percent, 5.0);
+  EXPECT_LE(third.rms_error_percent, 2.0);
 }
 
 TEST_F(LearningLoop, CautiousFirstCutStaysWithinFivePercentWhenTheModelIsFortyPercentSoft) {

@@ -298,6 +298,28 @@ TEST(PlanReportRoundTrip, WriteThenReadGivesTheSameSettingsContextAndBlocks) {
   }
 }
 
+TEST(PlanReportRoundTrip, LearningAlongThePathIsCarriedToTheNextPart) {
+  const CornerPlan& p = corner_plan();
+  const std::size_t n = p.result.samples.size();
+  PlanSettings settings = p.settings;
+  PlanReportContext context = p.context;
+  for (std::size_t i = 0; i < n; ++i) {
+    settings.force_correction.push_back(1.0 + 0.5 * static_cast<double>(i % 7) / 7.0);
+    context.path_place_correction.push_back(0.7 + 0.1 * static_cast<double>(i % 5));
+    context.path_measurements.push_back({0.01 * static_cast<double>(i % 9), 2.5, 100.0 + 1.0 / 3.0 * i, 0.125});
+  }
+  const fs::path path = temporary_path("path_learning.json");
+  ASSERT_EQ(write_plan_report(path, p.result, settings, context), "");
+  const PlanReport report = read_plan_report(path);
+  EXPECT_EQ(report.settings.force_correction, settings.force_correction);
+  EXPECT_EQ(report.context.path_place_correction, context.path_place_correction);
+  EXPECT_EQ(report.context.path_measurements, context.path_measurements);
+  // A plan that has not learned along its path writes none of it.
+  const std::string plain = plan_report_json(p.result, p.settings, p.context);
+  EXPECT_EQ(plain.find("path_learning"), std::string::npos);
+  EXPECT_EQ(plain.find("force_correction"), std::string::npos);
+}
+
 TEST(PlanReportRoundTrip, ReplanningFromTheReadSettingsGivesTheSameSchedule) {
   // What `learn` relies on: the settings in the report are the ones the plan was made with.
   const CornerPlan& p = corner_plan();
@@ -393,6 +415,27 @@ TEST(PlanReportRead, OutOfRangeValuesAreRejectedByThePlannersChecks) {
               Contains(Field(&InputProblem::field, "model.chip_scale_mm")));
   EXPECT_THAT(problems_after([](auto& j) { j["blocks"][0]["length_mm"] = -1; }),
               Contains(problem("blocks[0].length_mm", "= -1: must be ≥ 0")));
+}
+
+TEST(PlanReportRead, LearningAlongThePathMustMatchThePlanSamples) {
+  // The corner plan's report has no force_correction: one value is one too many.
+  EXPECT_THAT(problems_after([](auto& j) {
+                j["path_learning"] = {{"place_correction", {1.0}}, {"measurements", {{0.05, 2.0, 300.0, 0.1}}}};
+              }),
+              Contains(problem("path_learning.place_correction", "has 1 values: must have 0")));
+  const auto with_correction = [](auto& j) {
+    j["force_correction"] = {1.0, 1.1};
+    j["path_learning"] = {{"place_correction", {1.0, 9.0}}, {"measurements", {{0.05, 2.0, 300.0, 0.1}, {0.05, -2.0, 300.0}}}};
+  };
+  EXPECT_THAT(problems_after(with_correction),
+              Contains(problem("path_learning.place_correction[1]", "= 9: must be in [0.2, 5]")));
+  EXPECT_THAT(problems_after(with_correction),
+              Contains(problem("path_learning.measurements[1]", "must be an array of 4 numbers")));
+  EXPECT_THAT(problems_after([](auto& j) {
+                j["force_correction"] = {1.0};
+                j["path_learning"] = {{"place_correction", {1.0}}, {"measurements", {{0.05, -2.0, 300.0, 0.1}}}};
+              }),
+              Contains(problem("path_learning.measurements[0][1]", "= -2: must be ≥ 0")));
 }
 
 TEST(PlanReportRead, BlocksOutOfOrderAreRejected) {

@@ -109,6 +109,10 @@ struct PlanSettings {
   std::vector<double> force_correction;
 };
 
+//! The range of PlanSettings::force_correction values (outside, more likely a bad measurement than physics).
+inline constexpr double kMinForceCorrection = 0.2;
+inline constexpr double kMaxForceCorrection = 5.0;  //!< see kMinForceCorrection
+
 //! Every problem with the settings (model via model_db::validate as "model.…", "target_force_n",
 //! "spindle_rpm", "machine.…", "options.…"), with the value and the allowed range; empty when valid.
 //! Also checks them against the geometry's tool (flutes ≥ 1).

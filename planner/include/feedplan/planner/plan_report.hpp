@@ -17,6 +17,9 @@
 //            block_time_min_s},
 //   options {mode, air_feed_mm_per_min, merge_tolerance, feed_resolution_mm_per_min,
 //            jerk_limit_mm_per_s3, ds_mm},
+//   force_correction[] (only when set: one c per plan sample),
+//   path_learning {place_correction[], measurements[[t_m, L, F, window] per sample]} (only after learning
+//            along the path; as many entries as force_correction),
 //   summary {every PlanSummary field by its name; baseline {feed_mm_per_min, peak_force_n,
 //            cycle_time_s, cutting_time_s}},
 //   program {path, dialect, blocks (count of program blocks)},
@@ -37,6 +40,7 @@
 // limit_reason is to_string(FeedLimitReason) ("max feed"); block is PlannedSample::block_index;
 // engaged and extrapolated are 1 or 0.
 
+#include <array>
 #include <cstdint>
 #include <filesystem>
 #include <string>
@@ -65,6 +69,11 @@ struct PlanReportContext {
   std::string database_path;      //!< the model database (as given; "" when none)
   std::string program_path;       //!< the G-code file written ("" when none)
   std::string dialect;            //!< G-code dialect of that file, e.g. "linuxcnc"
+  //! Learning along the path carried from part to part (learning/path_correction.hpp), one entry per
+  //! plan sample, or empty: the correction before the look-ahead, and the latest measurement at each
+  //! sample as {t_m mm, L mm, force N, tooth-period window mm} (force 0: nothing measured there).
+  std::vector<double> path_place_correction;
+  std::vector<std::array<double, 4>> path_measurements;  //!< see path_place_correction
 };
 
 //! The plan report as JSON text (the format at the top of this file), indented by 2, ending in a
