@@ -1,5 +1,5 @@
-// Learning speed: one learning step (align the force log, per-revolution samples, RLS, robust batch
-// refit) plus the re-plan of the 10-loop trochoid sample (seed 003 Table 2) — what seed 003 did in the
+// Learning speed: one learning step (align the force log, per-revolution and per-tooth-period samples,
+// RLS, robust batch refit, learning along the path) plus the re-plan of the 10-loop trochoid sample (seed 003 Table 2) — what seed 003 did in the
 // air cut between two cycles. The log is the virtual machine's, simulated once before timing.
 
 #include <benchmark/benchmark.h>
@@ -9,6 +9,7 @@
 #include "feedplan/cycles/cycle.hpp"
 #include "feedplan/cycles/spec_reader.hpp"
 #include "feedplan/learning/model_update.hpp"
+#include "feedplan/learning/path_correction.hpp"
 #include "feedplan/learning/virtual_machine_run.hpp"
 #include "feedplan/planner/feed_plan.hpp"
 #include "feedplan/sim/material.hpp"
@@ -59,16 +60,22 @@ const Setup& setup() {
 void BM_LearnAndReplanTrochoid(benchmark::State& state) {
   const Setup& s = setup();
   std::size_t samples = 0;
+  std::size_t tooth_periods = 0;
   for (auto _ : state) {
     const learning::ModelUpdate update =
         learning::update_model(s.plan, s.settings, s.geometry.tool.flutes, {{"cycle", s.log}}, {}, std::nullopt);
     planner::PlanSettings next = s.settings;
     next.model = update.model;
+    std::vector<learning::MeasuredRevolutions> measured;
+    for (const auto& log : update.logs) measured.push_back(log.revolutions);
+    next.force_correction = learning::learn_along_path(s.plan, update.model, measured, s.settings.target_force_n, {}).correction;
     auto result = planner::plan(s.geometry, next);
     samples = update.samples.size();
+    tooth_periods = update.logs.empty() ? 0 : update.logs.front().revolutions.tooth_periods.size();
     benchmark::DoNotOptimize(result);
   }
   state.counters["revolutions"] = static_cast<double>(samples);
+  state.counters["tooth_periods"] = static_cast<double>(tooth_periods);
   state.counters["log_rows"] = static_cast<double>(s.log.rows.size());
 }
 
