@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <limits>
 
+#include "feedplan/core/angle.hpp"
 #include "feedplan/core/input_error.hpp"
 #include "feedplan/core/number_text.hpp"
 #include "feedplan/geometry/engagement.hpp"
@@ -74,13 +75,13 @@ std::vector<sim::RevolutionPeak> tooth_periods_centred_on_peaks(const std::vecto
   double sum_cos = 0.0, sum_sin = 0.0;
   for (const auto& p : from_first) {
     if (!(p.peak_xy_n > 0.1 * largest)) continue;
-    const double phase_rad = 2.0 * M_PI * (p.t_peak_s - t.front()) / period_s;
+    const double phase_rad = kTwoPi * (p.t_peak_s - t.front()) / period_s;
     sum_cos += p.peak_xy_n * std::cos(phase_rad);
     sum_sin += p.peak_xy_n * std::sin(phase_rad);
   }
   if (sum_cos == 0.0 && sum_sin == 0.0) return from_first;
   // Start where the phase is half a period before the peaks'.
-  double start_turns = std::atan2(sum_sin, sum_cos) / (2.0 * M_PI) - 0.5;
+  double start_turns = std::atan2(sum_sin, sum_cos) / kTwoPi - 0.5;
   start_turns -= std::floor(start_turns);
   const std::size_t first = static_cast<std::size_t>(
       std::lower_bound(t.begin(), t.end(), t.front() + start_turns * period_s) - t.begin());
@@ -255,9 +256,8 @@ MeasuredRevolutions measured_revolutions(const sim::ForceLog& log, const Alignme
     }
   }
 
-  // 5. Tooth periods: the same rule on windows of 1/Z turn (window k in revolution k / Z, flute window
-  //    k mod Z), phased so that the tooth peaks lie in the middle of their windows, and the runout factor
-  //    of each flute window from the revolutions where all Z are engaged.
+  // 5. Tooth periods: the same rule on windows of 1/Z turn (window k in turn k / Z, flute window k mod Z),
+  //    phased so that the tooth peaks lie in the middle of their windows; then each one's runout factor.
   const std::vector<sim::RevolutionPeak> periods = tooth_periods_centred_on_peaks(t, fx, fy, spindle_rpm * flutes);
   const auto z = static_cast<std::size_t>(flutes);
   for (const sim::RevolutionPeak& period : periods) {
