@@ -262,6 +262,35 @@ TEST_F(LearnCliTest, StoresVersionTwoWithItsLearningEntryAndReplans) {
   EXPECT_GT(measured, 100);
 }
 
+TEST_F(LearnCliTest, TheNextPartLearnsOnFromThePathLearningOfTheFirst) {
+  // Part 1 → learn → part 2 cut with the re-planned program → learn from part 2's report: the state
+  // along the path read back, updated where part 2 measured, and carried on to part 3.
+  const fs::path report_2 = dir_ / "part2.json";
+  const RunResult first = run_feedplan(learn_args(log_) + " --report " + report_2.string());
+  ASSERT_EQ(first.exit_code, 0) << first.output;
+  const fs::path log_2 = dir_ / "log2.csv";
+  const RunResult cut = run_feedplan("simulate " + next_.string() + " --spec " + kSamples + "/corner.yaml --log " + log_2.string());
+  ASSERT_EQ(cut.exit_code, 0) << cut.output;
+  const fs::path report_3 = dir_ / "part3.json";
+  const fs::path program_3 = dir_ / "part3.nc";
+  const RunResult second = run_feedplan("learn " + report_2.string() + " " + log_2.string() + " -o " + program_3.string() +
+                                        " --report " + report_3.string() + " --db " + db_ + " --json");
+  ASSERT_EQ(second.exit_code, 0) << second.output;
+  EXPECT_EQ(json_of(second.output)["model_after"]["version"], 3);
+  const json part_2 = json::parse(read_text(report_2));
+  const json part_3 = json::parse(read_text(report_3));
+  ASSERT_EQ(part_3["path_learning"]["measurements"].size(), part_2["path_learning"]["measurements"].size());
+  int remeasured = 0;
+  for (std::size_t i = 0; i < part_3["path_learning"]["measurements"].size(); ++i) {
+    const json& before = part_2["path_learning"]["measurements"][i];
+    const json& after = part_3["path_learning"]["measurements"][i];
+    if (before[2].get<double>() > 0.0 && after[2].get<double>() > 0.0 && after[0] != before[0]) ++remeasured;
+    // The look-ahead window is the longest tooth period seen at a place over all parts.
+    EXPECT_GE(after[3].get<double>(), before[3].get<double>()) << "sample " << i;
+  }
+  EXPECT_GT(remeasured, 100);  // part 2 ran other feeds at the same places
+}
+
 TEST_F(LearnCliTest, ALogOfAnotherProgramIsRefused) {
   std::string text = read_text(kSamples + "/corner.yaml");
   const std::string angle = "corner_angle_deg: 90";
