@@ -26,8 +26,8 @@ struct LoopRequest {
   double sigmas = 2.0;                //!< z of the cautious bound
   std::array<double, 36> start_fit_covariance{};  //!< the starting model's own fit covariance, N²
   ModelUpdateOptions update;          //!< how to learn
-  //! Also learn along the path: the next plan scales the model by each place's measured ratio
-  //! (path_correction.hpp) — what repeated parts of one program allow beyond the model.
+  //! Also learn along the path: the next plan scales the model by a correction per place, learned per
+  //! tooth period (path_correction.hpp) — what repeated parts of one program allow beyond the model.
   bool path_correction = true;
   //! Called after each cycle with its number (1-based); may be empty.
   std::function<void(int)> on_cycle_done;
