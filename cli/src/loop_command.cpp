@@ -98,12 +98,7 @@ int run_loop_command(const LoopOptions& o) {
   request.settings.spindle_rpm = spec.spindle_rpm;
   request.settings.machine = spec.machine;
   request.machine.tool = spec.tool;
-  request.machine.coefficients = materials.get(spec.material, "material").coefficients;
-  for (double* k : {&request.machine.coefficients.ktc_n_per_mm2, &request.machine.coefficients.krc_n_per_mm2,
-                    &request.machine.coefficients.kac_n_per_mm2, &request.machine.coefficients.kte_n_per_mm,
-                    &request.machine.coefficients.kre_n_per_mm, &request.machine.coefficients.kae_n_per_mm}) {
-    *k *= o.machine_scale;
-  }
+  request.machine.coefficients = sim::scaled(materials.get(spec.material, "material").coefficients, o.machine_scale);
   request.machine.stock = cycle.stock;
   request.machine.machine = spec.machine;
   request.machine.spindle_rpm = spec.spindle_rpm;

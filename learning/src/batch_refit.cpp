@@ -197,10 +197,7 @@ std::vector<InputProblem> validate(const BatchRefitOptions& options) {
 BatchRefitResult batch_refit(const model_db::ResponseSurfaceModel& prior, const std::vector<LearningSample>& samples,
                              const BatchRefitOptions& options) {
   std::vector<InputProblem> problems = validate(options);
-  for (InputProblem& p : model_db::validate(prior)) problems.push_back(std::move(p));
-  for (std::size_t i = 0; i < samples.size(); ++i) {
-    validate(samples[i], "samples[" + std::to_string(i) + "].", problems);
-  }
+  validate(prior, samples, problems);
   if (!problems.empty()) throw InputError(std::move(problems));
 
   BatchRefitResult result;

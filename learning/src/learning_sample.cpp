@@ -20,4 +20,10 @@ void validate(const LearningSample& s, const std::string& prefix, std::vector<In
   }
 }
 
+void validate(const model_db::ResponseSurfaceModel& model, const std::vector<LearningSample>& samples,
+              std::vector<InputProblem>& problems) {
+  for (InputProblem& p : model_db::validate(model)) problems.push_back(std::move(p));
+  for (std::size_t i = 0; i < samples.size(); ++i) validate(samples[i], "samples[" + std::to_string(i) + "].", problems);
+}
+
 }  // namespace feedplan::learning

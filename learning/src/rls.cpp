@@ -132,10 +132,7 @@ RlsStep RecursiveLeastSquares::add(const LearningSample& sample) {
 RlsResult rls_update(const model_db::ResponseSurfaceModel& start, const std::vector<LearningSample>& samples,
                      const RlsOptions& options) {
   std::vector<InputProblem> problems = validate(options);
-  for (InputProblem& p : model_db::validate(start)) problems.push_back(std::move(p));
-  for (std::size_t i = 0; i < samples.size(); ++i) {
-    validate(samples[i], "samples[" + std::to_string(i) + "].", problems);
-  }
+  validate(start, samples, problems);
   throw_if_any(std::move(problems));
 
   RecursiveLeastSquares rls(start, options);

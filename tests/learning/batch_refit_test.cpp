@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "gauss_solve.hpp"
 #include "feedplan/core/input_error.hpp"
 #include "feedplan/learning/batch_refit.hpp"
 #include "feedplan/model_db/model_prediction.hpp"
@@ -25,8 +26,9 @@ namespace {
 using model_db::FitOptions;
 using model_db::ResponseSurfaceModel;
 using ::testing::HasSubstr;
-using Matrix = std::array<std::array<double, 6>, 6>;
-using Vector = std::array<double, 6>;
+using testing::Matrix;
+using testing::Vector;
+using testing::solve;
 
 unsigned env_or(const char* name, unsigned fallback) {
   const char* text = std::getenv(name);
@@ -72,29 +74,6 @@ std::vector<LearningSample> samples_at(const std::vector<double>& lengths, int p
 
 const std::vector<double> kFiveLengths{1.0, 3.0, 5.0, 7.0, 9.0};
 
-//! x with a x = b by Gaussian elimination with partial pivoting (the test's own solver, not Eigen's).
-Vector solve(Matrix a, Vector b) {
-  for (int c = 0; c < 6; ++c) {
-    int pivot = c;
-    for (int r = c + 1; r < 6; ++r) {
-      if (std::abs(a[r][c]) > std::abs(a[pivot][c])) pivot = r;
-    }
-    std::swap(a[c], a[pivot]);
-    std::swap(b[c], b[pivot]);
-    for (int r = c + 1; r < 6; ++r) {
-      const double f = a[r][c] / a[c][c];
-      for (int k = c; k < 6; ++k) a[r][k] -= f * a[c][k];
-      b[r] -= f * b[c];
-    }
-  }
-  Vector x{};
-  for (int r = 5; r >= 0; --r) {
-    double s = b[r];
-    for (int k = r + 1; k < 6; ++k) s -= a[r][k] * x[k];
-    x[r] = s / a[r][r];
-  }
-  return x;
-}
 
 //! Samples with u(r) < 1/2 for the default loss scale δ = 10 N: |r| > 2δ for Huber, |r| > δ for Cauchy, none
 //! for squared loss.

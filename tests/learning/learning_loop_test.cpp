@@ -46,12 +46,7 @@ class LearningLoop : public ::testing::Test {
     request.settings.machine = spec.machine;
     const sim::MaterialLibrary materials = sim::load_materials(std::string(FEEDPLAN_SAMPLES_DIR) + "/../data/materials.yaml");
     request.machine.tool = spec.tool;
-    request.machine.coefficients = materials.get("S50C").coefficients;
-    for (double* k : {&request.machine.coefficients.ktc_n_per_mm2, &request.machine.coefficients.krc_n_per_mm2,
-                      &request.machine.coefficients.kac_n_per_mm2, &request.machine.coefficients.kte_n_per_mm,
-                      &request.machine.coefficients.kre_n_per_mm, &request.machine.coefficients.kae_n_per_mm}) {
-      *k *= machine_scale;
-    }
+    request.machine.coefficients = sim::scaled(materials.get("S50C").coefficients, machine_scale);
     request.machine.stock = cycle.stock;
     request.machine.machine = spec.machine;
     request.machine.spindle_rpm = spec.spindle_rpm;

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "feedplan/core/input_error.hpp"
+#include "feedplan/model_db/response_surface_model.hpp"
 
 namespace feedplan::learning {
 
@@ -22,5 +23,10 @@ struct LearningSample {
 //! ("samples[3].force_n = nan: must be finite"): t_m and L finite and ≥ 0, the force finite, the weight
 //! finite and > 0.
 void validate(const LearningSample& sample, const std::string& prefix, std::vector<InputProblem>& problems);
+
+//! Appends the problems with a model to learn from (model_db::validate) and with every sample
+//! ("samples[i]." + member) to `problems`.
+void validate(const model_db::ResponseSurfaceModel& model, const std::vector<LearningSample>& samples,
+              std::vector<InputProblem>& problems);
 
 }  // namespace feedplan::learning

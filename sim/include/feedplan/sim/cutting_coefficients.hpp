@@ -3,6 +3,8 @@
 // DESIGN.md §6.1): per unit chip width, dF_t = (Ktc h + Kte) dz, dF_r = (Krc h + Kre) dz,
 // dF_a = (Kac h + Kae) dz, with an optional size effect on the cutting terms.
 
+#include <initializer_list>
+
 namespace feedplan::sim {
 
 //! Cutting (shear) and edge (ploughing) coefficients, with an optional Kienzle-type size effect.
@@ -20,5 +22,15 @@ struct CuttingCoefficients {
   //! Smallest chip thickness the size effect is evaluated at (keeps h^(−m_c) finite), mm.
   double size_min_chip_mm = 0.005;
 };
+
+//! `coefficients` with all six force coefficients (cutting and edge) × `factor`: a material whose
+//! forces are `factor` times as large at every chip (the size effect unchanged).
+inline CuttingCoefficients scaled(CuttingCoefficients coefficients, double factor) {
+  for (double* k : {&coefficients.ktc_n_per_mm2, &coefficients.krc_n_per_mm2, &coefficients.kac_n_per_mm2,
+                    &coefficients.kte_n_per_mm, &coefficients.kre_n_per_mm, &coefficients.kae_n_per_mm}) {
+    *k *= factor;
+  }
+  return coefficients;
+}
 
 }  // namespace feedplan::sim
