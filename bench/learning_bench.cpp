@@ -10,7 +10,7 @@
 #include "feedplan/cycles/spec_reader.hpp"
 #include "feedplan/learning/model_update.hpp"
 #include "feedplan/learning/path_correction.hpp"
-#include "feedplan/learning/virtual_machine_run.hpp"
+#include "feedplan/trial/virtual_machine_run.hpp"
 #include "feedplan/planner/feed_plan.hpp"
 #include "feedplan/sim/material.hpp"
 
@@ -22,7 +22,7 @@ struct Setup {
   planner::PlanGeometry geometry;
   planner::PlanSettings settings;
   planner::PlanResult plan;
-  sim::ForceLog log;
+  force_log::ForceLog log;
 };
 
 const Setup& setup() {
@@ -44,14 +44,14 @@ const Setup& setup() {
     out.settings.spindle_rpm = spec.spindle_rpm;
     out.settings.machine = spec.machine;
     out.plan = planner::plan(out.geometry, out.settings);
-    learning::VirtualMachine machine;
+    trial::VirtualMachine machine;
     machine.tool = spec.tool;
     machine.coefficients =
         sim::load_materials(std::string(FEEDPLAN_SAMPLES_DIR) + "/../data/materials.yaml").get("S50C").coefficients;
     machine.stock = cycle.stock;
     machine.machine = spec.machine;
     machine.spindle_rpm = spec.spindle_rpm;
-    out.log = learning::run_on_virtual_machine(out.plan.program, machine, out.plan, spec.target_force_n).simulation.log;
+    out.log = trial::run_on_virtual_machine(out.plan.program, machine, out.plan, spec.target_force_n).simulation.log;
     return out;
   }();
   return s;

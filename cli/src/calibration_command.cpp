@@ -11,7 +11,7 @@
 #include "feedplan/core/atomic_file.hpp"
 #include "feedplan/core/input_error.hpp"
 #include "feedplan/core/number_text.hpp"
-#include "feedplan/sim/force_log.hpp"
+#include "feedplan/force_log/force_log.hpp"
 
 namespace feedplan::cli {
 namespace {
@@ -34,7 +34,7 @@ void add_calibration_command(CLI::App& app, CalibrationOptions& options) {
 }
 
 int run_calibration_command(const CalibrationOptions& o) {
-  const sim::ForceLog log = sim::load_force_log(o.log_path);
+  const force_log::ForceLog log = force_log::load_force_log(o.log_path);
   const learning::CurrentCalibration calibration = learning::fit_current_calibration(log);
   nlohmann::json out{{"format", kFormat}, {"format_version", 1}, {"log", o.log_path},
                      {"x", axis_json(calibration.x)}, {"y", axis_json(calibration.y)}, {"z", axis_json(calibration.z)}};

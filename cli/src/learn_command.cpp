@@ -19,7 +19,7 @@
 #include "feedplan/model_db/store.hpp"
 #include "feedplan/planner/plan_plot.hpp"
 #include "feedplan/planner/plan_report.hpp"
-#include "feedplan/sim/force_log.hpp"
+#include "feedplan/force_log/force_log.hpp"
 
 namespace feedplan::cli {
 namespace {
@@ -67,7 +67,7 @@ int run_learn_command(const LearnOptions& o) {
   std::optional<learning::CurrentCalibration> calibration;
   if (!o.calibration_path.empty()) calibration = load_current_calibration(o.calibration_path);
   for (const std::string& path : o.log_paths) {
-    sim::ForceLog log = sim::load_force_log(path);
+    force_log::ForceLog log = force_log::load_force_log(path);
     if (!log.has_forces) {
       if (!log.has_currents || !calibration) {
         throw InputError(path, log.has_currents ? "has servo currents but no forces: give --calibration (feedplan calibrate-currents)"

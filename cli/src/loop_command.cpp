@@ -16,7 +16,7 @@
 #include "feedplan/core/number_text.hpp"
 #include "feedplan/cycles/cycle.hpp"
 #include "feedplan/cycles/spec_reader.hpp"
-#include "feedplan/learning/learning_loop.hpp"
+#include "feedplan/trial/learning_loop.hpp"
 #include "feedplan/sim/material.hpp"
 
 namespace feedplan::cli {
@@ -45,7 +45,7 @@ void add_loop_command(CLI::App& app, LoopOptions& options) {
 namespace {
 
 // One row per simulated revolution of every cycle: where the error is, not only how large.
-std::string revolutions_csv(const learning::LoopResult& result, double target_force_n) {
+std::string revolutions_csv(const trial::LoopResult& result, double target_force_n) {
   std::string text = "cycle,s_start_mm,s_end_mm,x_mm,y_mm,peak_n,planned_force_n,target_n,error_percent,in_cut,held,steady\n";
   for (const auto& c : result.cycles) {
     for (const auto& r : c.comparison.revolutions) {
@@ -91,7 +91,7 @@ int run_loop_command(const LoopOptions& o) {
       sim::load_materials(o.materials_path.empty() ? bundled_materials_path() : o.materials_path);
 
   const cycles::Cycle cycle = cycles::generate(spec);
-  learning::LoopRequest request;
+  trial::LoopRequest request;
   request.geometry = planner::analyse(cycle.path, cycle.stock, spec.tool);
   request.settings.model = chosen->record.model;
   request.settings.target_force_n = target_force_n;
@@ -117,7 +117,7 @@ int run_loop_command(const LoopOptions& o) {
   };
   show_progress(0);
   request.on_cycle_done = show_progress;
-  const learning::LoopResult result = learning::run_learning_loop(request);
+  const trial::LoopResult result = trial::run_learning_loop(request);
   if (terminal) std::fprintf(stderr, "\n");
   if (!o.revolutions_path.empty()) {
     if (const std::string error = write_file_atomically(o.revolutions_path, revolutions_csv(result, target_force_n));

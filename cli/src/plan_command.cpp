@@ -14,7 +14,7 @@
 #include "database_path.hpp"
 #include "model_choice.hpp"
 #include "output_path.hpp"
-#include "plan_check.hpp"
+#include "feedplan/trial/plan_check.hpp"
 #include "feedplan/core/atomic_file.hpp"
 #include "feedplan/core/input_error.hpp"
 #include "feedplan/core/number_text.hpp"
@@ -189,9 +189,9 @@ int run_plan_command(const PlanCommandOptions& o) {
     if (auto error = write_file_atomically(o.program_path, program_text); !error.empty()) return fail_write(error);
     written.push_back(o.program_path);
   }
-  std::optional<PlanCheck> check;
+  std::optional<trial::PlanCheck> check;
   if (o.simulate && (write_program || constant)) {
-    check = check_on_virtual_machine(program_text, spec, cycle, result, target_force_n,
+    check = trial::check_on_virtual_machine(program_text, spec, cycle, result, target_force_n,
                                      o.materials_path.empty() ? bundled_materials_path() : o.materials_path);
   }
   planner::PlanReportContext context;

@@ -22,7 +22,7 @@
 #include "feedplan/gcode/reader.hpp"
 #include "feedplan/geometry/tool_path.hpp"
 #include "feedplan/sim/cutting_test.hpp"
-#include "feedplan/sim/force_log.hpp"
+#include "feedplan/force_log/force_log.hpp"
 #include "feedplan/sim/force_plot.hpp"
 #include "feedplan/sim/material.hpp"
 #include "feedplan/sim/milling_simulation.hpp"
@@ -304,12 +304,12 @@ int run_simulate_command(const SimulateOptions& options) {
   const double wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
 
   // 5. Outputs, each complete or untouched.
-  if (const std::string error = sim::write_force_log(options.log_path, result.log); !error.empty()) {
+  if (const std::string error = force_log::write_force_log(options.log_path, result.log); !error.empty()) {
     std::cerr << "feedplan: " << error << "\n";
     return 1;
   }
   if (!options.peaks_path.empty()) {
-    if (const std::string error = sim::write_revolution_peaks(options.peaks_path, result.revolutions); !error.empty()) {
+    if (const std::string error = force_log::write_revolution_peaks(options.peaks_path, result.revolutions); !error.empty()) {
       std::cerr << "feedplan: " << error << "\n";
       return 1;
     }

@@ -1,6 +1,6 @@
 #include "feedplan/learning/current_calibration.hpp"
 
-#include "feedplan/learning/logged_spindle_speed.hpp"
+#include "feedplan/force_log/logged_spindle_speed.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -24,13 +24,13 @@ constexpr double kMinRowShare = 0.5;
 
 
 struct AxisData {
-  double sim::ForceLogRow::*force;
-  double sim::ForceLogRow::*current;
+  double force_log::ForceLogRow::*force;
+  double force_log::ForceLogRow::*current;
   const char* name;
 };
 
 // Window means (|mean force|, mean current) of one axis.
-void window_means(const sim::ForceLog& log, const AxisData& axis, double window_s, std::vector<double>& force,
+void window_means(const force_log::ForceLog& log, const AxisData& axis, double window_s, std::vector<double>& force,
                   std::vector<double>& current) {
   const auto& rows = log.rows;
   if (rows.size() < 2) return;
@@ -65,7 +65,7 @@ void window_means(const sim::ForceLog& log, const AxisData& axis, double window_
 }
 
 // Least squares current = a + b·force with R²; problems when it cannot be fitted.
-AxisCalibration fit_axis(const sim::ForceLog& log, const AxisData& axis, double window_s, bool required,
+AxisCalibration fit_axis(const force_log::ForceLog& log, const AxisData& axis, double window_s, bool required,
                          std::vector<InputProblem>& problems) {
   std::vector<double> f, i;
   window_means(log, axis, window_s, f, i);
@@ -123,7 +123,7 @@ AxisCalibration fit_axis(const sim::ForceLog& log, const AxisData& axis, double 
 
 }  // namespace
 
-CurrentCalibration fit_current_calibration(const sim::ForceLog& log) {
+CurrentCalibration fit_current_calibration(const force_log::ForceLog& log) {
   std::vector<InputProblem> problems;
   if (!log.has_forces) {
     problems.push_back({"log", "has no forces (fx_n, fy_n): a calibration needs forces and currents"});
@@ -139,15 +139,15 @@ CurrentCalibration fit_current_calibration(const sim::ForceLog& log) {
     window_s = period_s * std::max(1.0, std::round(kCalibrationWindowS / period_s));
   }
   CurrentCalibration calibration;
-  calibration.x = fit_axis(log, {&sim::ForceLogRow::fx_n, &sim::ForceLogRow::ix_a, "x axis"}, window_s, true, problems);
-  calibration.y = fit_axis(log, {&sim::ForceLogRow::fy_n, &sim::ForceLogRow::iy_a, "y axis"}, window_s, true, problems);
+  calibration.x = fit_axis(log, {&force_log::ForceLogRow::fx_n, &force_log::ForceLogRow::ix_a, "x axis"}, window_s, true, problems);
+  calibration.y = fit_axis(log, {&force_log::ForceLogRow::fy_n, &force_log::ForceLogRow::iy_a, "y axis"}, window_s, true, problems);
   calibration.z =
-      fit_axis(log, {&sim::ForceLogRow::fz_n, &sim::ForceLogRow::iz_a, "z axis"}, window_s, false, problems);
+      fit_axis(log, {&force_log::ForceLogRow::fz_n, &force_log::ForceLogRow::iz_a, "z axis"}, window_s, false, problems);
   if (!problems.empty()) throw InputError(std::move(problems));
   return calibration;
 }
 
-sim::ForceLog forces_from_currents(const sim::ForceLog& current_log, const CurrentCalibration& calibration) {
+force_log::ForceLog forces_from_currents(const force_log::ForceLog& current_log, const CurrentCalibration& calibration) {
   std::vector<InputProblem> problems;
   if (!current_log.has_currents) problems.push_back({"log", "has no servo currents (ix_a, iy_a)"});
   if (!(calibration.x.b_a_per_n > 0.0)) {
@@ -159,7 +159,7 @@ sim::ForceLog forces_from_currents(const sim::ForceLog& current_log, const Curre
         {"calibration.y.b_a_per_n", "= " + shortest_number_text(calibration.y.b_a_per_n) + ": must be > 0"});
   }
   if (!problems.empty()) throw InputError(std::move(problems));
-  sim::ForceLog log = current_log;
+  force_log::ForceLog log = current_log;
   const bool with_z = calibration.z.b_a_per_n > 0.0;
   for (auto& row : log.rows) {
     row.fx_n = (row.ix_a - calibration.x.a_a) / calibration.x.b_a_per_n;

@@ -1,6 +1,6 @@
 #include "feedplan/learning/log_alignment.hpp"
 
-#include "feedplan/learning/logged_spindle_speed.hpp"
+#include "feedplan/force_log/logged_spindle_speed.hpp"
 
 #include <algorithm>
 #include <cassert>
@@ -46,8 +46,8 @@ std::string percent(double fraction) {
   return fixed(100.0 * fraction, fraction > 0.995 && fraction < 1.0 ? 1 : 0) + " %";
 }
 
-bool finite_xy(const sim::ForceLogRow& row) { return std::isfinite(row.x_mm) && std::isfinite(row.y_mm); }
-bool finite_force(const sim::ForceLogRow& row) { return std::isfinite(row.fx_n) && std::isfinite(row.fy_n); }
+bool finite_xy(const force_log::ForceLogRow& row) { return std::isfinite(row.x_mm) && std::isfinite(row.y_mm); }
+bool finite_force(const force_log::ForceLogRow& row) { return std::isfinite(row.fx_n) && std::isfinite(row.fy_n); }
 
 // ---------------------------------------------------------------------------------------------------
 // The planned path as a polyline through the plan's samples, with a uniform XY grid of its segments.
@@ -332,14 +332,14 @@ CorrelationPeak correlate(const std::vector<double>& x, const std::vector<double
 }
 
 // Spindle speed for smoothing over one revolution: the log's column, its metadata, else the program's.
-double spindle_rpm_for(const sim::ForceLog& log, const planner::PlanResult& plan) {
+double spindle_rpm_for(const force_log::ForceLog& log, const planner::PlanResult& plan) {
   if (const double logged = logged_spindle_rpm(log); logged > 0.0) return logged;
   double most = 0.0;
   for (const auto& block : plan.program.blocks) most = std::max(most, block.spindle_rpm);
   return most;
 }
 
-std::vector<double> force_xy(const sim::ForceLog& log) {
+std::vector<double> force_xy(const force_log::ForceLog& log) {
   std::vector<double> f(log.rows.size(), kNaN);
   for (std::size_t i = 0; i < log.rows.size(); ++i) {
     if (finite_force(log.rows[i])) f[i] = std::hypot(log.rows[i].fx_n, log.rows[i].fy_n);
@@ -395,7 +395,7 @@ double covered_fraction(const InCut& cut, std::vector<std::pair<double, double>>
 }
 
 // Median time step of the rows, s.
-double median_step_s(const sim::ForceLog& log) {
+double median_step_s(const force_log::ForceLog& log) {
   std::vector<double> dt;
   for (std::size_t i = 1; i < log.rows.size(); ++i) dt.push_back(log.rows[i].t_s - log.rows[i - 1].t_s);
   if (dt.empty()) return 1e-3;
@@ -404,7 +404,7 @@ double median_step_s(const sim::ForceLog& log) {
 }
 
 // Rows, NaN rows and gaps (shared by both methods).
-void count_rows(const sim::ForceLog& log, Alignment& out) {
+void count_rows(const force_log::ForceLog& log, Alignment& out) {
   out.rows = static_cast<int>(log.rows.size());
   std::vector<double> dt;
   dt.reserve(log.rows.size());
@@ -420,12 +420,12 @@ void count_rows(const sim::ForceLog& log, Alignment& out) {
   }
 }
 
-std::string row_text(const sim::ForceLog& log, std::size_t i) {
+std::string row_text(const force_log::ForceLog& log, std::size_t i) {
   return "row " + std::to_string(i + 1) + " (t = " + fixed(log.rows[i].t_s, 4) + " s)";
 }
 
 // Coverage, status and the coverage part of the message, once s_mm is known.
-void finish_coverage(const planner::PlanResult& plan, const sim::ForceLog& log, Alignment& out,
+void finish_coverage(const planner::PlanResult& plan, const force_log::ForceLog& log, Alignment& out,
                      const std::string& method_text) {
   const InCut cut = in_cut_of(plan);
   std::vector<std::pair<double, double>> intervals;
@@ -499,7 +499,7 @@ CutSpan cut_span(const planner::PlanResult& plan) {
   return {first->s_mm, last->s_mm};
 }
 
-PositionMatch match_positions(const sim::ForceLog& log, const PathIndex& path, double scale, double reach_mm,
+PositionMatch match_positions(const force_log::ForceLog& log, const PathIndex& path, double scale, double reach_mm,
                               const CutSpan& cut) {
   PositionMatch m;
   const std::size_t n = log.rows.size();
@@ -560,7 +560,7 @@ PositionMatch match_positions(const sim::ForceLog& log, const PathIndex& path, d
 }
 
 // Why the rows do not follow the path, or "" when they do.
-std::string not_this_program(const sim::ForceLog& log, const PathIndex& path, const PositionMatch& m,
+std::string not_this_program(const force_log::ForceLog& log, const PathIndex& path, const PositionMatch& m,
                              const AlignmentOptions& options, double scale) {
   const std::size_t n = log.rows.size();
   auto distance_of = [&](std::size_t i) {
@@ -587,7 +587,7 @@ std::string not_this_program(const sim::ForceLog& log, const PathIndex& path, co
 
 // Force delay: cross-correlation of when the tool is in contact by the measured force with when the plan
 // has it engaged, at each row's place (see the file comment).
-void estimate_delay(const sim::ForceLog& log, const planner::PlanResult& plan, const AlignmentOptions& options,
+void estimate_delay(const force_log::ForceLog& log, const planner::PlanResult& plan, const AlignmentOptions& options,
                     Alignment& out, std::string& text) {
   if (!log.has_forces) {
     text += "; force delay not estimated (the log has no forces)";
@@ -633,7 +633,7 @@ void estimate_delay(const sim::ForceLog& log, const planner::PlanResult& plan, c
   if (peak.correlation < 0.5) text += ", weak: check that the log belongs to this plan";
 }
 
-Alignment align_by_positions(const sim::ForceLog& log, const planner::PlanResult& plan, const AlignmentOptions& options,
+Alignment align_by_positions(const force_log::ForceLog& log, const planner::PlanResult& plan, const AlignmentOptions& options,
                              bool check_units) {
   Alignment out;
   out.method = AlignmentMethod::kPositions;
@@ -678,7 +678,7 @@ Alignment align_by_positions(const sim::ForceLog& log, const planner::PlanResult
 // ---------------------------------------------------------------------------------------------------
 // Method 2: the plan's time profile.
 
-Alignment align_by_time_profile(const sim::ForceLog& log, const planner::PlanResult& plan) {
+Alignment align_by_time_profile(const force_log::ForceLog& log, const planner::PlanResult& plan) {
   Alignment out;
   out.method = AlignmentMethod::kTimeProfile;
   count_rows(log, out);
@@ -760,7 +760,7 @@ std::string to_string(AlignmentStatus status) {
 
 bool usable(AlignmentStatus status) { return status == AlignmentStatus::kOk || status == AlignmentStatus::kTruncated; }
 
-Alignment align_log(const sim::ForceLog& log, const planner::PlanResult& plan, const AlignmentOptions& options) {
+Alignment align_log(const force_log::ForceLog& log, const planner::PlanResult& plan, const AlignmentOptions& options) {
   std::vector<InputProblem> problems;
   if (!(std::isfinite(options.max_distance_mm) && options.max_distance_mm > 0.0)) {
     problems.push_back(

@@ -11,7 +11,7 @@
 #include "feedplan/core/number_text.hpp"
 #include "feedplan/geometry/engagement.hpp"
 #include "feedplan/planner/feed_limit.hpp"
-#include "feedplan/sim/revolution_peaks.hpp"
+#include "feedplan/force_log/revolution_peaks.hpp"
 
 namespace feedplan::learning {
 
@@ -66,9 +66,9 @@ class RowSeries {
 // can fall on a tooth's peak; then which flute's peak a window holds changes from revolution to
 // revolution (with runout, by the runout's share of the force). The peaks' phase in the tooth period is
 // their force-weighted circular mean over the windows holding more than a tenth of the largest peak.
-std::vector<sim::RevolutionPeak> tooth_periods_centred_on_peaks(const std::vector<double>& t, const std::vector<double>& fx,
+std::vector<force_log::RevolutionPeak> tooth_periods_centred_on_peaks(const std::vector<double>& t, const std::vector<double>& fx,
                                                                 const std::vector<double>& fy, double tooth_rate_per_min) {
-  const std::vector<sim::RevolutionPeak> from_first = sim::revolution_peaks(t, fx, fy, tooth_rate_per_min);
+  const std::vector<force_log::RevolutionPeak> from_first = force_log::revolution_peaks(t, fx, fy, tooth_rate_per_min);
   double largest = 0.0;
   for (const auto& p : from_first) largest = std::max(largest, p.peak_xy_n);
   const double period_s = 60.0 / tooth_rate_per_min;
@@ -87,7 +87,7 @@ std::vector<sim::RevolutionPeak> tooth_periods_centred_on_peaks(const std::vecto
       std::lower_bound(t.begin(), t.end(), t.front() + start_turns * period_s) - t.begin());
   if (first == 0 || first + 2 > t.size()) return from_first;
   const auto tail = [first](const std::vector<double>& v) { return std::vector<double>(v.begin() + static_cast<long>(first), v.end()); };
-  return sim::revolution_peaks(tail(t), tail(fx), tail(fy), tooth_rate_per_min);
+  return force_log::revolution_peaks(tail(t), tail(fx), tail(fy), tooth_rate_per_min);
 }
 
 // What became of one window.
@@ -107,7 +107,7 @@ std::string fixed(double value, int decimals) {
 
 }  // namespace
 
-MeasuredRevolutions measured_revolutions(const sim::ForceLog& log, const Alignment& alignment,
+MeasuredRevolutions measured_revolutions(const force_log::ForceLog& log, const Alignment& alignment,
                                          const planner::PlanResult& plan, const model_db::ResponseSurfaceModel& model,
                                          int flutes, double spindle_rpm, const MeasuredRevolutionOptions& options) {
   std::vector<InputProblem> problems;
@@ -138,7 +138,7 @@ MeasuredRevolutions measured_revolutions(const sim::ForceLog& log, const Alignme
     return out;
   }
 
-  // 1. Windows. NaN forces read as 0 for sim::revolution_peaks; windows holding one are skipped below.
+  // 1. Windows. NaN forces read as 0 for force_log::revolution_peaks; windows holding one are skipped below.
   std::vector<double> t(n), fx(n), fy(n), feed(n), nan_rows(n);
   for (std::size_t i = 0; i < n; ++i) {
     const auto& row = log.rows[i];
@@ -149,7 +149,7 @@ MeasuredRevolutions measured_revolutions(const sim::ForceLog& log, const Alignme
     nan_rows[i] = finite ? 0.0 : kNaN;
     feed[i] = row.feed_mm_per_min;
   }
-  const std::vector<sim::RevolutionPeak> peaks = sim::revolution_peaks(t, fx, fy, spindle_rpm);
+  const std::vector<force_log::RevolutionPeak> peaks = force_log::revolution_peaks(t, fx, fy, spindle_rpm);
   const double period_s = 60.0 / spindle_rpm;
   const double mean_step_s = (t.back() - t.front()) / static_cast<double>(n - 1);
   const RowSeries rows(t);
@@ -179,7 +179,7 @@ MeasuredRevolutions measured_revolutions(const sim::ForceLog& log, const Alignme
 
   // One window (a revolution or a tooth period) → its place and, engaged, its sample.
   const double delay_s = alignment.delay_s;
-  auto evaluate = [&](const sim::RevolutionPeak& peak, double window_s) {
+  auto evaluate = [&](const force_log::RevolutionPeak& peak, double window_s) {
     WindowPlace w;
     const std::size_t first = rows.first_at_or_after(peak.t_start_s);
     const std::size_t end = rows.first_at_or_after(peak.t_end_s);
@@ -196,7 +196,7 @@ MeasuredRevolutions measured_revolutions(const sim::ForceLog& log, const Alignme
       return w;
     }
     const double s0 = rows.at(alignment.s_mm, t0);
-    // The last window may end a fraction of a row past the last row (sim::revolution_peaks' rule).
+    // The last window may end a fraction of a row past the last row (force_log::revolution_peaks' rule).
     const double s1 = rows.at(alignment.s_mm, std::min(t1, t.back()));
     const double s_peak = rows.at(alignment.s_mm, tp);
     if (!std::isfinite(s0) || !std::isfinite(s1) || !std::isfinite(s_peak)) {
@@ -239,7 +239,7 @@ MeasuredRevolutions measured_revolutions(const sim::ForceLog& log, const Alignme
     return w;
   };
 
-  for (const sim::RevolutionPeak& peak : peaks) {
+  for (const force_log::RevolutionPeak& peak : peaks) {
     const WindowPlace w = evaluate(peak, period_s);
     switch (w.outcome) {
       case WindowOutcome::kNan: ++out.skipped_nan; continue;
@@ -258,9 +258,9 @@ MeasuredRevolutions measured_revolutions(const sim::ForceLog& log, const Alignme
 
   // 5. Tooth periods: the same rule on windows of 1/Z turn (window k in turn k / Z, flute window k mod Z),
   //    phased so that the tooth peaks lie in the middle of their windows; then each one's runout factor.
-  const std::vector<sim::RevolutionPeak> periods = tooth_periods_centred_on_peaks(t, fx, fy, spindle_rpm * flutes);
+  const std::vector<force_log::RevolutionPeak> periods = tooth_periods_centred_on_peaks(t, fx, fy, spindle_rpm * flutes);
   const auto z = static_cast<std::size_t>(flutes);
-  for (const sim::RevolutionPeak& period : periods) {
+  for (const force_log::RevolutionPeak& period : periods) {
     const WindowPlace w = evaluate(period, period_s / flutes);
     if (w.outcome != WindowOutcome::kEngaged) continue;
     ToothPeriodPeak p;

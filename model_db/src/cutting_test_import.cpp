@@ -13,7 +13,7 @@
 
 #include "feedplan/core/number_text.hpp"
 #include "feedplan/geometry/analytic_engagement.hpp"
-#include "feedplan/sim/revolution_peaks.hpp"
+#include "feedplan/force_log/revolution_peaks.hpp"
 
 namespace feedplan::model_db {
 
@@ -88,12 +88,12 @@ struct RevolutionSignals {
   std::vector<double> spindle_rpm;                // mean of the spindle_rpm column
 };
 
-RevolutionSignals revolution_signals(const sim::ForceLog& log, const std::vector<sim::RevolutionPeak>& peaks) {
+RevolutionSignals revolution_signals(const force_log::ForceLog& log, const std::vector<force_log::RevolutionPeak>& peaks) {
   RevolutionSignals signals;
   const auto& rows = log.rows;
   auto first_at = [&](double t) {
     return static_cast<std::size_t>(
-        std::lower_bound(rows.begin(), rows.end(), t, [](const sim::ForceLogRow& r, double v) { return r.t_s < v; }) -
+        std::lower_bound(rows.begin(), rows.end(), t, [](const force_log::ForceLogRow& r, double v) { return r.t_s < v; }) -
         rows.begin());
   };
   for (const auto& peak : peaks) {
@@ -115,8 +115,8 @@ RevolutionSignals revolution_signals(const sim::ForceLog& log, const std::vector
     signals.spindle_rpm.push_back(rpm_count > 0 ? rpm_sum / rpm_count : std::nan(""));
     double feed_positions = std::nan("");
     if (log.has_positions && i1 >= i0 + 2) {
-      const sim::ForceLogRow& a = rows[i0];
-      const sim::ForceLogRow& b = rows[i1 - 1];
+      const force_log::ForceLogRow& a = rows[i0];
+      const force_log::ForceLogRow& b = rows[i1 - 1];
       const double distance_mm = std::hypot(b.x_mm - a.x_mm, b.y_mm - a.y_mm);
       if (std::isfinite(distance_mm) && b.t_s > a.t_s) feed_positions = distance_mm / (b.t_s - a.t_s) * 60.0;
     }
@@ -138,7 +138,7 @@ struct SteadyRun {
 };
 
 // Steps 2–4 of the steady-state rule (header) over the revolutions marked eligible.
-SteadyRun find_steady(const std::vector<sim::RevolutionPeak>& peaks, const std::vector<bool>& eligible,
+SteadyRun find_steady(const std::vector<force_log::RevolutionPeak>& peaks, const std::vector<bool>& eligible,
                       const CuttingTestImportOptions& options) {
   SteadyRun run;
   const std::size_t n = peaks.size();
@@ -297,7 +297,7 @@ std::vector<InputProblem> validate(const CuttingTestImportOptions& options) {
   return problems;
 }
 
-CuttingTestRecord import_cutting_test(const sim::ForceLog& log, const CuttingTestConditions& conditions,
+CuttingTestRecord import_cutting_test(const force_log::ForceLog& log, const CuttingTestConditions& conditions,
                                       const geometry::Tool& tool, const CuttingTestImportOptions& options) {
   std::vector<InputProblem> problems = validate(conditions, tool);
   for (auto& p : validate(options)) problems.push_back(std::move(p));
@@ -365,7 +365,7 @@ CuttingTestRecord import_cutting_test(const sim::ForceLog& log, const CuttingTes
   }
 
   // Per-revolution peaks and what the log says about each revolution.
-  const std::vector<sim::RevolutionPeak> peaks = sim::revolution_peaks(t_s, fx_n, fy_n, rpm);
+  const std::vector<force_log::RevolutionPeak> peaks = force_log::revolution_peaks(t_s, fx_n, fy_n, rpm);
   const RevolutionSignals signals = revolution_signals(log, peaks);
   record.revolutions_total = static_cast<int>(peaks.size());
 
@@ -451,8 +451,8 @@ CuttingTestRecord import_cutting_test(const sim::ForceLog& log, const CuttingTes
   record.contact_length_mm = radius_mm * engagement_rad;
 
   // Notes.
-  const sim::RevolutionPeak& first = peaks[steady.begin];
-  const sim::RevolutionPeak& last = peaks[steady.end - 1];
+  const force_log::RevolutionPeak& first = peaks[steady.begin];
+  const force_log::RevolutionPeak& last = peaks[steady.end - 1];
   record.notes.push_back("steady: " + std::to_string(found) + " of " + std::to_string(peaks.size()) +
                          " complete revolutions (numbers " + std::to_string(first.revolution) + "–" +
                          std::to_string(last.revolution) + ", t " + measured(first.t_start_s) + "–" +
@@ -492,7 +492,7 @@ CuttingTestRecord import_cutting_test(const std::string& log_path, const Cutting
   std::vector<InputProblem> problems = validate(conditions, tool);
   for (auto& p : validate(named)) problems.push_back(std::move(p));
   if (!problems.empty()) throw InputError(std::move(problems));
-  return import_cutting_test(sim::load_force_log(log_path), conditions, tool, named);
+  return import_cutting_test(force_log::load_force_log(log_path), conditions, tool, named);
 }
 
 }  // namespace feedplan::model_db

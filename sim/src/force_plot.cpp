@@ -287,7 +287,7 @@ std::string write_force_plot(const std::string& path, const ForcePlotData& data)
   return write_file_atomically(path, force_plot_svg(data));
 }
 
-ForcePlotData force_plot_data(const ForceLog& log, const std::string& title, std::vector<RevolutionPeak> peaks,
+ForcePlotData force_plot_data(const force_log::ForceLog& log, const std::string& title, std::vector<force_log::RevolutionPeak> peaks,
                               std::optional<double> target_force_n) {
   ForcePlotData data;
   data.title = title;

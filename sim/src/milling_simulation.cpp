@@ -250,7 +250,7 @@ SimulationResult simulate(const SimulationRequest& request) {
   const double flute_top = options.flute_length_mm > 0.0 ? options.flute_length_mm : 1e300;
 
   // 4. Log and statistics.
-  ForceLog& log = result.log;
+  force_log::ForceLog& log = result.log;
   log.has_currents = request.sensors.servo_current.enabled;
   log.metadata = {{"source", "feedplan simulate (virtual machine, mechanistic forces)"},
                   {"sample_rate_hz", six_digit_number_text(options.log_rate_hz)},
@@ -263,14 +263,14 @@ SimulationResult simulate(const SimulationRequest& request) {
   for (const auto& entry : request.log_metadata) log.metadata.push_back(entry);
   const double log_dt = 1.0 / options.log_rate_hz;
   long long next_log = 0;
-  ForceLogRow previous_row;
+  force_log::ForceLogRow previous_row;
   bool have_previous_row = false;
 
   double omega_angle = 0.0;  // spindle angle Ω, rad
   double tau = 0.0;          // time along the planned motion (differs from t under a feed override)
   double last_direction = 0.0;
   int revolution = 0;
-  RevolutionPeak current_rev;
+  force_log::RevolutionPeak current_rev;
   double rev_sum = 0.0;
   long long rev_steps = 0;
   double contact_force_sum = 0.0;
@@ -339,7 +339,7 @@ SimulationResult simulate(const SimulationRequest& request) {
       current_rev.mean_xy_n = rev_sum / rev_steps;
       current_rev.samples = static_cast<std::size_t>(rev_steps);
       result.revolutions.push_back(current_rev);
-      current_rev = RevolutionPeak{};
+      current_rev = force_log::RevolutionPeak{};
       current_rev.revolution = rev_now;
       current_rev.t_start_s = t;
       rev_sum = 0.0;
@@ -359,7 +359,7 @@ SimulationResult simulate(const SimulationRequest& request) {
     result.summary.max_force_z_n = std::max(result.summary.max_force_z_n, std::abs(force.fz_n));
 
     // Log rows on the log clock, interpolated between internal steps.
-    ForceLogRow row;
+    force_log::ForceLogRow row;
     row.t_s = t;
     row.x_mm = state.position.x_mm;
     row.y_mm = state.position.y_mm;
@@ -375,13 +375,13 @@ SimulationResult simulate(const SimulationRequest& request) {
     while (next_log * log_dt <= t + 1e-12) {
       const double tl = next_log * log_dt;
       if (!have_previous_row || t <= previous_row.t_s) {
-        ForceLogRow out = row;
+        force_log::ForceLogRow out = row;
         out.t_s = tl;
         log.rows.push_back(out);
       } else {
         const double w = (tl - previous_row.t_s) / (t - previous_row.t_s);
         auto mix = [&](double a, double b) { return a + w * (b - a); };
-        ForceLogRow out;
+        force_log::ForceLogRow out;
         out.t_s = tl;
         out.x_mm = mix(previous_row.x_mm, row.x_mm);
         out.y_mm = mix(previous_row.y_mm, row.y_mm);

@@ -17,7 +17,7 @@
 #include "feedplan/learning/current_calibration.hpp"
 #include "feedplan/sim/material.hpp"
 #include "feedplan/sim/milling_simulation.hpp"
-#include "feedplan/sim/revolution_peaks.hpp"
+#include "feedplan/force_log/revolution_peaks.hpp"
 
 namespace feedplan::learning {
 namespace {
@@ -85,7 +85,7 @@ struct Means {
   double peak_xy = 0.0;
 };
 
-Means steady_means(const sim::ForceLog& log, double t0_s, double t1_s) {
+Means steady_means(const force_log::ForceLog& log, double t0_s, double t1_s) {
   Means m;
   double sx = 0.0, sy = 0.0;
   int n = 0;
@@ -101,16 +101,16 @@ Means steady_means(const sim::ForceLog& log, double t0_s, double t1_s) {
   }
   m.x = std::abs(sx / n);
   m.y = std::abs(sy / n);
-  for (const auto& p : sim::revolution_peaks(t, fx, fy, kRpm)) m.peak_xy = std::max(m.peak_xy, p.peak_xy_n);
+  for (const auto& p : force_log::revolution_peaks(t, fx, fy, kRpm)) m.peak_xy = std::max(m.peak_xy, p.peak_xy_n);
   return m;
 }
 
 TEST(CurrentCalibration, ForcesFromCurrentsAreTheMeanForcesNotThePeaks) {
   const CurrentCalibration c = fit_current_calibration(run().log);
-  sim::ForceLog currents_only = run().log;
+  force_log::ForceLog currents_only = run().log;
   currents_only.has_forces = false;
   for (auto& row : currents_only.rows) row.fx_n = row.fy_n = row.fz_n = std::numeric_limits<double>::quiet_NaN();
-  const sim::ForceLog derived = forces_from_currents(currents_only, c);
+  const force_log::ForceLog derived = forces_from_currents(currents_only, c);
   EXPECT_TRUE(derived.has_forces);
   EXPECT_TRUE(derived.has_currents);
   EXPECT_NE(derived.metadata_value("forces").find("mean forces"), std::string::npos);
@@ -133,14 +133,14 @@ TEST(CurrentCalibration, ForcesFromCurrentsAreTheMeanForcesNotThePeaks) {
 }
 
 TEST(CurrentCalibration, ALogWithoutForcesOrCurrentsOrVariationCannotCalibrate) {
-  sim::ForceLog no_currents = run().log;
+  force_log::ForceLog no_currents = run().log;
   no_currents.has_currents = false;
   EXPECT_THROW(fit_current_calibration(no_currents), InputError);
-  sim::ForceLog no_forces = run().log;
+  force_log::ForceLog no_forces = run().log;
   no_forces.has_forces = false;
   EXPECT_THROW(fit_current_calibration(no_forces), InputError);
   // Only the approach through air: no force to fit a slope on.
-  sim::ForceLog air = run().log;
+  force_log::ForceLog air = run().log;
   std::size_t keep = 0;
   while (keep < air.rows.size() && std::hypot(air.rows[keep].fx_n, air.rows[keep].fy_n) < 20.0) ++keep;
   ASSERT_GT(keep, 500u);
@@ -159,15 +159,15 @@ TEST(CurrentCalibration, ForcesFromCurrentsNeedCurrentsAndAPositiveSlope) {
   c.y = {7.24, 0.0, 1.0, 10};
   EXPECT_THROW(forces_from_currents(run().log, c), InputError);
   c.y.b_a_per_n = 0.0045;
-  sim::ForceLog no_currents = run().log;
+  force_log::ForceLog no_currents = run().log;
   no_currents.has_currents = false;
   EXPECT_THROW(forces_from_currents(no_currents, c), InputError);
   // Hand check of the map on one row: |F| = (I − a) / b.
-  sim::ForceLog one = run().log;
+  force_log::ForceLog one = run().log;
   one.rows.resize(1);
   one.rows[0].ix_a = 4.12 + 0.00362 * 250.0;
   one.rows[0].iy_a = 7.24 + 0.0045 * 100.0;
-  const sim::ForceLog f = forces_from_currents(one, c);
+  const force_log::ForceLog f = forces_from_currents(one, c);
   EXPECT_NEAR(f.rows[0].fx_n, 250.0, 1e-9);
   EXPECT_NEAR(f.rows[0].fy_n, 100.0, 1e-9);
   EXPECT_TRUE(std::isnan(f.rows[0].fz_n));  // no z calibration

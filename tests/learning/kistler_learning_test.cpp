@@ -20,8 +20,8 @@
 #include "feedplan/model_db/model_exchange.hpp"
 #include "feedplan/model_db/model_prediction.hpp"
 #include "feedplan/model_db/store.hpp"
-#include "feedplan/sim/force_log.hpp"
-#include "feedplan/sim/revolution_peaks.hpp"
+#include "feedplan/force_log/force_log.hpp"
+#include "feedplan/force_log/revolution_peaks.hpp"
 
 namespace feedplan::learning {
 namespace {
@@ -38,7 +38,7 @@ constexpr double kMeasuredPeak900N = 495.4;
 // Per-revolution peaks of a recording as learning samples of a straight slot at `feed_mm_per_min`,
 // forces scaled to the model's axial depth (the planner's convention, feed_limit.hpp).
 std::vector<LearningSample> slot_samples(const std::string& file, double feed_mm_per_min, double model_axial_depth_mm) {
-  const sim::ForceLog log = sim::load_force_log(std::string(FEEDPLAN_TEST_DATA_DIR) + "/kistler_full/" + file);
+  const force_log::ForceLog log = force_log::load_force_log(std::string(FEEDPLAN_TEST_DATA_DIR) + "/kistler_full/" + file);
   std::vector<double> t, fx, fy;
   for (const auto& row : log.rows) {
     t.push_back(row.t_s);
@@ -46,7 +46,7 @@ std::vector<LearningSample> slot_samples(const std::string& file, double feed_mm
     fy.push_back(row.fy_n);
   }
   std::vector<LearningSample> samples;
-  for (const sim::RevolutionPeak& peak : sim::revolution_peaks(t, fx, fy, kRpm)) {
+  for (const force_log::RevolutionPeak& peak : force_log::revolution_peaks(t, fx, fy, kRpm)) {
     samples.push_back({feed_mm_per_min / (kFlutes * kRpm), kToolRadiusMm * kPi,
                        peak.peak_xy_n * model_axial_depth_mm / kAxialDepthMm, 1.0, 0.0});
   }

@@ -119,7 +119,7 @@ InCut in_cut(const planner::PlanResult& plan) {
 }
 
 TEST(LogAlignment, NoisyPositionsGiveTheMachinesArcLength) {
-  sim::ForceLog log = run().result.log;
+  force_log::ForceLog log = run().result.log;
   Noise noise(20240601);
   for (auto& row : log.rows) {
     row.x_mm += noise.next(0.01);
@@ -127,10 +127,10 @@ TEST(LogAlignment, NoisyPositionsGiveTheMachinesArcLength) {
     row.z_mm += noise.next(0.01);
   }
   // The acquisition started 50 ms before the program, with the machine parked elsewhere.
-  sim::ForceLog early = log;
+  force_log::ForceLog early = log;
   early.rows.clear();
   for (int i = 500; i >= 1; --i) {
-    sim::ForceLogRow row;
+    force_log::ForceLogRow row;
     row.t_s = -1e-4 * i;
     row.x_mm = -120.0;
     row.y_mm = 80.0;
@@ -164,7 +164,7 @@ TEST(LogAlignment, NoisyPositionsGiveTheMachinesArcLength) {
 }
 
 TEST(LogAlignment, ForcesLaggingBy50msAreEstimated) {
-  sim::ForceLog log = run().result.log;
+  force_log::ForceLog log = run().result.log;
   const std::size_t shift = 500;  // 50 ms at 10 kHz
   for (std::size_t i = log.rows.size(); i-- > 0;) {
     const bool before = i < shift;
@@ -186,10 +186,10 @@ TEST(LogAlignment, ALogOfAnotherProgramIsNotThisProgram) {
   // The same corner, but 60° instead of 90°: the same first wall, then another way.
   const PlannedCorner other = planned_corner(60.0);
   const sim::MotionProfile motion = sim::plan_motion(other.plan.program, motion_limits(other.spec.machine));
-  sim::ForceLog log;
+  force_log::ForceLog log;
   for (double t = 0.0; t <= motion.duration_s(); t += 1e-3) {
     const sim::MotionState state = motion.state_at_time(t);
-    sim::ForceLogRow row;
+    force_log::ForceLogRow row;
     row.t_s = t;
     row.x_mm = state.position.x_mm;
     row.y_mm = state.position.y_mm;
@@ -203,7 +203,7 @@ TEST(LogAlignment, ALogOfAnotherProgramIsNotThisProgram) {
   EXPECT_EQ(a.rows_aligned, 0);
 
   // Far away altogether: the first row and its distance are named.
-  sim::ForceLog moved = run().result.log;
+  force_log::ForceLog moved = run().result.log;
   for (auto& row : moved.rows) row.x_mm += 200.0;
   const Alignment b = align_log(moved, run().corner.plan);
   EXPECT_EQ(b.status, AlignmentStatus::kNotThisProgram);
@@ -211,7 +211,7 @@ TEST(LogAlignment, ALogOfAnotherProgramIsNotThisProgram) {
 }
 
 TEST(LogAlignment, PositionsInInchesAreRecognised) {
-  sim::ForceLog log = run().result.log;
+  force_log::ForceLog log = run().result.log;
   for (auto& row : log.rows) {
     row.x_mm /= 25.4;
     row.y_mm /= 25.4;
@@ -227,7 +227,7 @@ TEST(LogAlignment, ALogEndingInTheMiddleOfTheCutIsTruncated) {
   const InCut cut = in_cut(run().corner.plan);
   ASSERT_GT(cut.length_mm, 20.0);
   const double s_end = cut.first_mm + 0.4 * (cut.last_mm - cut.first_mm);
-  sim::ForceLog log = run().result.log;
+  force_log::ForceLog log = run().result.log;
   std::size_t keep = 0;
   while (keep < log.rows.size() && true_s(log.rows[keep].t_s) <= s_end) ++keep;
   log.rows.resize(keep);
@@ -241,7 +241,7 @@ TEST(LogAlignment, ALogEndingInTheMiddleOfTheCutIsTruncated) {
 TEST(LogAlignment, ALogStartingInTheMiddleOfTheCutIsAlignedFromThere) {
   const InCut cut = in_cut(run().corner.plan);
   const double s_start = cut.first_mm + 0.5 * (cut.last_mm - cut.first_mm);
-  sim::ForceLog log = run().result.log;
+  force_log::ForceLog log = run().result.log;
   std::size_t drop = 0;
   while (drop < log.rows.size() && true_s(log.rows[drop].t_s) < s_start) ++drop;
   log.rows.erase(log.rows.begin(), log.rows.begin() + static_cast<long>(drop));
@@ -266,12 +266,12 @@ TEST(LogAlignment, TrochoidLoopsThatCrossEachOtherAreFollowedInOrder) {
   const planner::PlanResult plan = planner::plan(planner::analyse(cycle.path, cycle.stock, cycle.tool, 0.05), settings);
   ASSERT_GT(plan.samples.back().s_mm, 200.0);  // nine loops of 31 mm
   const sim::MotionProfile motion = sim::plan_motion(plan.program, motion_limits(spec.machine));
-  sim::ForceLog log;
+  force_log::ForceLog log;
   log.has_forces = false;
   Noise noise(7);
   for (double t = 0.0; t <= motion.duration_s(); t += 5e-4) {
     const sim::MotionState state = motion.state_at_time(t);
-    sim::ForceLogRow row;
+    force_log::ForceLogRow row;
     row.t_s = t;
     row.x_mm = state.position.x_mm + noise.next(0.01);
     row.y_mm = state.position.y_mm + noise.next(0.01);
@@ -291,7 +291,7 @@ TEST(LogAlignment, TrochoidLoopsThatCrossEachOtherAreFollowedInOrder) {
 
 TEST(LogAlignment, ALogOfTheApproachOnlyHasNoCut) {
   const InCut cut = in_cut(run().corner.plan);
-  sim::ForceLog log = run().result.log;
+  force_log::ForceLog log = run().result.log;
   std::size_t keep = 0;
   while (keep < log.rows.size() && true_s(log.rows[keep].t_s) < cut.first_mm - 1.0) ++keep;
   ASSERT_GT(keep, 100u);
@@ -303,7 +303,7 @@ TEST(LogAlignment, ALogOfTheApproachOnlyHasNoCut) {
 }
 
 TEST(LogAlignment, NanRowsAreCountedAndSkippedAndGapsCounted) {
-  sim::ForceLog log = run().result.log;
+  force_log::ForceLog log = run().result.log;
   const std::size_t n = log.rows.size();
   for (std::size_t i : {n / 3, n / 3 + 1, n / 2}) log.rows[i].x_mm = kNaN;
   for (std::size_t i : {n / 4, 2 * n / 3}) log.rows[i].fy_n = kNaN;
@@ -321,19 +321,19 @@ TEST(LogAlignment, NanRowsAreCountedAndSkippedAndGapsCounted) {
 
 TEST(LogAlignment, AKistlerExportIsAlignedByThePlansTimeProfile) {
   // As a DynoWare export: no positions, no feed, the acquisition's own clock, started 0.3 s early.
-  const sim::ForceLog& simulated = run().result.log;
-  sim::ForceLog log;
+  const force_log::ForceLog& simulated = run().result.log;
+  force_log::ForceLog log;
   log.has_positions = false;
   const double clock_offset_s = 12.5;
   for (int i = 3000; i >= 1; --i) {
-    sim::ForceLogRow row;
+    force_log::ForceLogRow row;
     row.t_s = clock_offset_s - 1e-4 * i;
     row.x_mm = row.y_mm = row.z_mm = row.feed_mm_per_min = row.spindle_rpm = kNaN;
     row.fx_n = row.fy_n = row.fz_n = 0.0;
     log.rows.push_back(row);
   }
   for (const auto& source : simulated.rows) {
-    sim::ForceLogRow row = source;
+    force_log::ForceLogRow row = source;
     row.t_s += clock_offset_s;
     row.x_mm = row.y_mm = row.z_mm = row.feed_mm_per_min = row.spindle_rpm = kNaN;
     log.rows.push_back(row);
@@ -357,11 +357,11 @@ TEST(LogAlignment, AKistlerExportIsAlignedByThePlansTimeProfile) {
 }
 
 TEST(LogAlignment, BadOptionsAndTimeGoingBackAreInputErrors) {
-  const sim::ForceLog& log = run().result.log;
+  const force_log::ForceLog& log = run().result.log;
   AlignmentOptions options;
   options.max_distance_mm = 0.0;
   EXPECT_THROW(align_log(log, run().corner.plan, options), InputError);
-  sim::ForceLog backwards = log;
+  force_log::ForceLog backwards = log;
   backwards.rows[10].t_s = backwards.rows[9].t_s;
   try {
     align_log(backwards, run().corner.plan);

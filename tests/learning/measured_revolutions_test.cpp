@@ -91,7 +91,7 @@ const CornerRun& run() {
 
 // The simulator's true peak of the revolution starting at t_start_s (its revolutions start on its
 // internal steps, at most one step after t0 + k T).
-const sim::RevolutionPeak* true_revolution(double t_start_s) {
+const force_log::RevolutionPeak* true_revolution(double t_start_s) {
   for (const auto& rev : run().result.revolutions) {
     if (std::abs(rev.t_start_s - t_start_s) < 1e-4) return &rev;
   }
@@ -126,7 +126,7 @@ TEST(MeasuredRevolutions, PeaksAreTheSimulatorsAndInputsTheAnalyticStraightCut) 
   for (std::size_t k = 0; k < m.samples.size(); ++k) {
     const LearningSample& sample = m.samples[k];
     const double t0 = m.sample_t_start_s[k];
-    const sim::RevolutionPeak* truth = true_revolution(t0);
+    const force_log::RevolutionPeak* truth = true_revolution(t0);
     ASSERT_NE(truth, nullptr) << "t " << t0;
     // The dynamometer (2 N noise) against the true force at every internal step.
     const double error = sample.force_n * ratio / truth->peak_xy_n - 1.0;
@@ -159,7 +159,7 @@ TEST(MeasuredRevolutions, EveryAlignedRevolutionIsThereForThePeakComparison) {
       measured_revolutions(run().result.log, run().alignment, run().plan, run().model, kFlutes, kRpm);
   const double period_s = 60.0 / kRpm;
   const double duration_s = run().result.log.rows.back().t_s - run().result.log.rows.front().t_s;
-  // Complete windows of sim::revolution_peaks' rule; all aligned (the log starts and ends on the path).
+  // Complete windows of force_log::revolution_peaks' rule; all aligned (the log starts and ends on the path).
   const int complete = static_cast<int>(std::floor(duration_s / period_s + 1e-6));
   EXPECT_NEAR(static_cast<double>(m.revolutions.size()), complete, 1.0);
   EXPECT_EQ(m.skipped_not_aligned, 0);
@@ -170,7 +170,7 @@ TEST(MeasuredRevolutions, EveryAlignedRevolutionIsThereForThePeakComparison) {
 }
 
 TEST(MeasuredRevolutions, ForceDelayIsUndoneWhenPlacingRevolutions) {
-  sim::ForceLog log = run().result.log;
+  force_log::ForceLog log = run().result.log;
   const std::size_t shift = static_cast<std::size_t>(std::lround(0.05 * kLogRateHz));  // forces lag by 50 ms
   for (std::size_t i = log.rows.size(); i-- > 0;) {
     log.rows[i].fx_n = i < shift ? 0.0 : log.rows[i - shift].fx_n;
@@ -200,7 +200,7 @@ TEST(MeasuredRevolutions, ForceDelayIsUndoneWhenPlacingRevolutions) {
 }
 
 TEST(MeasuredRevolutions, FeedFromTheAlignmentWhenTheLogHasNone) {
-  sim::ForceLog log = run().result.log;
+  force_log::ForceLog log = run().result.log;
   for (auto& row : log.rows) row.feed_mm_per_min = kNaN;
   const MeasuredRevolutions with =
       measured_revolutions(run().result.log, run().alignment, run().plan, run().model, kFlutes, kRpm);
@@ -234,7 +234,7 @@ TEST(MeasuredRevolutions, ForcesScaleToTheModelsAxialDepthUnlessAskedNot) {
 TEST(MeasuredRevolutions, ARevolutionWithANanForceIsSkipped) {
   const MeasuredRevolutions all =
       measured_revolutions(run().result.log, run().alignment, run().plan, run().model, kFlutes, kRpm);
-  sim::ForceLog log = run().result.log;
+  force_log::ForceLog log = run().result.log;
   // A row in the middle of the sixth sample's revolution.
   const double t = all.sample_t_start_s[5] + 0.5 * 60.0 / kRpm;
   for (auto& row : log.rows) {
@@ -261,7 +261,7 @@ TEST(MeasuredRevolutions, BadArgumentsAreInputErrors) {
   const auto& r = run();
   EXPECT_THROW(measured_revolutions(r.result.log, r.alignment, r.plan, r.model, 0, kRpm), InputError);
   EXPECT_THROW(measured_revolutions(r.result.log, r.alignment, r.plan, r.model, kFlutes, 0.0), InputError);
-  sim::ForceLog currents_only = r.result.log;
+  force_log::ForceLog currents_only = r.result.log;
   currents_only.has_forces = false;
   EXPECT_THROW(measured_revolutions(currents_only, r.alignment, r.plan, r.model, kFlutes, kRpm), InputError);
 }

@@ -18,9 +18,10 @@
 #include <vector>
 
 #include "feedplan/core/input_error.hpp"
+#include "has_problem.hpp"
 #include "feedplan/model_db/cutting_test_import.hpp"
 #include "feedplan/sim/cutting_test.hpp"
-#include "feedplan/sim/force_log.hpp"
+#include "feedplan/force_log/force_log.hpp"
 #include "feedplan/sim/milling_simulation.hpp"
 
 namespace feedplan::model_db {
@@ -33,16 +34,7 @@ const std::string kKistlerDir = std::string(FEEDPLAN_TEST_DATA_DIR) + "/kistler_
 // ---------------------------------------------------------------------------------------------------
 // Helpers
 
-//! Success when some problem has exactly `field` and a message containing `message_part`.
-::testing::AssertionResult has_problem(const std::vector<InputProblem>& problems, const std::string& field,
-                                       const std::string& message_part) {
-  std::string all;
-  for (const auto& p : problems) {
-    if (p.field == field && p.message.find(message_part) != std::string::npos) return ::testing::AssertionSuccess();
-    all += "\n  " + to_string(p);
-  }
-  return ::testing::AssertionFailure() << "no problem '" << field << "' with '" << message_part << "' among:" << all;
-}
+using test_support::has_problem;
 
 //! The problems an import throws; a failure when it throws none.
 template <typename Import>
@@ -242,7 +234,7 @@ TEST(CuttingTestImport, SimulatedTestMatchesTheTrueSteadyPeak) {
   const double truth = truth_sum / truth_count;
 
   // Through a file, as a user would: written by the log writer, read back by the import.
-  const ScratchFile file("simulated.csv", sim::format_force_log(result.log));
+  const ScratchFile file("simulated.csv", force_log::format_force_log(result.log));
   const CuttingTestRecord r = import_cutting_test(file.path(), sim_conditions(), kSimTool);
   std::printf("simulated: import %.2f ± %.2f N over %d of %d revolutions | true steady peak %.2f N over %d "
               "fully engaged revolutions | %+.3f %%\n",
@@ -257,15 +249,15 @@ TEST(CuttingTestImport, SimulatedTestMatchesTheTrueSteadyPeak) {
   // Where the steady revolutions lie: find them among the log's revolutions, then check that the
   // virtual machine's noise-free peaks in that time window hold no transient (each within 1 % of the
   // fully engaged mean).
-  const std::vector<sim::RevolutionPeak> logged = [&] {
-    const sim::ForceLog log = sim::load_force_log(file.path());
+  const std::vector<force_log::RevolutionPeak> logged = [&] {
+    const force_log::ForceLog log = force_log::load_force_log(file.path());
     std::vector<double> t, fx, fy;
     for (const auto& row : log.rows) {
       t.push_back(row.t_s);
       fx.push_back(row.fx_n);
       fy.push_back(row.fy_n);
     }
-    return sim::revolution_peaks(t, fx, fy, kSimRpm);
+    return force_log::revolution_peaks(t, fx, fy, kSimRpm);
   }();
   std::size_t first = logged.size();
   for (std::size_t j = 0; j + r.steady_peaks_n.size() <= logged.size() && first == logged.size(); ++j) {
@@ -299,13 +291,13 @@ TEST(CuttingTestImport, SimulatedTestMatchesTheTrueSteadyPeak) {
 
 // 6000 rpm, 10 kHz: 100 samples per revolution. Revolution k's force is A_k |sin(2π θ)| along x
 // (θ: fraction of the revolution), so its peak is A_k exactly.
-sim::ForceLog synthetic_log(const std::vector<double>& amplitudes_n) {
-  sim::ForceLog log;
+force_log::ForceLog synthetic_log(const std::vector<double>& amplitudes_n) {
+  force_log::ForceLog log;
   log.has_positions = false;
   log.metadata = {{"sample_rate_hz", "10000"}};
   for (std::size_t k = 0; k < amplitudes_n.size(); ++k) {
     for (int i = 0; i < 100; ++i) {
-      sim::ForceLogRow row{};
+      force_log::ForceLogRow row{};
       row.t_s = (static_cast<double>(k) * 100 + i) * 1e-4;
       row.x_mm = row.y_mm = row.z_mm = kNaN;
       row.fx_n = amplitudes_n[k] * std::abs(std::sin(2 * kPi * i / 100.0));
@@ -315,7 +307,7 @@ sim::ForceLog synthetic_log(const std::vector<double>& amplitudes_n) {
       log.rows.push_back(row);
     }
   }
-  sim::ForceLogRow end{};  // one more sample closes the last revolution
+  force_log::ForceLogRow end{};  // one more sample closes the last revolution
   end.t_s = static_cast<double>(amplitudes_n.size()) * 0.01;
   end.x_mm = end.y_mm = end.z_mm = end.fz_n = end.feed_mm_per_min = end.spindle_rpm = kNaN;
   log.rows.push_back(end);
@@ -406,7 +398,7 @@ TEST(CuttingTestImportBadInput, SpindleSpeedContradictingTheLog) {
 
 TEST(CuttingTestImportBadInput, FeedContradictingThePositions) {
   // No feed column (empty cells): the feed comes from x_mm, y_mm only.
-  sim::ForceLog log = simulated_test().log;
+  force_log::ForceLog log = simulated_test().log;
   for (auto& row : log.rows) row.feed_mm_per_min = kNaN;
   CuttingTestConditions c = sim_conditions();
   c.feed_mm_per_min = 1000;  // the positions move at 1120
@@ -433,7 +425,7 @@ TEST(CuttingTestImportBadInput, FeedContradictingTheFeedColumn) {
 }
 
 TEST(CuttingTestImportBadInput, SampleRateMetadataContradictingTheTimeColumn) {
-  sim::ForceLog log = simulated_test().log;
+  force_log::ForceLog log = simulated_test().log;
   for (auto& [key, value] : log.metadata) {
     if (key == "sample_rate_hz") value = "5000";
   }
@@ -495,7 +487,7 @@ TEST(CuttingTestImportBadInput, BadTool) {
 }
 
 TEST(CuttingTestImportBadInput, LogWithoutForces) {
-  sim::ForceLog log = synthetic_log(std::vector<double>(20, 100.0));
+  force_log::ForceLog log = synthetic_log(std::vector<double>(20, 100.0));
   log.has_forces = false;
   log.has_currents = true;
   CuttingTestImportOptions options;

@@ -14,8 +14,8 @@
 #include <sstream>
 #include <string>
 
-#include "feedplan/sim/force_log.hpp"
-#include "feedplan/sim/revolution_peaks.hpp"
+#include "feedplan/force_log/force_log.hpp"
+#include "feedplan/force_log/revolution_peaks.hpp"
 
 namespace feedplan::sim {
 namespace {
@@ -142,14 +142,14 @@ TEST(MinMaxDecimation, ShortSeriesKeptWholeAndNaNDropped) {
 }
 
 TEST(ForcePlot, WellFormedWithTitleAxesTargetAndPeaks) {
-  const ForceLog log = load_force_log(kKistlerDir + "n6000_f900_ap3_excerpt.csv");
+  const force_log::ForceLog log = force_log::load_force_log(kKistlerDir + "n6000_f900_ap3_excerpt.csv");
   std::vector<double> t, fx, fy;
   for (const auto& r : log.rows) {
     t.push_back(r.t_s);
     fx.push_back(r.fx_n);
     fy.push_back(r.fy_n);
   }
-  const auto peaks = revolution_peaks(t, fx, fy, 6000.0);
+  const auto peaks = force_log::revolution_peaks(t, fx, fy, 6000.0);
   const ForcePlotData data = force_plot_data(log, "Slot <f900> & 6000 rpm", peaks, 450.0);
   const std::string svg = force_plot_svg(data);
   EXPECT_EQ(well_formed(svg), "");
@@ -204,7 +204,7 @@ TEST(ForcePlot, EmptyDataStillAPlot) {
 TEST(ForcePlot, ManyPeaksBecomeALine) {
   ForcePlotData data = noisy_data(100000, 3);
   for (int k = 0; k < 1000; ++k) {
-    RevolutionPeak p;
+    force_log::RevolutionPeak p;
     p.revolution = k;
     p.t_peak_s = k * 0.01;
     p.peak_xy_n = 300.0 + k % 7;

@@ -14,6 +14,8 @@
 namespace feedplan::sim {
 namespace {
 
+using test_support::has_problem;
+
 const std::string kLibraryPath = std::string(FEEDPLAN_SOURCE_DIR) + "/data/materials.yaml";
 
 // A valid two-material library; tests replace one line at a time. Line numbers matter: line 3 is

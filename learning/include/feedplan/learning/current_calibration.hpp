@@ -13,7 +13,7 @@
 // needs that factor (e.g. from a cutting test with a dynamometer); do not feed them to measured_revolutions
 // as if they were dynamometer forces.
 
-#include "feedplan/sim/force_log.hpp"
+#include "feedplan/force_log/force_log.hpp"
 
 namespace feedplan::learning {
 
@@ -42,13 +42,13 @@ inline constexpr double kCalibrationWindowS = 0.05;
 //! problem when either is missing, when the x or y axis has fewer than three windows, or when its force
 //! does not vary (spread of the window means below 1 N: nothing to fit a slope on) or the fitted slope is
 //! not positive. z is fitted when it has data and variation, else left at zero windows.
-CurrentCalibration fit_current_calibration(const sim::ForceLog& log_with_forces_and_currents);
+CurrentCalibration fit_current_calibration(const force_log::ForceLog& log_with_forces_and_currents);
 
 //! The log with forces made from its currents: |F_axis| = (I − a)/b per row and axis (not clamped at 0,
 //! so noise stays zero-mean; the sign is meaningless, currents give magnitudes). fz_n from iz_a when the
 //! z calibration has b > 0, else NaN. has_forces becomes true, currents are kept, and a metadata line
 //! says where the forces come from. These are mean forces, not tooth peaks (see the top of this file).
 //! Throws InputError when the log has no currents or the x or y calibration has b ≤ 0.
-sim::ForceLog forces_from_currents(const sim::ForceLog& current_log, const CurrentCalibration& calibration);
+force_log::ForceLog forces_from_currents(const force_log::ForceLog& current_log, const CurrentCalibration& calibration);
 
 }  // namespace feedplan::learning

@@ -39,7 +39,7 @@
 #include <vector>
 
 #include "feedplan/planner/feed_plan.hpp"
-#include "feedplan/sim/force_log.hpp"
+#include "feedplan/force_log/force_log.hpp"
 
 namespace feedplan::learning {
 
@@ -97,9 +97,9 @@ struct Alignment {
 
 //! Aligns `log` with `plan` (the method at the top of this file; positions when log.has_positions, else
 //! the time profile). Needs a plan with samples and a log with rows in strictly increasing time (what
-//! sim::read_force_log guarantees; asserted). Throws InputError when the options are out of range, or the
+//! force_log::read_force_log guarantees; asserted). Throws InputError when the options are out of range, or the
 //! log has neither positions nor forces (nothing to align by). Every other outcome — another program,
 //! inches, no cut, a truncated log — is a status with a message naming rows, times and distances.
-Alignment align_log(const sim::ForceLog& log, const planner::PlanResult& plan, const AlignmentOptions& options = {});
+Alignment align_log(const force_log::ForceLog& log, const planner::PlanResult& plan, const AlignmentOptions& options = {});
 
 }  // namespace feedplan::learning

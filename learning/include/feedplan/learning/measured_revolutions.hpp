@@ -5,7 +5,7 @@
 //
 // Step by step:
 //   1. Revolution windows by time at the given spindle speed, counted from the first row: revolution k
-//      covers [t0 + k T, t0 + (k + 1) T), T = 60 / rpm — sim::revolution_peaks, with NaN forces read as 0
+//      covers [t0 + k T, t0 + (k + 1) T), T = 60 / rpm — force_log::revolution_peaks, with NaN forces read as 0
 //      there. Only complete windows; a window with a NaN force or with fewer than half the rows it should
 //      hold (a gap) is skipped (skipped_nan).
 //   2. Place: the force of a row at time t was measured where the tool was at t − delay_s (the
@@ -43,7 +43,7 @@
 #include "feedplan/model_db/response_surface_model.hpp"
 #include "feedplan/planner/feed_plan.hpp"
 #include "feedplan/planner/peak_comparison.hpp"
-#include "feedplan/sim/force_log.hpp"
+#include "feedplan/force_log/force_log.hpp"
 
 namespace feedplan::learning {
 
@@ -83,7 +83,7 @@ struct MeasuredRevolutions {
 //! log was cut at. Throws InputError when flutes < 1, the spindle speed is not finite and > 0, the log
 //! has no forces, or the options are out of range. An alignment that is not usable (usable(status)
 //! false) gives no samples and says so in the message.
-MeasuredRevolutions measured_revolutions(const sim::ForceLog& log, const Alignment& alignment,
+MeasuredRevolutions measured_revolutions(const force_log::ForceLog& log, const Alignment& alignment,
                                          const planner::PlanResult& plan, const model_db::ResponseSurfaceModel& model,
                                          int flutes, double spindle_rpm, const MeasuredRevolutionOptions& options = {});
 

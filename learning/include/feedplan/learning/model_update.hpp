@@ -17,7 +17,7 @@
 #include "feedplan/learning/prediction_errors.hpp"
 #include "feedplan/learning/rls.hpp"
 #include "feedplan/planner/feed_plan.hpp"
-#include "feedplan/sim/force_log.hpp"
+#include "feedplan/force_log/force_log.hpp"
 
 namespace feedplan::learning {
 
@@ -42,7 +42,7 @@ struct ModelUpdateOptions {
 //! A log with its name (for messages).
 struct NamedLog {
   std::string name;  //!< file name or "cycle 2"
-  sim::ForceLog log; //!< the log
+  force_log::ForceLog log; //!< the log
 };
 
 //! What one log gave.

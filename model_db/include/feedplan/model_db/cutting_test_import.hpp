@@ -5,7 +5,7 @@
 //
 // Steady-state rule. A straight cut starts and ends with transients (air, the tool entering the block,
 // the tool leaving it); only the steady part between them is the cutting test. With P_k the peak of
-// |F_xy| in complete spindle revolution k (sim::revolution_peaks at the given spindle speed):
+// |F_xy| in complete spindle revolution k (force_log::revolution_peaks at the given spindle speed):
 //   1. Eligible revolutions: when the log records the path feed (a feed_mm_per_min column, else x_mm
 //      and y_mm: the distance between a revolution's first and last sample over their time), only those
 //      whose feed lies within feed_tolerance of the given feed — rapids, acceleration and override
@@ -39,7 +39,7 @@
 #include "feedplan/core/input_error.hpp"
 #include "feedplan/geometry/tool.hpp"
 #include "feedplan/model_db/cutting_test.hpp"
-#include "feedplan/sim/force_log.hpp"
+#include "feedplan/force_log/force_log.hpp"
 
 namespace feedplan::model_db {
 
@@ -82,10 +82,10 @@ std::vector<InputProblem> validate(const CuttingTestImportOptions& options);
 //! contradictions and its lack of forces (fields name the condition, e.g. "conditions.spindle_rpm", or
 //! the log, e.g. "<source> sample_rate_hz"); then too few steady revolutions (field <source>, saying how
 //! many were found and needed).
-CuttingTestRecord import_cutting_test(const sim::ForceLog& log, const CuttingTestConditions& conditions,
+CuttingTestRecord import_cutting_test(const force_log::ForceLog& log, const CuttingTestConditions& conditions,
                                       const geometry::Tool& tool, const CuttingTestImportOptions& options = {});
 
-//! The same for the log file at `log_path` (sim::load_force_log: our CSV or a Kistler DynoWare export).
+//! The same for the log file at `log_path` (force_log::load_force_log: our CSV or a Kistler DynoWare export).
 //! The reader's InputError (missing file, missing columns, a truncated row, time that does not increase —
 //! each naming the file and line) reaches the caller unchanged. Messages and the record's source name
 //! the path unless options.source_name is set.

@@ -9,8 +9,8 @@
 #include <string>
 #include <vector>
 
-#include "feedplan/sim/force_log.hpp"
-#include "feedplan/sim/revolution_peaks.hpp"
+#include "feedplan/force_log/force_log.hpp"
+#include "feedplan/force_log/revolution_peaks.hpp"
 
 namespace feedplan::sim {
 
@@ -26,7 +26,7 @@ struct ForcePlotData {
   std::string title = "Cutting force";     //!< text above the plot
   std::vector<double> t_s;                 //!< sample times, s, increasing
   std::vector<ForcePlotSeries> series;     //!< lines, each as long as t_s
-  std::vector<RevolutionPeak> peaks;       //!< per-revolution peaks to mark (t_peak_s, peak_xy_n); may be empty
+  std::vector<force_log::RevolutionPeak> peaks;       //!< per-revolution peaks to mark (t_peak_s, peak_xy_n); may be empty
   std::optional<double> target_force_n;    //!< draw a dashed horizontal line at this force, N
   double width_px = 1200.0;                //!< SVG width, px (≥ 200)
   double height_px = 600.0;                //!< SVG height, px (≥ 150)
@@ -56,7 +56,7 @@ std::string write_force_plot(const std::string& path, const ForcePlotData& data)
 //! Plot data for a force log: the XY resultant |F_xy| = sqrt(fx² + fy²) against time, titled `title`,
 //! with `peaks` marked (pass revolution_peaks(...) or nothing) and an optional target. A log without
 //! forces (has_forces false) gives an empty series.
-ForcePlotData force_plot_data(const ForceLog& log, const std::string& title, std::vector<RevolutionPeak> peaks = {},
+ForcePlotData force_plot_data(const force_log::ForceLog& log, const std::string& title, std::vector<force_log::RevolutionPeak> peaks = {},
                               std::optional<double> target_force_n = std::nullopt);
 
 }  // namespace feedplan::sim

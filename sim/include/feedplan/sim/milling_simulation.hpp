@@ -15,9 +15,9 @@
 #include "feedplan/geometry/tool.hpp"
 #include "feedplan/sim/cutting_coefficients.hpp"
 #include "feedplan/sim/feed_override.hpp"
-#include "feedplan/sim/force_log.hpp"
+#include "feedplan/force_log/force_log.hpp"
 #include "feedplan/sim/motion_profile.hpp"
-#include "feedplan/sim/revolution_peaks.hpp"
+#include "feedplan/force_log/revolution_peaks.hpp"
 #include "feedplan/sim/sensors.hpp"
 
 namespace feedplan::sim {
@@ -90,10 +90,10 @@ struct SimulationSummary {
 //! Result of a run. Warnings are things a user must see but that do not stop the run (a rapid into
 //! material, feeding into material with the spindle stopped, M4 with a right-hand cutter).
 struct SimulationResult {
-  ForceLog log;                                //!< sensor readings at options.log_rate_hz
+  force_log::ForceLog log;                                //!< sensor readings at options.log_rate_hz
   //! One per spindle revolution (by the simulated spindle angle), from the true force — unfiltered
   //! and noise-free, at every internal step.
-  std::vector<RevolutionPeak> revolutions;
+  std::vector<force_log::RevolutionPeak> revolutions;
   SimulationSummary summary;
   std::vector<std::string> warnings;
 };

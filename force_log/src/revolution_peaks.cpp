@@ -1,4 +1,4 @@
-#include "feedplan/sim/revolution_peaks.hpp"
+#include "feedplan/force_log/revolution_peaks.hpp"
 
 #include <array>
 #include <cassert>
@@ -10,7 +10,7 @@
 #include "feedplan/core/input_error.hpp"
 #include "feedplan/core/number_text.hpp"
 
-namespace feedplan::sim {
+namespace feedplan::force_log {
 
 namespace {
 
@@ -160,4 +160,4 @@ std::string write_revolution_peaks(const std::string& path, const std::vector<Re
   return write_file_atomically(path, format_revolution_peaks(peaks));
 }
 
-}  // namespace feedplan::sim
+}  // namespace feedplan::force_log

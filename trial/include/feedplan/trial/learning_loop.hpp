@@ -9,10 +9,10 @@
 #include <vector>
 
 #include "feedplan/learning/model_update.hpp"
-#include "feedplan/learning/virtual_machine_run.hpp"
+#include "feedplan/trial/virtual_machine_run.hpp"
 #include "feedplan/planner/feed_plan.hpp"
 
-namespace feedplan::learning {
+namespace feedplan::trial {
 
 //! What to loop.
 struct LoopRequest {
@@ -25,7 +25,7 @@ struct LoopRequest {
   double first_cut_uncertainty = 0.0;
   double sigmas = 2.0;                //!< z of the cautious bound
   std::array<double, 36> start_fit_covariance{};  //!< the starting model's own fit covariance, N²
-  ModelUpdateOptions update;          //!< how to learn
+  learning::ModelUpdateOptions update;          //!< how to learn
   //! Also learn along the path: the next plan scales the model by a correction per place, learned per
   //! tooth period (path_correction.hpp) — what repeated parts of one program allow beyond the model.
   bool path_correction = true;
@@ -40,9 +40,9 @@ struct LoopCycle {
   double planned_cycle_time_s = 0.0;      //!< the plan's prediction, s
   double simulated_cycle_time_s = 0.0;    //!< on the virtual machine, s
   planner::PeakComparison comparison;     //!< true per-revolution peaks against the target
-  PredictionErrors model_errors_before;   //!< the model it was planned with, on this cycle's samples
-  PredictionErrors model_errors_after;    //!< the learned model, on the same samples
-  ModelUpdateStatus update_status = ModelUpdateStatus::kNoEvidence;  //!< whether learning gave a model
+  learning::PredictionErrors model_errors_before;   //!< the model it was planned with, on this cycle's samples
+  learning::PredictionErrors model_errors_after;    //!< the learned model, on the same samples
+  learning::ModelUpdateStatus update_status = learning::ModelUpdateStatus::kNoEvidence;  //!< whether learning gave a model
   std::vector<std::string> messages;      //!< plan and learning messages
   model_db::ResponseSurfaceModel model_used;  //!< the model the cycle was planned with
 };
@@ -57,4 +57,4 @@ struct LoopResult {
 //! Runs the loop. Throws InputError on invalid settings (planner::validate) or cycles < 1.
 LoopResult run_learning_loop(const LoopRequest& request);
 
-}  // namespace feedplan::learning
+}  // namespace feedplan::trial

@@ -1,6 +1,6 @@
 #pragma once
 // Test helper: checks that a reader reported a given problem, listing every problem it did report
-// when it did not. Shared by the sim tests of user-input readers (force logs, materials).
+// when it did not. Shared by the tests of user-input readers.
 
 #include <gtest/gtest.h>
 
@@ -9,7 +9,7 @@
 
 #include "feedplan/core/input_error.hpp"
 
-namespace feedplan::sim {
+namespace feedplan::test_support {
 
 //! Success when some problem has exactly `field` and a message containing `message_part`.
 inline ::testing::AssertionResult has_problem(const std::vector<InputProblem>& problems, const std::string& field,
@@ -22,4 +22,4 @@ inline ::testing::AssertionResult has_problem(const std::vector<InputProblem>& p
   return ::testing::AssertionFailure() << "no problem '" << field << "' with '" << message_part << "' among:" << all;
 }
 
-}  // namespace feedplan::sim
+}  // namespace feedplan::test_support

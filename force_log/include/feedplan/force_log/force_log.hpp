@@ -23,7 +23,7 @@
 #include <utility>
 #include <vector>
 
-namespace feedplan::sim {
+namespace feedplan::force_log {
 
 //! One sample of a force log. A value that was not recorded is NaN.
 struct ForceLogRow {
@@ -86,4 +86,4 @@ ForceLog read_force_log(const std::string& text, const std::string& source_name)
 //! that does not exist or cannot be read is an InputError naming the path.
 ForceLog load_force_log(const std::string& path);
 
-}  // namespace feedplan::sim
+}  // namespace feedplan::force_log

@@ -1,7 +1,7 @@
 // Force logs: the written format (DESIGN.md §4), round trips, every reader error with its line and
 // column, and real Kistler DynoWare exports (tests/data/kistler, excerpts of data/kistler_slot).
 
-#include "feedplan/sim/force_log.hpp"
+#include "feedplan/force_log/force_log.hpp"
 
 #include <gtest/gtest.h>
 
@@ -16,8 +16,10 @@
 #include "feedplan/core/input_error.hpp"
 #include "has_problem.hpp"
 
-namespace feedplan::sim {
+namespace feedplan::force_log {
 namespace {
+
+using test_support::has_problem;
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 const std::string kKistlerDir = std::string(FEEDPLAN_TEST_DATA_DIR) + "/kistler/";
@@ -276,4 +278,4 @@ TEST(KistlerExport, Problems) {
 }
 
 }  // namespace
-}  // namespace feedplan::sim
+}  // namespace feedplan::force_log

@@ -16,7 +16,7 @@
 #include <string>
 #include <vector>
 
-namespace feedplan::sim {
+namespace feedplan::force_log {
 
 //! The force in one spindle revolution.
 struct RevolutionPeak {
@@ -49,4 +49,4 @@ std::string format_revolution_peaks(const std::vector<RevolutionPeak>& peaks);
 //! message naming the path and the reason; the target is then left as it was.
 std::string write_revolution_peaks(const std::string& path, const std::vector<RevolutionPeak>& peaks);
 
-}  // namespace feedplan::sim
+}  // namespace feedplan::force_log

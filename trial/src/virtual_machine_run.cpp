@@ -1,8 +1,8 @@
-#include "feedplan/learning/virtual_machine_run.hpp"
+#include "feedplan/trial/virtual_machine_run.hpp"
 
 #include "feedplan/sim/motion_profile.hpp"
 
-namespace feedplan::learning {
+namespace feedplan::trial {
 
 VirtualMachineRun run_on_virtual_machine(const geometry::Program& program, const VirtualMachine& machine,
                                          const planner::PlanResult& plan, double target_force_n) {
@@ -23,7 +23,7 @@ VirtualMachineRun run_on_virtual_machine(const geometry::Program& program, const
   const double offset_mm = plan.samples.empty() ? 0.0 : motion.length_mm() - plan.samples.back().s_mm;
   std::vector<planner::MeasuredRevolution> revolutions;
   revolutions.reserve(run.simulation.revolutions.size());
-  for (const sim::RevolutionPeak& peak : run.simulation.revolutions) {
+  for (const force_log::RevolutionPeak& peak : run.simulation.revolutions) {
     revolutions.push_back({motion.state_at_time(peak.t_start_s).s_mm - offset_mm,
                            motion.state_at_time(peak.t_end_s).s_mm - offset_mm, peak.peak_xy_n});
   }
@@ -31,4 +31,4 @@ VirtualMachineRun run_on_virtual_machine(const geometry::Program& program, const
   return run;
 }
 
-}  // namespace feedplan::learning
+}  // namespace feedplan::trial

@@ -10,12 +10,12 @@
 
 #include "feedplan/cycles/cycle.hpp"
 #include "feedplan/cycles/spec_reader.hpp"
-#include "feedplan/learning/learning_loop.hpp"
+#include "feedplan/trial/learning_loop.hpp"
 #include "feedplan/model_db/model_exchange.hpp"
 #include "feedplan/model_db/store.hpp"
 #include "feedplan/sim/material.hpp"
 
-namespace feedplan::learning {
+namespace feedplan::trial {
 namespace {
 
 namespace fs = std::filesystem;
@@ -65,7 +65,7 @@ TEST_F(LearningLoop, ThirdCycleHoldsTheTargetWithinFivePercentOnSteadyCuts) {
   ASSERT_EQ(result.cycles.size(), 3u);
   // The first cycle is planned with a model 33 % soft: the true force overshoots by about 50 %.
   EXPECT_GT(result.cycles[0].comparison.steady_max_abs_error_percent, 30.0);
-  EXPECT_EQ(result.cycles[0].update_status, ModelUpdateStatus::kOk);
+  EXPECT_EQ(result.cycles[0].update_status, learning::ModelUpdateStatus::kOk);
   const auto& third = result.cycles[2].comparison;
   EXPECT_GT(third.steady, 100);
   EXPECT_LE(third.steady_max_abs_error_percent, 5.0);
@@ -124,4 +124,4 @@ TEST_F(LearningLoop, CautiousFirstCutStaysWithinFivePercentWhenTheModelIsFortyPe
 }
 
 }  // namespace
-}  // namespace feedplan::learning
+}  // namespace feedplan::trial

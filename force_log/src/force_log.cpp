@@ -1,4 +1,4 @@
-#include "feedplan/sim/force_log.hpp"
+#include "feedplan/force_log/force_log.hpp"
 
 #include <algorithm>
 #include <array>
@@ -18,7 +18,7 @@
 #include "feedplan/core/input_error.hpp"
 #include "feedplan/core/number_text.hpp"
 
-namespace feedplan::sim {
+namespace feedplan::force_log {
 
 namespace {
 
@@ -502,4 +502,4 @@ ForceLog load_force_log(const std::string& path) {
   return read_force_log(text.str(), path);
 }
 
-}  // namespace feedplan::sim
+}  // namespace feedplan::force_log

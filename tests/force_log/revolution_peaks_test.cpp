@@ -2,7 +2,7 @@
 // (tests/data/kistler: 6000 rpm at 10 kHz, 100 samples per revolution) checked against a
 // brute-force maximum over index windows written here.
 
-#include "feedplan/sim/revolution_peaks.hpp"
+#include "feedplan/force_log/revolution_peaks.hpp"
 
 #include <gtest/gtest.h>
 
@@ -13,9 +13,9 @@
 #include <string>
 
 #include "feedplan/core/input_error.hpp"
-#include "feedplan/sim/force_log.hpp"
+#include "feedplan/force_log/force_log.hpp"
 
-namespace feedplan::sim {
+namespace feedplan::force_log {
 namespace {
 
 const std::string kKistlerDir = std::string(FEEDPLAN_TEST_DATA_DIR) + "/kistler/";
@@ -205,4 +205,4 @@ TEST(RevolutionPeaksKistler, PeaksGrowWithFeed) {
 }
 
 }  // namespace
-}  // namespace feedplan::sim
+}  // namespace feedplan::force_log

@@ -1,9 +1,8 @@
-#include "feedplan/learning/learning_loop.hpp"
+#include "feedplan/trial/learning_loop.hpp"
 
 #include "feedplan/learning/path_correction.hpp"
 
-
-namespace feedplan::learning {
+namespace feedplan::trial {
 
 LoopResult run_learning_loop(const LoopRequest& request) {
   if (request.cycles < 1) throw InputError("cycles", "= " + std::to_string(request.cycles) + ": must be ≥ 1");
@@ -14,8 +13,8 @@ LoopResult run_learning_loop(const LoopRequest& request) {
   std::optional<std::array<double, 36>> covariance;
   double relative = request.first_cut_uncertainty;
   if (request.first_cut_uncertainty > 0.0) covariance = request.start_fit_covariance;
-  std::vector<LearningSample> earlier;
-  PathLearning along_path;
+  std::vector<learning::LearningSample> earlier;
+  learning::PathLearning along_path;
   for (int cycle = 1; cycle <= request.cycles; ++cycle) {
     settings.uncertainty.reset();
     if (covariance && request.first_cut_uncertainty > 0.0) {
@@ -35,22 +34,22 @@ LoopResult run_learning_loop(const LoopRequest& request) {
     out.model_used = settings.model;
     out.messages = plan.messages;
 
-    const ModelUpdate update = update_model(plan, settings, request.geometry.tool.flutes,
-                                            {NamedLog{"cycle " + std::to_string(cycle), run.simulation.log}}, earlier,
+    const learning::ModelUpdate update = learning::update_model(plan, settings, request.geometry.tool.flutes,
+                                            {learning::NamedLog{"cycle " + std::to_string(cycle), run.simulation.log}}, earlier,
                                             covariance, request.update);
     out.update_status = update.status;
     out.model_errors_before = update.before;
     out.model_errors_after = update.after_batch;
     out.messages.insert(out.messages.end(), update.messages.begin(), update.messages.end());
-    if (update.status == ModelUpdateStatus::kOk) {
+    if (update.status == learning::ModelUpdateStatus::kOk) {
       earlier.insert(earlier.end(), update.samples.begin(), update.samples.end());
       settings.model = update.model;
       covariance = update.covariance;
       relative = 0.0;
       if (request.path_correction) {
-        std::vector<MeasuredRevolutions> measured;
-        for (const LogEvidence& log : update.logs) measured.push_back(log.revolutions);
-        along_path = learn_along_path(plan, update.model, measured, settings.target_force_n, along_path);
+        std::vector<learning::MeasuredRevolutions> measured;
+        for (const learning::LogEvidence& log : update.logs) measured.push_back(log.revolutions);
+        along_path = learning::learn_along_path(plan, update.model, measured, settings.target_force_n, along_path);
         settings.force_correction = along_path.correction;
       }
     }
@@ -62,4 +61,4 @@ LoopResult run_learning_loop(const LoopRequest& request) {
   return result;
 }
 
-}  // namespace feedplan::learning
+}  // namespace feedplan::trial

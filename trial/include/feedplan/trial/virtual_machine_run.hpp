@@ -12,7 +12,7 @@
 #include "feedplan/sim/cutting_coefficients.hpp"
 #include "feedplan/sim/milling_simulation.hpp"
 
-namespace feedplan::learning {
+namespace feedplan::trial {
 
 //! What the virtual machine needs besides the program.
 struct VirtualMachine {
@@ -38,4 +38,4 @@ struct VirtualMachineRun {
 VirtualMachineRun run_on_virtual_machine(const geometry::Program& program, const VirtualMachine& machine,
                                          const planner::PlanResult& plan, double target_force_n);
 
-}  // namespace feedplan::learning
+}  // namespace feedplan::trial

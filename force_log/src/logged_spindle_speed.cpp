@@ -1,4 +1,4 @@
-#include "feedplan/learning/logged_spindle_speed.hpp"
+#include "feedplan/force_log/logged_spindle_speed.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -6,9 +6,9 @@
 #include <string>
 #include <vector>
 
-namespace feedplan::learning {
+namespace feedplan::force_log {
 
-double logged_spindle_rpm(const sim::ForceLog& log) {
+double logged_spindle_rpm(const ForceLog& log) {
   std::vector<double> rpm;
   for (const auto& row : log.rows) {
     if (std::isfinite(row.spindle_rpm) && row.spindle_rpm > 0.0) rpm.push_back(row.spindle_rpm);
@@ -25,4 +25,4 @@ double logged_spindle_rpm(const sim::ForceLog& log) {
   return 0.0;
 }
 
-}  // namespace feedplan::learning
+}  // namespace feedplan::force_log

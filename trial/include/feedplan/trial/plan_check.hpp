@@ -9,7 +9,7 @@
 #include "feedplan/planner/feed_plan.hpp"
 #include "feedplan/planner/peak_comparison.hpp"
 
-namespace feedplan::cli {
+namespace feedplan::trial {
 
 //! What the virtual machine did with a planned program.
 struct PlanCheck {
@@ -27,4 +27,4 @@ PlanCheck check_on_virtual_machine(const std::string& program_text, const cycles
                                    const cycles::Cycle& cycle, const planner::PlanResult& plan, double target_force_n,
                                    const std::string& materials_path);
 
-}  // namespace feedplan::cli
+}  // namespace feedplan::trial
