@@ -31,7 +31,7 @@ const Setup& setup() {
     const auto spec = cycles::load_cycle_spec(std::string(FEEDPLAN_SAMPLES_DIR) + "/trochoid.yaml");
     const auto cycle = cycles::generate(spec);
     out.geometry = planner::analyse(cycle.path, cycle.stock, spec.tool);
-    model_db::ResponseSurfaceModel model;  // the sample database's magnitude for S50C, D10 Z4, a_p 10 mm
+    model::ResponseSurfaceModel model;  // the sample database's magnitude for S50C, D10 Z4, a_p 10 mm
     model.beta = {300.0, 180.0, 40.0, -8.0, -4.0, 12.0};
     model.chip_center_mm = 0.05;
     model.chip_scale_mm = 0.04;

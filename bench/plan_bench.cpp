@@ -21,8 +21,8 @@ namespace {
 using namespace feedplan;
 
 // A model of the sample database's magnitude for S50C, D10 Z4, a_p 10 mm (the bench needs no database).
-model_db::ResponseSurfaceModel bench_model() {
-  model_db::ResponseSurfaceModel model;
+model::ResponseSurfaceModel bench_model() {
+  model::ResponseSurfaceModel model;
   model.beta = {300.0, 180.0, 40.0, -8.0, -4.0, 12.0};
   model.chip_center_mm = 0.05;
   model.chip_scale_mm = 0.04;

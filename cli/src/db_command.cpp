@@ -19,8 +19,8 @@
 #include "feedplan/model_db/closest_model.hpp"
 #include "feedplan/model_db/cutting_test_import.hpp"
 #include "feedplan/model_db/model_exchange.hpp"
-#include "feedplan/model_db/model_fit.hpp"
-#include "feedplan/model_db/model_prediction.hpp"
+#include "feedplan/model/model_fit.hpp"
+#include "feedplan/model/model_prediction.hpp"
 #include "feedplan/model_db/store.hpp"
 
 namespace feedplan::cli {
@@ -277,14 +277,14 @@ int run_import_test(const DbOptions& o) {
   return 0;
 }
 
-mdb::FitOptions fit_options(const DbOptions& o) {
-  mdb::FitOptions options;
+model::FitOptions fit_options(const DbOptions& o) {
+  model::FitOptions options;
   if (o.loss == "huber") {
-    options.loss = mdb::FitOptions::kHuber;
+    options.loss = model::FitOptions::kHuber;
   } else if (o.loss == "cauchy") {
-    options.loss = mdb::FitOptions::kCauchy;
+    options.loss = model::FitOptions::kCauchy;
   } else if (o.loss == "squared") {
-    options.loss = mdb::FitOptions::kSquared;
+    options.loss = model::FitOptions::kSquared;
   } else {
     throw InputError("--loss", "= '" + o.loss + "': must be huber, cauchy or squared");
   }
@@ -295,9 +295,9 @@ int run_fit(const DbOptions& o) {
   mdb::Store store = open_store(o);
   require_tool(store, o.tool);
   require_material(store, o.material);
-  const mdb::FitOptions options = fit_options(o);
+  const model::FitOptions options = fit_options(o);
   const auto tests = store.cutting_tests(o.tool, o.material);
-  std::vector<mdb::FitSample> samples;
+  std::vector<model::FitSample> samples;
   std::map<double, int> axial_depths, speeds;
   for (const auto& stored : tests) {
     const auto& t = stored.test;
@@ -309,8 +309,8 @@ int run_fit(const DbOptions& o) {
     ++axial_depths[t.conditions.axial_depth_mm];
     ++speeds[t.conditions.spindle_rpm];
   }
-  const mdb::FitResult fit = mdb::fit_model(samples, options);
-  if (fit.status == mdb::FitStatus::kInsufficientData || fit.status == mdb::FitStatus::kNotConverged) {
+  const model::FitResult fit = model::fit_model(samples, options);
+  if (fit.status == model::FitStatus::kInsufficientData || fit.status == model::FitStatus::kNotConverged) {
     std::cerr << "feedplan: no model stored: " << fit.message << "\n";
     return 1;
   }
@@ -327,16 +327,16 @@ int run_fit(const DbOptions& o) {
   record.fit.standard_errors = fit.standard_error_n;
   record.fit.loo_rmse_n = fit.loo_rmse_n;
   record.source = mdb::ModelSource::kCuttingTests;
-  record.note = o.note.empty() ? fit.message : o.note + (fit.status == mdb::FitStatus::kOk ? "" : "; " + fit.message);
+  record.note = o.note.empty() ? fit.message : o.note + (fit.status == model::FitStatus::kOk ? "" : "; " + fit.message);
   const mdb::ModelRecord stored = store.add_model(record);
   if (o.json) {
     json out = model_json(stored);
-    out["status"] = fit.status == mdb::FitStatus::kOk ? "ok" : "reduced_model";
+    out["status"] = fit.status == model::FitStatus::kOk ? "ok" : "reduced_model";
     out["message"] = fit.message;
     std::cout << out.dump(2) << "\n";
   } else {
     print_model(stored);
-    if (fit.status != mdb::FitStatus::kOk) std::printf("note: %s\n", fit.message.c_str());
+    if (fit.status != model::FitStatus::kOk) std::printf("note: %s\n", fit.message.c_str());
   }
   return 0;
 }
@@ -357,7 +357,7 @@ int run_predict(const DbOptions& o) {
     std::cerr << "feedplan: warning: no model for " << o.tool << " in " << o.material << "; " << closest.explanation << "\n";
   }
   const auto [chip, contact] = straight_cut_inputs(0.5 * tool.diameter_mm, o.radial_depth_mm, o.feed_per_tooth_mm);
-  const mdb::ForcePrediction p = mdb::predict(closest.model->model, chip, contact);
+  const model::ForcePrediction p = model::predict(closest.model->model, chip, contact);
   if (o.json) {
     std::cout << json{{"model", model_json(*closest.model)},
                       {"match", closest.explanation},

@@ -9,14 +9,14 @@
 #include <memory>
 
 #include "feedplan/core/number_text.hpp"
-#include "feedplan/model_db/model_prediction.hpp"
+#include "feedplan/model/model_prediction.hpp"
 
 namespace feedplan::learning {
 namespace {
 
 using Matrix6 = Eigen::Matrix<double, 6, 6, Eigen::RowMajor>;
 using Vector6 = Eigen::Matrix<double, 6, 1>;
-using model_db::FitOptions;
+using model::FitOptions;
 
 constexpr double kExcitedVarianceRatio = 0.5;  // posterior/prior variance at or below which data dominate
 constexpr const char* kBetaNames[6] = {"β0", "β1", "β2", "β11", "β22", "β12"};
@@ -129,10 +129,10 @@ bool robust_minimum(const Data& data, const std::array<double, 6>& prior, const 
 }
 
 //! √(Σ w (F − F̂)² / Σ w) over the samples.
-double weighted_rms_error(const model_db::ResponseSurfaceModel& model, const std::vector<LearningSample>& samples) {
+double weighted_rms_error(const model::ResponseSurfaceModel& model, const std::vector<LearningSample>& samples) {
   double sum = 0.0, weight = 0.0;
   for (const LearningSample& s : samples) {
-    const double e = s.force_n - model_db::predict(model, s.chip_mm, s.contact_length_mm).force_n;
+    const double e = s.force_n - model::predict(model, s.chip_mm, s.contact_length_mm).force_n;
     sum += s.weight * e * e;
     weight += s.weight;
   }
@@ -194,7 +194,7 @@ std::vector<InputProblem> validate(const BatchRefitOptions& options) {
   return problems;
 }
 
-BatchRefitResult batch_refit(const model_db::ResponseSurfaceModel& prior, const std::vector<LearningSample>& samples,
+BatchRefitResult batch_refit(const model::ResponseSurfaceModel& prior, const std::vector<LearningSample>& samples,
                              const BatchRefitOptions& options) {
   std::vector<InputProblem> problems = validate(options);
   validate(prior, samples, problems);
@@ -212,7 +212,7 @@ BatchRefitResult batch_refit(const model_db::ResponseSurfaceModel& prior, const 
     double sigma = std::sqrt(variance);
     if (!(sigma > 0.0)) {
       sigma = options.prior_sigma_fraction *
-              std::max(std::abs(beta_prior[j]), options.prior_floor_fraction * std::abs(beta_prior[model_db::kBeta0]));
+              std::max(std::abs(beta_prior[j]), options.prior_floor_fraction * std::abs(beta_prior[model::kBeta0]));
       if (!(sigma > 0.0)) sigma = 1.0;
     }
     result.prior_sigma_n[j] = sigma;
@@ -232,10 +232,10 @@ BatchRefitResult batch_refit(const model_db::ResponseSurfaceModel& prior, const 
   Data data;
   const double noise_variance = options.noise_sigma_n * options.noise_sigma_n;
   for (const LearningSample& s : samples) {
-    data.psi.push_back(model_db::regressors(prior, s.chip_mm, s.contact_length_mm));
+    data.psi.push_back(model::regressors(prior, s.chip_mm, s.contact_length_mm));
     data.force_n.push_back(s.force_n);
     data.weight.push_back(s.weight / noise_variance);
-    model_db::FittedRange& range = result.model.range;
+    model::FittedRange& range = result.model.range;
     range.chip_min_mm = std::min(range.chip_min_mm, s.chip_mm);
     range.chip_max_mm = std::max(range.chip_max_mm, s.chip_mm);
     range.contact_length_min_mm = std::min(range.contact_length_min_mm, s.contact_length_mm);

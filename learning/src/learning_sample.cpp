@@ -20,9 +20,9 @@ void validate(const LearningSample& s, const std::string& prefix, std::vector<In
   }
 }
 
-void validate(const model_db::ResponseSurfaceModel& model, const std::vector<LearningSample>& samples,
+void validate(const model::ResponseSurfaceModel& model, const std::vector<LearningSample>& samples,
               std::vector<InputProblem>& problems) {
-  for (InputProblem& p : model_db::validate(model)) problems.push_back(std::move(p));
+  for (InputProblem& p : model::validate(model)) problems.push_back(std::move(p));
   for (std::size_t i = 0; i < samples.size(); ++i) validate(samples[i], "samples[" + std::to_string(i) + "].", problems);
 }
 

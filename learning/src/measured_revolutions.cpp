@@ -108,7 +108,7 @@ std::string fixed(double value, int decimals) {
 }  // namespace
 
 MeasuredRevolutions measured_revolutions(const force_log::ForceLog& log, const Alignment& alignment,
-                                         const planner::PlanResult& plan, const model_db::ResponseSurfaceModel& model,
+                                         const planner::PlanResult& plan, const model::ResponseSurfaceModel& model,
                                          int flutes, double spindle_rpm, const MeasuredRevolutionOptions& options) {
   std::vector<InputProblem> problems;
   if (flutes < 1) problems.push_back({"flutes", "= " + std::to_string(flutes) + ": must be >= 1"});

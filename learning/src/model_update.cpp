@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cstdio>
 
-#include "feedplan/model_db/model_prediction.hpp"
+#include "feedplan/model/model_prediction.hpp"
 
 namespace feedplan::learning {
 namespace {
@@ -16,10 +16,10 @@ std::string errors_line(const char* what, const PredictionErrors& e) {
 }
 
 // Median of measured / predicted force (samples with a positive prediction); 1 when there are none.
-double median_force_ratio(const model_db::ResponseSurfaceModel& model, const std::vector<LearningSample>& samples) {
+double median_force_ratio(const model::ResponseSurfaceModel& model, const std::vector<LearningSample>& samples) {
   std::vector<double> ratios;
   for (const LearningSample& sample : samples) {
-    const double predicted = model_db::predict(model, sample.chip_mm, sample.contact_length_mm).force_n;
+    const double predicted = model::predict(model, sample.chip_mm, sample.contact_length_mm).force_n;
     if (predicted > 0.0 && sample.force_n > 0.0) ratios.push_back(sample.force_n / predicted);
   }
   if (ratios.empty()) return 1.0;
@@ -68,7 +68,7 @@ ModelUpdate update_model(const planner::PlanResult& plan, const planner::PlanSet
   // excited by any data, so the refit then only has to correct the shape where the data say so, and the
   // prior holds the shape in the directions they do not excite.
   const double gain = median_force_ratio(settings.model, all);
-  model_db::ResponseSurfaceModel prior = settings.model;
+  model::ResponseSurfaceModel prior = settings.model;
   for (double& beta : prior.beta) beta *= gain;
   BatchRefitOptions batch = options.batch;
   if (prior_covariance) {

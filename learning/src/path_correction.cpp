@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "feedplan/model_db/model_prediction.hpp"
+#include "feedplan/model/model_prediction.hpp"
 
 namespace feedplan::learning {
 
@@ -32,12 +32,12 @@ PathMeasurement measurement_at(const std::vector<Placed>& run, double s_mm) {
   return ds > 1e-12 ? lerp(a.m, b.m, (s_mm - a.s_mm) / ds) : (a.m.force_n >= b.m.force_n ? a.m : b.m);
 }
 
-double model_force_n(const model_db::ResponseSurfaceModel& model, double chip_mm, double contact_length_mm) {
-  return model_db::predict(model, chip_mm, contact_length_mm).force_n;
+double model_force_n(const model::ResponseSurfaceModel& model, double chip_mm, double contact_length_mm) {
+  return model::predict(model, chip_mm, contact_length_mm).force_n;
 }
 
 // The correction at one place from its latest measurement `now` and the one before (force 0: none).
-double place_correction(const model_db::ResponseSurfaceModel& model, double target_force_n, const PathMeasurement& now,
+double place_correction(const model::ResponseSurfaceModel& model, double target_force_n, const PathMeasurement& now,
                         const PathMeasurement& before, double previous, bool first) {
   const double predicted = model_force_n(model, now.chip_mm, now.contact_length_mm);
   if (!(predicted > 0.0)) return previous;
@@ -62,7 +62,7 @@ double place_correction(const model_db::ResponseSurfaceModel& model, double targ
 
 }  // namespace
 
-PathLearning learn_along_path(const planner::PlanResult& plan, const model_db::ResponseSurfaceModel& model,
+PathLearning learn_along_path(const planner::PlanResult& plan, const model::ResponseSurfaceModel& model,
                               const std::vector<MeasuredRevolutions>& measured, double target_force_n,
                               const PathLearning& previous) {
   const auto& samples = plan.samples;

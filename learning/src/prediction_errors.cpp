@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "feedplan/model_db/model_prediction.hpp"
+#include "feedplan/model/model_prediction.hpp"
 
 namespace feedplan::learning {
 namespace {
@@ -16,7 +16,7 @@ double percentile(const std::vector<double>& sorted, double p) {
 
 }  // namespace
 
-PredictionErrors prediction_errors(const model_db::ResponseSurfaceModel& model, const std::vector<LearningSample>& samples) {
+PredictionErrors prediction_errors(const model::ResponseSurfaceModel& model, const std::vector<LearningSample>& samples) {
   PredictionErrors out;
   std::vector<double> abs_percent;
   double sum_squares_n = 0.0;
@@ -24,7 +24,7 @@ PredictionErrors prediction_errors(const model_db::ResponseSurfaceModel& model, 
   double sum_percent = 0.0;
   for (const LearningSample& sample : samples) {
     if (!(sample.force_n > 0.0)) continue;
-    const double error_n = model_db::predict(model, sample.chip_mm, sample.contact_length_mm).force_n - sample.force_n;
+    const double error_n = model::predict(model, sample.chip_mm, sample.contact_length_mm).force_n - sample.force_n;
     const double error_percent = 100.0 * error_n / sample.force_n;
     sum_squares_n += error_n * error_n;
     sum_squares_percent += error_percent * error_percent;

@@ -7,7 +7,7 @@
 #include <string>
 
 #include "feedplan/core/number_text.hpp"
-#include "feedplan/model_db/model_prediction.hpp"
+#include "feedplan/model/model_prediction.hpp"
 
 namespace feedplan::learning {
 namespace {
@@ -27,7 +27,7 @@ std::array<double, 36> initial_covariance(const RlsOptions& options) {
   return p;
 }
 
-void extend_range(model_db::FittedRange& range, const LearningSample& s) {
+void extend_range(model::FittedRange& range, const LearningSample& s) {
   range.chip_min_mm = std::min(range.chip_min_mm, s.chip_mm);
   range.chip_max_mm = std::max(range.chip_max_mm, s.chip_mm);
   range.contact_length_min_mm = std::min(range.contact_length_min_mm, s.contact_length_mm);
@@ -35,10 +35,10 @@ void extend_range(model_db::FittedRange& range, const LearningSample& s) {
 }
 
 //! √(Σ w (F − F̂)² / Σ w) over the samples; 0 for none.
-double weighted_rms_error(const model_db::ResponseSurfaceModel& model, const std::vector<LearningSample>& samples) {
+double weighted_rms_error(const model::ResponseSurfaceModel& model, const std::vector<LearningSample>& samples) {
   double sum = 0.0, weight = 0.0;
   for (const LearningSample& s : samples) {
-    const double e = s.force_n - model_db::predict(model, s.chip_mm, s.contact_length_mm).force_n;
+    const double e = s.force_n - model::predict(model, s.chip_mm, s.contact_length_mm).force_n;
     sum += s.weight * e * e;
     weight += s.weight;
   }
@@ -82,10 +82,10 @@ std::vector<InputProblem> validate(const RlsOptions& options) {
   return problems;
 }
 
-RecursiveLeastSquares::RecursiveLeastSquares(const model_db::ResponseSurfaceModel& start, const RlsOptions& options)
+RecursiveLeastSquares::RecursiveLeastSquares(const model::ResponseSurfaceModel& start, const RlsOptions& options)
     : model_(start), options_(options) {
   std::vector<InputProblem> problems = validate(options);
-  for (InputProblem& p : model_db::validate(start)) problems.push_back(std::move(p));
+  for (InputProblem& p : model::validate(start)) problems.push_back(std::move(p));
   throw_if_any(std::move(problems));
   covariance_ = initial_covariance(options_);
 }
@@ -96,7 +96,7 @@ RlsStep RecursiveLeastSquares::add(const LearningSample& sample) {
   throw_if_any(std::move(problems));
 
   extend_range(model_.range, sample);
-  const std::array<double, 6> regressors = model_db::regressors(model_, sample.chip_mm, sample.contact_length_mm);
+  const std::array<double, 6> regressors = model::regressors(model_, sample.chip_mm, sample.contact_length_mm);
   const Eigen::Map<const Vector6> psi(regressors.data());
   Eigen::Map<Vector6> theta(model_.beta.data());
   Eigen::Map<Matrix6> p(covariance_.data());
@@ -129,7 +129,7 @@ RlsStep RecursiveLeastSquares::add(const LearningSample& sample) {
   return step;
 }
 
-RlsResult rls_update(const model_db::ResponseSurfaceModel& start, const std::vector<LearningSample>& samples,
+RlsResult rls_update(const model::ResponseSurfaceModel& start, const std::vector<LearningSample>& samples,
                      const RlsOptions& options) {
   std::vector<InputProblem> problems = validate(options);
   validate(start, samples, problems);

@@ -31,7 +31,7 @@ Json to_json(const MaterialRecord& material) {
 }
 
 Json to_json(const ModelRecord& record, const std::optional<int>& parent_version) {
-  const ResponseSurfaceModel& model = record.model;
+  const model::ResponseSurfaceModel& model = record.model;
   Json json{{"tool", record.tool_name},
             {"material", record.material_name},
             {"version", record.version},

@@ -138,7 +138,7 @@ IncomingModel read_model(JsonFields& fields, const Json& json, const std::string
   static const Json kNoObject = Json::object();
   const Json* model_json = fields.member(json, path, "model");
   const Json& m = model_json != nullptr ? *model_json : kNoObject;
-  ResponseSurfaceModel& model = record.model;
+  model::ResponseSurfaceModel& model = record.model;
   model.beta = fields.fixed_numbers<6>(m, model_path, "beta");
   model.chip_center_mm = fields.number(m, model_path, "chip_center_mm");
   model.chip_scale_mm = fields.number(m, model_path, "chip_scale_mm");

@@ -43,7 +43,7 @@ ModelRecord read_model(const Statement& row) {
   record.parent_id = row.column_optional_int64(c++);
   if (!row.column_is_null(c)) record.parent_version = row.column_int(c);
   ++c;
-  ResponseSurfaceModel& model = record.model;
+  model::ResponseSurfaceModel& model = record.model;
   for (double& beta : model.beta) beta = row.column_double(c++);
   model.chip_center_mm = row.column_double(c++);
   model.chip_scale_mm = row.column_double(c++);
@@ -140,7 +140,7 @@ RowId insert_model_row(Connection& db, RowId tool_id, RowId material_id, const M
                       "source, created_at, note, active) "
                       "VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, "
                       "?, ?, 0)");
-  const ResponseSurfaceModel& model = record.model;
+  const model::ResponseSurfaceModel& model = record.model;
   statement.bind_all(tool_id, material_id, record.version, record.parent_id);
   for (double beta : model.beta) statement.bind(beta);
   statement.bind_all(model.chip_center_mm, model.chip_scale_mm, model.contact_length_center_mm,

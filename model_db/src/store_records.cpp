@@ -108,13 +108,13 @@ std::vector<InputProblem> validate(const MaterialRecord& material) {
 
 std::vector<InputProblem> validate(const ModelRecord& record) {
   Problems problems("models");
-  const ResponseSurfaceModel& model = record.model;
+  const model::ResponseSurfaceModel& model = record.model;
   for (std::size_t i = 0; i < model.beta.size(); ++i) problems.finite("beta[" + std::to_string(i) + "]", model.beta[i]);
   problems.finite("chip_center_mm", model.chip_center_mm);
   problems.positive("chip_scale_mm", model.chip_scale_mm);
   problems.finite("contact_length_center_mm", model.contact_length_center_mm);
   problems.positive("contact_length_scale_mm", model.contact_length_scale_mm);
-  const FittedRange& range = model.range;
+  const model::FittedRange& range = model.range;
   problems.non_negative("range.chip_min_mm", range.chip_min_mm);
   problems.non_negative("range.chip_max_mm", range.chip_max_mm);
   problems.non_negative("range.contact_length_min_mm", range.contact_length_min_mm);

@@ -3,18 +3,18 @@
 #include <algorithm>
 #include <cmath>
 
-#include "feedplan/model_db/model_prediction.hpp"
+#include "feedplan/model/model_prediction.hpp"
 
 namespace feedplan::planner {
 
 bool is_engaged(const geometry::EngagementSample& sample) { return sample.cutting && sample.engagement_rad > 0.0; }
 
-double axial_depth_ratio(const model_db::ResponseSurfaceModel& model, double axial_depth_mm) {
+double axial_depth_ratio(const model::ResponseSurfaceModel& model, double axial_depth_mm) {
   if (model.axial_depth_mm <= 0.0 || axial_depth_mm <= 0.0) return 1.0;
   return axial_depth_mm / model.axial_depth_mm;
 }
 
-double model_contact_length_mm(const model_db::ResponseSurfaceModel& model, double contact_length_mm) {
+double model_contact_length_mm(const model::ResponseSurfaceModel& model, double contact_length_mm) {
   return std::max(contact_length_mm, model.range.contact_length_min_mm);
 }
 
@@ -24,15 +24,15 @@ double chip_thickness_mm(const geometry::EngagementSample& sample, double feed_m
   return sample.chip_factor * sample.xy_speed_ratio * feed_per_tooth_mm;
 }
 
-double predicted_force_n(const model_db::ResponseSurfaceModel& model, const geometry::EngagementSample& sample,
+double predicted_force_n(const model::ResponseSurfaceModel& model, const geometry::EngagementSample& sample,
                          double feed_mm_per_min, int flutes, double spindle_rpm) {
   if (!is_engaged(sample)) return 0.0;
   const double chip_mm = chip_thickness_mm(sample, feed_mm_per_min, flutes, spindle_rpm);
-  const double force_n = model_db::predict(model, chip_mm, model_contact_length_mm(model, sample.contact_length_mm)).force_n;
+  const double force_n = model::predict(model, chip_mm, model_contact_length_mm(model, sample.contact_length_mm)).force_n;
   return force_n * axial_depth_ratio(model, sample.axial_depth_mm);
 }
 
-double upper_force_n(const model_db::ResponseSurfaceModel& model, const geometry::EngagementSample& sample,
+double upper_force_n(const model::ResponseSurfaceModel& model, const geometry::EngagementSample& sample,
                      double feed_mm_per_min, int flutes, double spindle_rpm, const ForceUncertainty* uncertainty) {
   const double force_n = predicted_force_n(model, sample, feed_mm_per_min, flutes, spindle_rpm);
   if (!uncertainty || !is_engaged(sample)) return force_n;
@@ -43,7 +43,7 @@ double upper_force_n(const model_db::ResponseSurfaceModel& model, const geometry
   return uncertainty->off_straight_cut ? std::max(sample.chip_area_ratio, 1.0) * bound_n : bound_n;
 }
 
-SampleFeedLimit sample_feed_limit(const model_db::ResponseSurfaceModel& model, const geometry::EngagementSample& sample,
+SampleFeedLimit sample_feed_limit(const model::ResponseSurfaceModel& model, const geometry::EngagementSample& sample,
                                   double target_force_n, int flutes, double spindle_rpm, double air_feed_mm_per_min,
                                   const ForceUncertainty* uncertainty) {
   SampleFeedLimit limit;
@@ -53,17 +53,17 @@ SampleFeedLimit sample_feed_limit(const model_db::ResponseSurfaceModel& model, c
 
   const double ratio = axial_depth_ratio(model, sample.axial_depth_mm);
   // F̂ · ratio = target  ⇔  F̂ = target / ratio.
-  const model_db::FeedSolution solution =
-      model_db::solve_feed(model, std::min(k, 1.0), model_contact_length_mm(model, sample.contact_length_mm),
+  const model::FeedSolution solution =
+      model::solve_feed(model, std::min(k, 1.0), model_contact_length_mm(model, sample.contact_length_mm),
                            target_force_n / ratio);
   limit.solve_status = solution.status;
   // solve_feed's feed per tooth is along the path: its chip factor already holds the XY speed ratio.
   double feed_per_tooth_mm = solution.feed_per_tooth_mm;
   limit.reason = FeedLimitReason::kForce;
   switch (solution.status) {
-    case model_db::FeedSolveStatus::kOk:
+    case model::FeedSolveStatus::kOk:
       break;
-    case model_db::FeedSolveStatus::kClampedToRange:
+    case model::FeedSolveStatus::kClampedToRange:
       if (solution.root_feed_per_tooth_mm && *solution.root_feed_per_tooth_mm < solution.feed_per_tooth_mm) {
         // Below the fitted chip range: the root still gives F̂ = target (flagged as extrapolation); the
         // range edge would overload.
@@ -73,12 +73,12 @@ SampleFeedLimit sample_feed_limit(const model_db::ResponseSurfaceModel& model, c
         limit.reason = FeedLimitReason::kModelRange;
       }
       break;
-    case model_db::FeedSolveStatus::kTargetBelowModel:
+    case model::FeedSolveStatus::kTargetBelowModel:
       // No feed meets the target: the caller plans the machine's minimum feed here and reports it.
       limit.target_below_model = true;
       feed_per_tooth_mm = 0.0;
       break;
-    case model_db::FeedSolveStatus::kUnreachable:
+    case model::FeedSolveStatus::kUnreachable:
       limit.reason = FeedLimitReason::kModelRange;
       break;
   }

@@ -8,7 +8,7 @@
 
 #include "block_split.hpp"
 #include "feedplan/core/number_text.hpp"
-#include "feedplan/model_db/model_prediction.hpp"
+#include "feedplan/model/model_prediction.hpp"
 #include "feedplan/planner/controller_model.hpp"
 #include "feedplan/planner/feed_limit.hpp"
 #include "feedplan/planner/speed_profile.hpp"
@@ -118,7 +118,7 @@ PlanGeometry analyse(const geometry::ToolPath& path, const geometry::Stock& stoc
 }
 
 std::vector<InputProblem> validate(const PlanSettings& settings, const geometry::Tool& tool) {
-  std::vector<InputProblem> problems = model_db::validate(settings.model);
+  std::vector<InputProblem> problems = model::validate(settings.model);
   if (!finite_positive(settings.target_force_n)) {
     problems.push_back({"target_force_n", "= " + num(settings.target_force_n) + ": must be a finite force > 0 N"});
   }
@@ -376,8 +376,8 @@ PlanResult plan(const PlanGeometry& geometry, const PlanSettings& settings) {
     planned.upper_force_n =
         uncertainty ? correction(i) * upper_force_n(settings.model, bound_sample(i), planned.feed_mm_per_min, flutes, rpm, uncertainty)
                     : planned.predicted_force_n;
-    planned.within_model_range = planned.engaged && !model_db::chip_outside(settings.model.range, planned.chip_thickness_mm) &&
-                                 !model_db::contact_length_outside(settings.model.range, planned.contact_length_mm);
+    planned.within_model_range = planned.engaged && !model::chip_outside(settings.model.range, planned.chip_thickness_mm) &&
+                                 !model::contact_length_outside(settings.model.range, planned.contact_length_mm);
     summary.max_predicted_force_n = std::max(summary.max_predicted_force_n, planned.predicted_force_n);
     if (planned.engaged) ++summary.engaged_samples;
     if (planned.limit_reason == FeedLimitReason::kForce) ++summary.force_limited_samples;
@@ -469,7 +469,7 @@ PlanResult plan(const PlanGeometry& geometry, const PlanSettings& settings) {
   }
   if (summary.extrapolated_samples > 0) {
     const geometry::EngagementSample& e = *first_extrapolated;
-    const model_db::FittedRange& range = settings.model.range;
+    const model::FittedRange& range = settings.model.range;
     result.messages.push_back(
         "the model extrapolates where it sets the feed at " + std::to_string(summary.extrapolated_samples) +
         " samples, first at " + where(e) + " (L = " + fixed(e.contact_length_mm, 3) + " mm, fitted " +

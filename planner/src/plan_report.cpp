@@ -58,7 +58,7 @@ Json summary_json(const PlanSummary& summary) {
               {"accel_used_mm_per_s2", json_number(summary.accel_used_mm_per_s2)}};
 }
 
-Json model_json(const model_db::ResponseSurfaceModel& model, const PlanReportContext& context) {
+Json model_json(const model::ResponseSurfaceModel& model, const PlanReportContext& context) {
   Json beta = Json::array();
   for (const double b : model.beta) beta.push_back(json_number(b));
   return Json{{"id", context.model_id},
@@ -328,8 +328,8 @@ Enum enum_from_text(const Node& node, const std::string& key, const std::array<E
   return fallback;
 }
 
-model_db::ResponseSurfaceModel read_model(const Node& node) {
-  model_db::ResponseSurfaceModel model;
+model::ResponseSurfaceModel read_model(const Node& node) {
+  model::ResponseSurfaceModel model;
   model.beta = node.numbers<6>("beta");
   model.chip_center_mm = node.number("chip_center_mm");
   model.chip_scale_mm = node.number("chip_scale_mm");

@@ -18,13 +18,13 @@
 #include "gauss_solve.hpp"
 #include "feedplan/core/input_error.hpp"
 #include "feedplan/learning/batch_refit.hpp"
-#include "feedplan/model_db/model_prediction.hpp"
+#include "feedplan/model/model_prediction.hpp"
 
 namespace feedplan::learning {
 namespace {
 
-using model_db::FitOptions;
-using model_db::ResponseSurfaceModel;
+using model::FitOptions;
+using model::ResponseSurfaceModel;
 using ::testing::HasSubstr;
 using testing::Matrix;
 using testing::Vector;
@@ -65,7 +65,7 @@ std::vector<LearningSample> samples_at(const std::vector<double>& lengths, int p
     for (int i = 0; i < 8; ++i) {
       for (double length : lengths) {
         const double chip = 0.02 + 0.1 * i / 7.0;
-        samples.push_back({chip, length, model_db::predict(truth(), chip, length).force_n + noise(rng), 1.0, 0.0});
+        samples.push_back({chip, length, model::predict(truth(), chip, length).force_n + noise(rng), 1.0, 0.0});
       }
     }
   }
@@ -83,7 +83,7 @@ int downweighted(const std::vector<LearningSample>& samples, const ResponseSurfa
                                                     : 10.0;
   int count = 0;
   for (const LearningSample& s : samples) {
-    count += std::abs(s.force_n - model_db::predict(model, s.chip_mm, s.contact_length_mm).force_n) > limit ? 1 : 0;
+    count += std::abs(s.force_n - model::predict(model, s.chip_mm, s.contact_length_mm).force_n) > limit ? 1 : 0;
   }
   return count;
 }
@@ -152,7 +152,7 @@ TEST(BatchRefit, SquaredLossIsTheClosedFormPosterior) {
     b[j] = a[j][j] * prior.beta[j];
   }
   for (const LearningSample& s : samples) {
-    const Vector psi = model_db::regressors(prior, s.chip_mm, s.contact_length_mm);
+    const Vector psi = model::regressors(prior, s.chip_mm, s.contact_length_mm);
     const double c = s.weight / 9.0;
     for (int i = 0; i < 6; ++i) {
       b[i] += c * psi[i] * s.force_n;
@@ -179,7 +179,7 @@ TEST(BatchRefit, UnexcitedCoefficientsStayAtThePrior) {
   std::cout << "batch refit at one L: FEEDPLAN_TEST_SEED=" << seed << ", n = 40, noise σ = 2 N\n";
   std::mt19937_64 rng(seed);
   std::vector<LearningSample> samples = samples_at({7.0}, 5, 2.0, rng);
-  samples.push_back({0.15, 7.0, model_db::predict(truth(), 0.15, 7.0).force_n, 1.0, 0.0});  // beyond the range
+  samples.push_back({0.15, 7.0, model::predict(truth(), 0.15, 7.0).force_n, 1.0, 0.0});  // beyond the range
   const ResponseSurfaceModel prior = thirty_percent_off();
   const BatchRefitResult r = batch_refit(prior, samples, with(FitOptions::kHuber, 2.0));
   ASSERT_EQ(r.status, BatchRefitStatus::kOk) << r.message;
@@ -187,20 +187,20 @@ TEST(BatchRefit, UnexcitedCoefficientsStayAtThePrior) {
 
   const std::array<bool, 6> excited{true, true, false, true, false, false};
   EXPECT_EQ(r.excited, excited);
-  for (int j : {model_db::kBeta2, model_db::kBeta22, model_db::kBeta12}) {
+  for (int j : {model::kBeta2, model::kBeta22, model::kBeta12}) {
     EXPECT_NEAR(r.model.beta[j], prior.beta[j], 0.25 * r.prior_sigma_n[j]) << "β index " << j;
     EXPECT_GT(r.standard_error_n[j], 0.9 * r.prior_sigma_n[j]) << "β index " << j;
   }
   // the data are matched: the refitted model predicts the truth along L = 7 mm within 3 standard errors of
   // the prediction, √(ψᵀ Cov ψ) (0.5–1 N here)
   for (double chip : {0.02, 0.05, 0.09, 0.12}) {
-    const Vector psi = model_db::regressors(prior, chip, 7.0);
+    const Vector psi = model::regressors(prior, chip, 7.0);
     double variance = 0.0;
     for (int i = 0; i < 6; ++i) {
       for (int j = 0; j < 6; ++j) variance += psi[i] * r.covariance[i * 6 + j] * psi[j];
     }
     EXPECT_LT(std::sqrt(variance), 1.5) << "t_m " << chip;
-    EXPECT_NEAR(model_db::predict(r.model, chip, 7.0).force_n, model_db::predict(truth(), chip, 7.0).force_n,
+    EXPECT_NEAR(model::predict(r.model, chip, 7.0).force_n, model::predict(truth(), chip, 7.0).force_n,
                 3.0 * std::sqrt(variance))
         << "t_m " << chip;
   }
@@ -255,7 +255,7 @@ TEST(BatchRefit, ErrorFallsWhenThePriorIsThirtyPercentOff) {
   ASSERT_EQ(r.status, BatchRefitStatus::kOk) << r.message;
   double sum = 0.0;
   for (const LearningSample& s : samples) {
-    sum += std::pow(s.force_n - model_db::predict(prior, s.chip_mm, s.contact_length_mm).force_n, 2);
+    sum += std::pow(s.force_n - model::predict(prior, s.chip_mm, s.contact_length_mm).force_n, 2);
   }
   EXPECT_NEAR(r.rms_error_before_n, std::sqrt(sum / 40.0), 1e-9 * r.rms_error_before_n);
   EXPECT_GT(r.rms_error_before_n, 100.0);  // 30 % of 250–700 N
@@ -264,7 +264,7 @@ TEST(BatchRefit, ErrorFallsWhenThePriorIsThirtyPercentOff) {
 
 TEST(BatchRefit, OneSampleMovesTheModelTowardIt) {
   const ResponseSurfaceModel prior = thirty_percent_off();
-  const double measured = model_db::predict(truth(), 0.07, 5.0).force_n;  // 400 N at the centre, prior 280 N
+  const double measured = model::predict(truth(), 0.07, 5.0).force_n;  // 400 N at the centre, prior 280 N
   const BatchRefitResult r = batch_refit(prior, {{0.07, 5.0, measured, 1.0, 0.0}}, with(FitOptions::kSquared, 5.0));
   ASSERT_EQ(r.status, BatchRefitStatus::kOk) << r.message;
   // ψ = e0 at the centre: only β0 moves, to the precision-weighted mean of prior and sample

@@ -18,7 +18,7 @@
 #include "feedplan/learning/batch_refit.hpp"
 #include "feedplan/learning/prediction_errors.hpp"
 #include "feedplan/model_db/model_exchange.hpp"
-#include "feedplan/model_db/model_prediction.hpp"
+#include "feedplan/model/model_prediction.hpp"
 #include "feedplan/model_db/store.hpp"
 #include "feedplan/force_log/force_log.hpp"
 #include "feedplan/force_log/revolution_peaks.hpp"
@@ -58,7 +58,7 @@ TEST(KistlerLearning, RefitFromTwoFeedsMovesThePredictionAtTheThirdTowardItsMeas
   // material, fitted below 66° of engagement: a poor start, as a new tool/material would be.
   const fs::path dir = fs::temp_directory_path() / ("feedplan_kistler_learning_" + std::to_string(::getpid()));
   fs::create_directories(dir);
-  model_db::ResponseSurfaceModel start;
+  model::ResponseSurfaceModel start;
   {
     auto store = model_db::Store::open(dir / "t.db", model_db::OpenMode::kCreate);
     model_db::import_from_file(store, fs::path(FEEDPLAN_TEST_DATA_DIR) / "cli" / "s50c_d10_model.json");
@@ -74,14 +74,14 @@ TEST(KistlerLearning, RefitFromTwoFeedsMovesThePredictionAtTheThirdTowardItsMeas
   const double scale = kAxialDepthMm / start.axial_depth_mm;  // back to the recordings' 3 mm
   const double chip_900 = 900.0 / (kFlutes * kRpm);
   const double length = kToolRadiusMm * kPi;
-  const double before_n = model_db::predict(start, chip_900, length).force_n * scale;
+  const double before_n = model::predict(start, chip_900, length).force_n * scale;
 
   BatchRefitOptions options;
-  options.loss = model_db::FitOptions::kHuber;
+  options.loss = model::FitOptions::kHuber;
   options.loss_scale_n = 30.0;
   const BatchRefitResult refit = batch_refit(start, samples, options);
   ASSERT_EQ(refit.status, BatchRefitStatus::kOk) << refit.message;
-  const double after_n = model_db::predict(refit.model, chip_900, length).force_n * scale;
+  const double after_n = model::predict(refit.model, chip_900, length).force_n * scale;
 
   const double error_before = 100.0 * (before_n - kMeasuredPeak900N) / kMeasuredPeak900N;
   const double error_after = 100.0 * (after_n - kMeasuredPeak900N) / kMeasuredPeak900N;

@@ -38,7 +38,7 @@ constexpr double kLogRateHz = 50000.0;
 struct CornerRun {
   cycles::CycleSpec spec;
   planner::PlanResult plan;
-  model_db::ResponseSurfaceModel model;
+  model::ResponseSurfaceModel model;
   sim::SimulationResult result;
   sim::MotionProfile motion;
   Alignment alignment;

@@ -25,15 +25,15 @@ planner::PlanResult plan_on_a_line(int not_engaged = -1) {
 }
 
 // F̂ = 100 N everywhere.
-model_db::ResponseSurfaceModel flat_model() {
-  model_db::ResponseSurfaceModel model;
+model::ResponseSurfaceModel flat_model() {
+  model::ResponseSurfaceModel model;
   model.beta = {100.0, 0, 0, 0, 0, 0};
   return model;
 }
 
 // F̂ = 100 + 2000 t_m, N (t_m in mm).
-model_db::ResponseSurfaceModel linear_model() {
-  model_db::ResponseSurfaceModel model;
+model::ResponseSurfaceModel linear_model() {
+  model::ResponseSurfaceModel model;
   model.chip_center_mm = 0.05;
   model.chip_scale_mm = 0.05;
   model.beta = {200.0, 100.0, 0, 0, 0, 0};

@@ -10,7 +10,7 @@ namespace feedplan::learning {
 namespace {
 
 TEST(PredictionErrors, HandComputedPercentiles) {
-  model_db::ResponseSurfaceModel model;  // F̂ = 100 N everywhere
+  model::ResponseSurfaceModel model;  // F̂ = 100 N everywhere
   model.beta = {100.0, 0.0, 0.0, 0.0, 0.0, 0.0};
   std::vector<LearningSample> samples;
   for (double force : {100.0, 125.0, 80.0, 50.0, 0.0}) samples.push_back({0.05, 4.0, force, 1.0, 0.0});

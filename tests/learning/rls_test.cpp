@@ -18,12 +18,12 @@
 #include "gauss_solve.hpp"
 #include "feedplan/core/input_error.hpp"
 #include "feedplan/learning/rls.hpp"
-#include "feedplan/model_db/model_prediction.hpp"
+#include "feedplan/model/model_prediction.hpp"
 
 namespace feedplan::learning {
 namespace {
 
-using model_db::ResponseSurfaceModel;
+using model::ResponseSurfaceModel;
 using ::testing::HasSubstr;
 using testing::Matrix;
 using testing::Vector;
@@ -61,7 +61,7 @@ std::vector<LearningSample> grid(const ResponseSurfaceModel& model, int passes, 
       for (int j = 0; j < 5; ++j) {
         const double chip = 0.02 + 0.1 * i / 7.0;
         const double length = 1.0 + 2.0 * j;
-        const double force = model_db::predict(model, chip, length).force_n + (sigma_n > 0.0 ? noise(rng) : 0.0);
+        const double force = model::predict(model, chip, length).force_n + (sigma_n > 0.0 ? noise(rng) : 0.0);
         samples.push_back({chip, length, force, 1.0, 0.0});
       }
     }
@@ -130,7 +130,7 @@ TEST(Rls, MatchesTheClosedFormOfExponentiallyWeightedLeastSquares) {
     b[j] += prior * start.beta[j];
   }
   for (int k = 0; k < n; ++k) {
-    const Vector psi = model_db::regressors(start, samples[k].chip_mm, samples[k].contact_length_mm);
+    const Vector psi = model::regressors(start, samples[k].chip_mm, samples[k].contact_length_mm);
     const double c = std::pow(lambda, n - 1 - k) * samples[k].weight / sigma2;
     for (int i = 0; i < 6; ++i) {
       b[i] += c * psi[i] * samples[k].force_n;
@@ -152,9 +152,9 @@ TEST(Rls, MatchesTheClosedFormOfExponentiallyWeightedLeastSquares) {
   double before = 0.0, after = 0.0, weights = 0.0;
   for (const LearningSample& s : samples) {
     double predicted_after = 0.0;
-    const Vector psi = model_db::regressors(start, s.chip_mm, s.contact_length_mm);
+    const Vector psi = model::regressors(start, s.chip_mm, s.contact_length_mm);
     for (int j = 0; j < 6; ++j) predicted_after += expected[j] * psi[j];
-    before += s.weight * std::pow(s.force_n - model_db::predict(start, s.chip_mm, s.contact_length_mm).force_n, 2);
+    before += s.weight * std::pow(s.force_n - model::predict(start, s.chip_mm, s.contact_length_mm).force_n, 2);
     after += s.weight * std::pow(s.force_n - predicted_after, 2);
     weights += s.weight;
   }
@@ -213,7 +213,7 @@ TEST(Rls, DeadZoneSkipsSmallErrors) {
   std::vector<LearningSample> samples = grid(t, 1, 0.0, rng);
   std::uniform_real_distribution<double> noise(-1.5, 1.5);
   for (LearningSample& s : samples) s.force_n += noise(rng);
-  samples.push_back({0.2, 10.0, model_db::predict(t, 0.2, 10.0).force_n + 1.9, 1.0, 0.0});
+  samples.push_back({0.2, 10.0, model::predict(t, 0.2, 10.0).force_n + 1.9, 1.0, 0.0});
 
   RlsOptions options;
   options.dead_zone_n = 2.0;
@@ -247,7 +247,7 @@ TEST(Rls, CovarianceResetsOnWindupWithoutExcitation) {
   const ResponseSurfaceModel t = truth();
   std::vector<LearningSample> samples;
   for (int k = 0; k < 200; ++k) {
-    samples.push_back({0.09, 6.0, model_db::predict(t, 0.09, 6.0).force_n + (k % 2 == 0 ? 3.0 : -3.0), 1.0, 0.0});
+    samples.push_back({0.09, 6.0, model::predict(t, 0.09, 6.0).force_n + (k % 2 == 0 ? 3.0 : -3.0), 1.0, 0.0});
   }
   RlsOptions options;
   options.forgetting_factor = 0.9;

@@ -12,7 +12,7 @@
 #include "feedplan/core/input_error.hpp"
 #include "feedplan/cycles/cycle.hpp"
 #include "feedplan/cycles/spec_reader.hpp"
-#include "feedplan/model_db/model_prediction.hpp"
+#include "feedplan/model/model_prediction.hpp"
 #include "feedplan/planner/feed_plan.hpp"
 #include "feedplan/planner/speed_profile.hpp"
 #include "feedplan/sim/motion_profile.hpp"
@@ -23,7 +23,7 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 
-PlanSettings settings_for(const cycles::CycleSpec& spec, const model_db::ResponseSurfaceModel& model) {
+PlanSettings settings_for(const cycles::CycleSpec& spec, const model::ResponseSurfaceModel& model) {
   PlanSettings settings;
   settings.model = model;
   settings.target_force_n = spec.target_force_n;
@@ -136,7 +136,7 @@ TEST_P(PlanAgainstMachine, CycleTimeAndForceMatchTheVirtualMachinesMotion) {
     if (!sample.cutting || sample.engagement_rad <= 0.0) continue;
     const double feed_mm_per_min = motion.speed_cap_at(sample.s_mm) * 60.0;
     const double chip = sample.chip_factor * sample.xy_speed_ratio * feed_mm_per_min / (spec.tool.flutes * spec.spindle_rpm);
-    double force = model_db::predict(model, chip, std::max(sample.contact_length_mm, model.range.contact_length_min_mm)).force_n;
+    double force = model::predict(model, chip, std::max(sample.contact_length_mm, model.range.contact_length_min_mm)).force_n;
     if (model.axial_depth_mm > 0 && sample.axial_depth_mm > 0) force *= sample.axial_depth_mm / model.axial_depth_mm;
     worst_n = std::max(worst_n, force);
   }
@@ -309,10 +309,10 @@ TEST(CautiousPlan, HoldsTheUpperBoundAtTheTargetAndTightensWithTheCovariance) {
     const PlannedSample& p = cautious.samples[i];
     if (!p.engaged) continue;
     const double length = std::max(p.contact_length_mm, model.range.contact_length_min_mm);
-    const auto psi = model_db::regressors(model, p.chip_thickness_mm, length);
+    const auto psi = model::regressors(model, p.chip_thickness_mm, length);
     double variance = 0.0;
     for (int j = 0; j < 6; ++j) variance += std::pow(0.1 * model.beta[j] * psi[j], 2);
-    const double force = model_db::predict(model, p.chip_thickness_mm, length).force_n;
+    const double force = model::predict(model, p.chip_thickness_mm, length).force_n;
     variance += std::pow(0.1 * force, 2);
     worst = std::max(worst, force + 2.0 * std::sqrt(variance));
   }
@@ -339,7 +339,7 @@ TEST(CautiousPlan, OffStraightCutMultipliesTheBoundByTheChipAreaRatio) {
     if (rho > 1.05) ++off;
     // Independently: ρ · (F̂ + 2 · 0.1 F̂) at the feed the plan runs never exceeds the target.
     const double length = std::max(p.contact_length_mm, settings.model.range.contact_length_min_mm);
-    const double force = model_db::predict(settings.model, p.chip_thickness_mm, length).force_n;
+    const double force = model::predict(settings.model, p.chip_thickness_mm, length).force_n;
     worst = std::max(worst, rho * 1.2 * force);
   }
   EXPECT_GT(off, 10);

@@ -236,7 +236,7 @@ TEST(PlanReportRoundTrip, WriteThenReadGivesTheSameSettingsContextAndBlocks) {
   EXPECT_EQ(c.dialect, "linuxcnc");
 
   const PlanSettings& s = report.settings;
-  const model_db::ResponseSurfaceModel& m = p.settings.model;
+  const model::ResponseSurfaceModel& m = p.settings.model;
   EXPECT_EQ(s.model.beta, m.beta);
   EXPECT_EQ(s.model.chip_center_mm, m.chip_center_mm);
   EXPECT_EQ(s.model.chip_scale_mm, m.chip_scale_mm);

@@ -18,7 +18,7 @@
 #include <sstream>
 
 #include "feedplan/cycles/cycle.hpp"
-#include "feedplan/model_db/model_prediction.hpp"
+#include "feedplan/model/model_prediction.hpp"
 #include "feedplan/planner/feed_plan.hpp"
 #include "feedplan/sim/motion_profile.hpp"
 
@@ -40,10 +40,10 @@ struct RandomCase {
 // `max_contact_mm` (a full turn of the tool circle, beyond the fitted L range too), as the physics does
 // (redrawn until it does). A model falling somewhere would predict more force at a lower feed, and no
 // feed schedule can hold a target then.
-model_db::ResponseSurfaceModel random_model(std::mt19937_64& rng, double max_contact_mm) {
+model::ResponseSurfaceModel random_model(std::mt19937_64& rng, double max_contact_mm) {
   std::uniform_real_distribution<double> u(0.0, 1.0);
   for (;;) {
-    model_db::ResponseSurfaceModel model;
+    model::ResponseSurfaceModel model;
     model.chip_center_mm = 0.02 + 0.08 * u(rng);
     model.chip_scale_mm = 0.01 + 0.05 * u(rng);
     model.contact_length_center_mm = 1.0 + 6.0 * u(rng);
@@ -216,7 +216,7 @@ TEST(RandomPlans, FeedsAccelerationsAndForcesWithinLimits) {
       ++samples_checked;
       const double feed = motion.speed_cap_at(sample.s_mm) * 60.0;
       const double chip = sample.chip_factor * sample.xy_speed_ratio * feed / (c.spec.tool.flutes * c.spec.spindle_rpm);
-      double force = model_db::predict(model, chip, std::max(sample.contact_length_mm, model.range.contact_length_min_mm)).force_n;
+      double force = model::predict(model, chip, std::max(sample.contact_length_mm, model.range.contact_length_min_mm)).force_n;
       if (model.axial_depth_mm > 0.0 && sample.axial_depth_mm > 0.0) force *= sample.axial_depth_mm / model.axial_depth_mm;
       if (force > c.settings.target_force_n * (1.0 + 1e-6)) {
         ADD_FAILURE() << where << ": at s = " << sample.s_mm << " the machine runs " << feed << " mm/min and the model predicts "

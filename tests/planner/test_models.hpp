@@ -2,14 +2,14 @@
 // Force models and cycles shared by the planner tests (test-only).
 
 #include "feedplan/cycles/spec.hpp"
-#include "feedplan/model_db/response_surface_model.hpp"
+#include "feedplan/model/response_surface_model.hpp"
 
 namespace feedplan::planner::testing {
 
 //! F̂ = β0 + β1 X1 (+ β2 X2 …): a model of the magnitude seed 003 reports for S50C with a D10 4-flute
 //! end mill at a_p 10 mm (≈ 300 N at t_m 0.05 mm, L 4 mm), rising in t_m over its whole range.
-inline model_db::ResponseSurfaceModel s50c_like_model(bool linear = false) {
-  model_db::ResponseSurfaceModel model;
+inline model::ResponseSurfaceModel s50c_like_model(bool linear = false) {
+  model::ResponseSurfaceModel model;
   model.beta = {300.0, 180.0, 40.0, linear ? 0.0 : -8.0, linear ? 0.0 : -4.0, linear ? 0.0 : 12.0};
   if (linear) model.beta[2] = 0.0;
   model.chip_center_mm = 0.05;

@@ -10,7 +10,7 @@
 //      be 0. The floor keeps a coefficient that is small in the prior free to become larger.
 //   2. Estimate: minimise over β
 //          Σ_i w_i ρ(F_i − ψ_iᵀβ) / σ_e²  +  prior_weight · Σ_j (β_j − β_prior_j)² / σ_j²
-//      with ρ the loss of scale loss_scale_n (squared, Huber, Cauchy as model_db::FitOptions) and σ_e the
+//      with ρ the loss of scale loss_scale_n (squared, Huber, Cauchy as model::FitOptions) and σ_e the
 //      noise of a unit-weight sample. Both terms are then squared numbers of standard deviations, so the
 //      prior weighs as much as data of that precision would. For squared loss the minimum is the closed form
 //      (ΨᵀWΨ/σ_e² + Λ)⁻¹ (ΨᵀWF/σ_e² + Λ β_prior), Λ = prior_weight · diag(1/σ_j²). For Huber, Ceres
@@ -30,15 +30,15 @@
 
 #include "feedplan/core/input_error.hpp"
 #include "feedplan/learning/learning_sample.hpp"
-#include "feedplan/model_db/model_fit.hpp"
-#include "feedplan/model_db/response_surface_model.hpp"
+#include "feedplan/model/model_fit.hpp"
+#include "feedplan/model/response_surface_model.hpp"
 
 namespace feedplan::learning {
 
 //! How to refit.
 struct BatchRefitOptions {
-  //! The loss on the force residuals (as model_db::FitOptions: kSquared, kHuber, kCauchy).
-  model_db::FitOptions::Loss loss = model_db::FitOptions::kHuber;
+  //! The loss on the force residuals (as model::FitOptions: kSquared, kHuber, kCauchy).
+  model::FitOptions::Loss loss = model::FitOptions::kHuber;
   //! δ, the residual beyond which the robust loss down-weights, N (> 0).
   double loss_scale_n = 10.0;
   //! σ_e, standard deviation of a unit-weight force sample, N (> 0): what the data term is measured against.
@@ -51,7 +51,7 @@ struct BatchRefitOptions {
   double prior_sigma_fraction = 0.5;
   //! Floor of |β_j| in that rule as a fraction of |β_prior_0|, the force at the centre (≥ 0).
   double prior_floor_fraction = 0.1;
-  //! The prior model's fit covariance (model_db::FitResult::covariance), row-major 6×6 in BetaIndex order,
+  //! The prior model's fit covariance (model::FitResult::covariance), row-major 6×6 in BetaIndex order,
   //! N²; when given, its diagonal sets σ_j (entries must be finite and ≥ 0; 0 falls back to the rule above).
   std::optional<std::array<double, 36>> prior_covariance_n2;
   //! Ceres iterations for the robust losses (≥ 1).
@@ -78,7 +78,7 @@ struct BatchRefitResult {
   std::string message;                  //!< one or two sentences for people, with the numbers
   //! The prior with β refitted, its centres, scales, axial depth and spindle speed unchanged, its range
   //! the union of the prior's and the samples' t_m and L.
-  model_db::ResponseSurfaceModel model;
+  model::ResponseSurfaceModel model;
   int n = 0;                            //!< samples fitted
   double rms_error_before_n = 0.0;      //!< weighted RMS of F − F̂ over the samples with the prior, N
   double rms_error_after_n = 0.0;       //!< the same with the refitted model, N
@@ -92,9 +92,9 @@ struct BatchRefitResult {
 //! Refits `prior`'s coefficients to `samples` by the method of the file comment. Weighted RMS errors are
 //! √(Σ w r² / Σ w). Returns kOk with the model; kNotEnoughSamples for no samples (one is enough: the prior
 //! makes the problem well posed); kNoConvergence with the last iterate and Ceres' reason. Throws
-//! feedplan::InputError listing every problem with the options, the prior model (model_db::validate()) and
+//! feedplan::InputError listing every problem with the options, the prior model (model::validate()) and
 //! the samples, each naming the sample ("samples[3].force_n = nan: must be finite").
-BatchRefitResult batch_refit(const model_db::ResponseSurfaceModel& prior, const std::vector<LearningSample>& samples,
+BatchRefitResult batch_refit(const model::ResponseSurfaceModel& prior, const std::vector<LearningSample>& samples,
                              const BatchRefitOptions& options = {});
 
 }  // namespace feedplan::learning

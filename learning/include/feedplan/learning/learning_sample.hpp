@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "feedplan/core/input_error.hpp"
-#include "feedplan/model_db/response_surface_model.hpp"
+#include "feedplan/model/response_surface_model.hpp"
 
 namespace feedplan::learning {
 
@@ -26,7 +26,7 @@ void validate(const LearningSample& sample, const std::string& prefix, std::vect
 
 //! Appends the problems with a model to learn from (model_db::validate) and with every sample
 //! ("samples[i]." + member) to `problems`.
-void validate(const model_db::ResponseSurfaceModel& model, const std::vector<LearningSample>& samples,
+void validate(const model::ResponseSurfaceModel& model, const std::vector<LearningSample>& samples,
               std::vector<InputProblem>& problems);
 
 }  // namespace feedplan::learning

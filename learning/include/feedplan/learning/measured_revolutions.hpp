@@ -40,7 +40,7 @@
 
 #include "feedplan/learning/learning_sample.hpp"
 #include "feedplan/learning/log_alignment.hpp"
-#include "feedplan/model_db/response_surface_model.hpp"
+#include "feedplan/model/response_surface_model.hpp"
 #include "feedplan/planner/feed_plan.hpp"
 #include "feedplan/planner/peak_comparison.hpp"
 #include "feedplan/force_log/force_log.hpp"
@@ -84,7 +84,7 @@ struct MeasuredRevolutions {
 //! has no forces, or the options are out of range. An alignment that is not usable (usable(status)
 //! false) gives no samples and says so in the message.
 MeasuredRevolutions measured_revolutions(const force_log::ForceLog& log, const Alignment& alignment,
-                                         const planner::PlanResult& plan, const model_db::ResponseSurfaceModel& model,
+                                         const planner::PlanResult& plan, const model::ResponseSurfaceModel& model,
                                          int flutes, double spindle_rpm, const MeasuredRevolutionOptions& options = {});
 
 }  // namespace feedplan::learning

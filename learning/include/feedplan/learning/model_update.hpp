@@ -33,7 +33,7 @@ struct ModelUpdateOptions {
   //! (t_m, L), and a loose prior lets the quadratic wander where the next plan goes.
   BatchRefitOptions batch = [] {
     BatchRefitOptions options;
-    options.loss = model_db::FitOptions::kCauchy;
+    options.loss = model::FitOptions::kCauchy;
     options.prior_sigma_fraction = 0.1;
     return options;
   }();
@@ -73,7 +73,7 @@ struct ModelUpdate {
   PredictionErrors after_rls;                //!< the RLS model on them
   PredictionErrors after_batch;              //!< the refitted model on them
   double gain = 1.0;                         //!< median measured / predicted: the prior of the refit is the plan's model × this
-  model_db::ResponseSurfaceModel model;      //!< the next model: the batch refit (the plan's model on kNoEvidence)
+  model::ResponseSurfaceModel model;      //!< the next model: the batch refit (the plan's model on kNoEvidence)
   std::array<double, 36> covariance{};       //!< its covariance, N² (for the next cautious plan)
 };
 

@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "feedplan/learning/measured_revolutions.hpp"
-#include "feedplan/model_db/response_surface_model.hpp"
+#include "feedplan/model/response_surface_model.hpp"
 #include "feedplan/planner/feed_plan.hpp"
 
 namespace feedplan::learning {
@@ -64,7 +64,7 @@ struct PathLearning {
 //! the plan must have slowed down before the place the rise was seen at (the trochoid's first entry:
 //! +38 % in cycle 3 without; the window is the longest seen at the place, as the next plan may run as
 //! fast as any earlier one).
-PathLearning learn_along_path(const planner::PlanResult& plan, const model_db::ResponseSurfaceModel& model,
+PathLearning learn_along_path(const planner::PlanResult& plan, const model::ResponseSurfaceModel& model,
                               const std::vector<MeasuredRevolutions>& measured, double target_force_n,
                               const PathLearning& previous);
 

@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "feedplan/learning/learning_sample.hpp"
-#include "feedplan/model_db/response_surface_model.hpp"
+#include "feedplan/model/response_surface_model.hpp"
 
 namespace feedplan::learning {
 
@@ -24,6 +24,6 @@ struct PredictionErrors {
 
 //! The errors of `model` on `samples` (forces > 0; samples with F ≤ 0 are skipped). Percentiles by the
 //! nearest-rank rule. All zero when no sample qualifies.
-PredictionErrors prediction_errors(const model_db::ResponseSurfaceModel& model, const std::vector<LearningSample>& samples);
+PredictionErrors prediction_errors(const model::ResponseSurfaceModel& model, const std::vector<LearningSample>& samples);
 
 }  // namespace feedplan::learning

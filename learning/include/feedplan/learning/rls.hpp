@@ -25,7 +25,7 @@
 
 #include "feedplan/core/input_error.hpp"
 #include "feedplan/learning/learning_sample.hpp"
-#include "feedplan/model_db/response_surface_model.hpp"
+#include "feedplan/model/response_surface_model.hpp"
 
 namespace feedplan::learning {
 
@@ -61,15 +61,15 @@ struct RlsStep {
 class RecursiveLeastSquares {
  public:
   //! Starts at `start` (its β, centres and scales, range) with P = P₀. Throws feedplan::InputError listing
-  //! every problem with the options (validate()) and with the model (model_db::validate()).
-  explicit RecursiveLeastSquares(const model_db::ResponseSurfaceModel& start, const RlsOptions& options = {});
+  //! every problem with the options (validate()) and with the model (model::validate()).
+  explicit RecursiveLeastSquares(const model::ResponseSurfaceModel& start, const RlsOptions& options = {});
 
   //! Learns from one sample by steps 1–3 of the file comment. Throws feedplan::InputError, fields
   //! "sample.chip_mm" etc., when t_m or L is not finite and ≥ 0, F not finite, or the weight not finite and > 0.
   RlsStep add(const LearningSample& sample);
 
   //! The current model: the start with θ as β and the range extended over the samples seen.
-  const model_db::ResponseSurfaceModel& model() const { return model_; }
+  const model::ResponseSurfaceModel& model() const { return model_; }
   //! P, row-major 6×6 in BetaIndex order, N² (symmetric).
   const std::array<double, 36>& covariance() const { return covariance_; }
   int updates() const { return updates_; }                            //!< samples that changed θ
@@ -77,7 +77,7 @@ class RecursiveLeastSquares {
   int resets() const { return resets_; }                              //!< covariance resets
 
  private:
-  model_db::ResponseSurfaceModel model_;
+  model::ResponseSurfaceModel model_;
   RlsOptions options_;
   std::array<double, 36> covariance_{};
   int updates_ = 0;
@@ -89,7 +89,7 @@ class RecursiveLeastSquares {
 struct RlsResult {
   //! The start with β updated, its centres and scales unchanged, its range the union of the start's and
   //! the samples' t_m and L.
-  model_db::ResponseSurfaceModel model;
+  model::ResponseSurfaceModel model;
   int n = 0;                        //!< samples given
   int updates = 0;                  //!< samples that changed β
   int skipped_in_dead_zone = 0;     //!< samples whose a-priori error lay within the dead zone
@@ -102,7 +102,7 @@ struct RlsResult {
 //! Runs RecursiveLeastSquares from `start` over `samples` in order. The RMS errors are √(Σ w e² / Σ w).
 //! Throws feedplan::InputError listing every problem with the options, the model and the samples, each
 //! naming the sample ("samples[3].force_n = nan: must be finite"). No samples: the start, unchanged.
-RlsResult rls_update(const model_db::ResponseSurfaceModel& start, const std::vector<LearningSample>& samples,
+RlsResult rls_update(const model::ResponseSurfaceModel& start, const std::vector<LearningSample>& samples,
                      const RlsOptions& options = {});
 
 }  // namespace feedplan::learning

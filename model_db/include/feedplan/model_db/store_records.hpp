@@ -13,7 +13,7 @@
 
 #include "feedplan/core/input_error.hpp"
 #include "feedplan/model_db/cutting_test.hpp"
-#include "feedplan/model_db/response_surface_model.hpp"
+#include "feedplan/model/response_surface_model.hpp"
 
 namespace feedplan::model_db {
 
@@ -76,7 +76,7 @@ struct ModelFitStatistics {
   int n = 0;                                 //!< number of data points fitted
   double rmse_n = 0.0;                       //!< root-mean-square residual, N
   double r_squared = 0.0;                    //!< coefficient of determination
-  std::array<double, 36> covariance{};       //!< 6×6 covariance of β (row-major, BetaIndex order), N²
+  std::array<double, 36> covariance{};       //!< 6×6 covariance of β (row-major, model::BetaIndex order), N²
   std::array<double, 6> standard_errors{};   //!< standard error of each β, N
   double loo_rmse_n = 0.0;                   //!< leave-one-out RMS prediction error, N
 };
@@ -89,7 +89,7 @@ struct ModelRecord {
   int version = 0;                     //!< 1, 2, … per tool and material (set by the store)
   std::optional<RowId> parent_id;      //!< the version this one was derived from (set by the store)
   std::optional<int> parent_version;   //!< that version's number, for people (set by the store)
-  ResponseSurfaceModel model;          //!< coefficients, centres, scales, fitted range, conditions
+  model::ResponseSurfaceModel model;          //!< coefficients, centres, scales, fitted range, conditions
   ModelFitStatistics fit;              //!< fit statistics
   ModelSource source = ModelSource::kCuttingTests;  //!< how the version came to be
   std::string created_at;              //!< UTC ISO 8601, e.g. "2024-05-01T12:00:00.000Z" (set by the store)

@@ -19,8 +19,8 @@
 
 #include "feedplan/geometry/engagement.hpp"
 #include "feedplan/geometry/move.hpp"
-#include "feedplan/model_db/feed_solve.hpp"
-#include "feedplan/model_db/response_surface_model.hpp"
+#include "feedplan/model/feed_solve.hpp"
+#include "feedplan/model/response_surface_model.hpp"
 #include "feedplan/planner/feed_plan.hpp"
 #include "feedplan/planner/force_bound.hpp"
 
@@ -40,14 +40,14 @@ struct SampleFeedLimit {
   FeedLimitReason reason = FeedLimitReason::kAirFeed;  //!< kForce, kModelRange or kAirFeed
   bool extrapolated = false;                    //!< L or a_p outside the fitted range where it binds
   bool target_below_model = false;              //!< F̂ exceeds the target even as the feed → 0
-  model_db::FeedSolveStatus solve_status = model_db::FeedSolveStatus::kOk;  //!< of model_db::solve_feed
+  model::FeedSolveStatus solve_status = model::FeedSolveStatus::kOk;  //!< of model::solve_feed
 };
 
 //! a_p / a_p,model for `axial_depth_mm`, or 1 when either depth is not positive.
-double axial_depth_ratio(const model_db::ResponseSurfaceModel& model, double axial_depth_mm);
+double axial_depth_ratio(const model::ResponseSurfaceModel& model, double axial_depth_mm);
 
 //! The feed (mm/min) at which `model` predicts `target_force_n` at `sample` (engaged, cutting), by
-//! model_db::solve_feed on the chip factor × XY speed ratio, with the axial-depth scaling above. A sample
+//! model::solve_feed on the chip factor × XY speed ratio, with the axial-depth scaling above. A sample
 //! that is not engaged or makes no chip gets `air_feed_mm_per_min` with reason kAirFeed. A solution
 //! clamped at the top of the fitted t_m range gets reason kModelRange (the feed the model still covers);
 //! one below the range uses the rising root (F̂ = target, an extrapolation downwards, flagged).
@@ -55,18 +55,18 @@ double axial_depth_ratio(const model_db::ResponseSurfaceModel& model, double axi
 //! F̂ + z·σ (force_bound.hpp, same axial-depth scaling) meets the target, found by bisection (F̂ + z·σ
 //! rises with the feed on the rising branch); when even a vanishing feed exceeds the target,
 //! target_below_model is set.
-SampleFeedLimit sample_feed_limit(const model_db::ResponseSurfaceModel& model, const geometry::EngagementSample& sample,
+SampleFeedLimit sample_feed_limit(const model::ResponseSurfaceModel& model, const geometry::EngagementSample& sample,
                                   double target_force_n, int flutes, double spindle_rpm, double air_feed_mm_per_min,
                                   const ForceUncertainty* uncertainty = nullptr);
 
 //! F̂ + z·σ (× the chip-area ratio ρ when uncertainty->off_straight_cut) at `sample` and path feed
 //! `feed_mm_per_min` (F̂ without `uncertainty`), with the axial-depth scaling; 0 when the sample is not engaged.
-double upper_force_n(const model_db::ResponseSurfaceModel& model, const geometry::EngagementSample& sample,
+double upper_force_n(const model::ResponseSurfaceModel& model, const geometry::EngagementSample& sample,
                      double feed_mm_per_min, int flutes, double spindle_rpm, const ForceUncertainty* uncertainty);
 
 //! F̂ (N) the model predicts at `sample` when the tool runs at path feed `feed_mm_per_min`, with the
 //! axial-depth scaling; 0 when the sample is not engaged.
-double predicted_force_n(const model_db::ResponseSurfaceModel& model, const geometry::EngagementSample& sample,
+double predicted_force_n(const model::ResponseSurfaceModel& model, const geometry::EngagementSample& sample,
                          double feed_mm_per_min, int flutes, double spindle_rpm);
 
 //! t_m (mm) at `sample` for path feed `feed_mm_per_min`.
@@ -75,7 +75,7 @@ double chip_thickness_mm(const geometry::EngagementSample& sample, double feed_m
 
 //! The contact length the model is evaluated at for a sample with contact length `contact_length_mm`:
 //! max(L, range.contact_length_min_mm) (see the file comment), mm.
-double model_contact_length_mm(const model_db::ResponseSurfaceModel& model, double contact_length_mm);
+double model_contact_length_mm(const model::ResponseSurfaceModel& model, double contact_length_mm);
 
 //! True when the sample is on a cutting move with some engagement (what the force model applies to).
 bool is_engaged(const geometry::EngagementSample& sample);

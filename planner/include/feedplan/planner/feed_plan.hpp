@@ -43,7 +43,7 @@
 #include "feedplan/geometry/stock.hpp"
 #include "feedplan/geometry/tool.hpp"
 #include "feedplan/geometry/tool_path.hpp"
-#include "feedplan/model_db/response_surface_model.hpp"
+#include "feedplan/model/response_surface_model.hpp"
 #include "feedplan/planner/force_bound.hpp"
 
 namespace feedplan::planner {
@@ -95,7 +95,7 @@ PlanGeometry analyse(const geometry::ToolPath& path, const geometry::Stock& stoc
 
 //! What the plan is asked to do.
 struct PlanSettings {
-  model_db::ResponseSurfaceModel model;  //!< the force model F̂(t_m, L) (seed 003 Eq. 1)
+  model::ResponseSurfaceModel model;  //!< the force model F̂(t_m, L) (seed 003 Eq. 1)
   double target_force_n = 0.0;           //!< per-revolution peak XY force to hold, N (> 0)
   double spindle_rpm = 0.0;              //!< spindle speed, rev/min (> 0)
   cycles::MachineLimits machine;         //!< feed range, acceleration, rapid rate, block time

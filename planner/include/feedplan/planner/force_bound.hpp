@@ -23,7 +23,7 @@
 
 #include <array>
 
-#include "feedplan/model_db/response_surface_model.hpp"
+#include "feedplan/model/response_surface_model.hpp"
 
 namespace feedplan::planner {
 
@@ -36,7 +36,7 @@ struct ForceUncertainty {
 };
 
 //! σ(F̂) = √(ψᵀ C ψ + (r·F̂)²) at t_m = chip_mm and L = contact_length_mm, N.
-double force_standard_deviation_n(const model_db::ResponseSurfaceModel& model, const ForceUncertainty& uncertainty,
+double force_standard_deviation_n(const model::ResponseSurfaceModel& model, const ForceUncertainty& uncertainty,
                                   double chip_mm, double contact_length_mm);
 
 }  // namespace feedplan::planner

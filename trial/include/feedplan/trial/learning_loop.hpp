@@ -44,13 +44,13 @@ struct LoopCycle {
   learning::PredictionErrors model_errors_after;    //!< the learned model, on the same samples
   learning::ModelUpdateStatus update_status = learning::ModelUpdateStatus::kNoEvidence;  //!< whether learning gave a model
   std::vector<std::string> messages;      //!< plan and learning messages
-  model_db::ResponseSurfaceModel model_used;  //!< the model the cycle was planned with
+  model::ResponseSurfaceModel model_used;  //!< the model the cycle was planned with
 };
 
 //! The whole loop.
 struct LoopResult {
   std::vector<LoopCycle> cycles;             //!< in order
-  model_db::ResponseSurfaceModel final_model; //!< after the last cycle's learning
+  model::ResponseSurfaceModel final_model; //!< after the last cycle's learning
   std::array<double, 36> final_covariance{};  //!< its covariance, N²
 };
 

@@ -7,10 +7,10 @@
 #include <cmath>
 #include <limits>
 
-#include "feedplan/model_db/model_prediction.hpp"
-#include "feedplan/model_db/response_surface_model.hpp"
+#include "feedplan/model/model_prediction.hpp"
+#include "feedplan/model/response_surface_model.hpp"
 
-namespace feedplan::model_db {
+namespace feedplan::model {
 namespace {
 
 using ::testing::HasSubstr;
@@ -121,4 +121,4 @@ TEST(ModelValidate, RangeMustBeFiniteAndNonNegative) {
 }
 
 }  // namespace
-}  // namespace feedplan::model_db
+}  // namespace feedplan::model

@@ -1,4 +1,4 @@
-#include "feedplan/model_db/model_fit.hpp"
+#include "feedplan/model/model_fit.hpp"
 
 #include <Eigen/Dense>
 
@@ -7,10 +7,10 @@
 #include <cstdio>
 
 #include "feedplan/core/number_text.hpp"
-#include "feedplan/model_db/model_prediction.hpp"
+#include "feedplan/model/model_prediction.hpp"
 #include "robust_linear_fit.hpp"
 
-namespace feedplan::model_db {
+namespace feedplan::model {
 namespace {
 
 constexpr double kRankTolerance = 1e-9;      // σ_min/σ_max at or below which the design is rank-deficient
@@ -353,4 +353,4 @@ FitResult fit_model(const std::vector<FitSample>& samples, const FitOptions& opt
   return result;
 }
 
-}  // namespace feedplan::model_db
+}  // namespace feedplan::model

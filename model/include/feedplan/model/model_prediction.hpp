@@ -5,9 +5,9 @@
 
 #include <array>
 
-#include "feedplan/model_db/response_surface_model.hpp"
+#include "feedplan/model/response_surface_model.hpp"
 
-namespace feedplan::model_db {
+namespace feedplan::model {
 
 //! Relative tolerance of the fitted-range checks: a value counts as inside [min, max] when it lies within
 //! kRangeRelativeTolerance · max(|min|, |max|) of it, so that a feed solved exactly at a range edge, or a
@@ -40,4 +40,4 @@ bool contact_length_outside(const FittedRange& range, double contact_length_mm);
 //! sample; check a model once when it is loaded. NaN inputs give a NaN force, flagged as outside.
 ForcePrediction predict(const ResponseSurfaceModel& model, double chip_mm, double contact_length_mm);
 
-}  // namespace feedplan::model_db
+}  // namespace feedplan::model

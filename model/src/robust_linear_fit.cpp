@@ -5,7 +5,7 @@
 #include <cassert>
 #include <memory>
 
-namespace feedplan::model_db::detail {
+namespace feedplan::model::detail {
 namespace {
 
 //! r = ψᵀβ − y for one sample; linear, so the Jacobian is ψ itself.
@@ -77,4 +77,4 @@ RobustLinearFit robust_linear_fit(const std::vector<std::array<double, 6>>& regr
   return fit;
 }
 
-}  // namespace feedplan::model_db::detail
+}  // namespace feedplan::model::detail

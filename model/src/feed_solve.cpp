@@ -1,4 +1,4 @@
-#include "feedplan/model_db/feed_solve.hpp"
+#include "feedplan/model/feed_solve.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -7,9 +7,9 @@
 
 #include "feedplan/core/input_error.hpp"
 #include "feedplan/core/number_text.hpp"
-#include "feedplan/model_db/model_prediction.hpp"
+#include "feedplan/model/model_prediction.hpp"
 
-namespace feedplan::model_db {
+namespace feedplan::model {
 namespace {
 
 //! 6 significant digits, as six_digit_number_text() writes finite numbers, without an ostringstream: the
@@ -169,4 +169,4 @@ FeedSolution solve_feed(const ResponseSurfaceModel& model, double chip_factor, d
   return solution;
 }
 
-}  // namespace feedplan::model_db
+}  // namespace feedplan::model

@@ -10,7 +10,7 @@
 
 #include "feedplan/core/input_error.hpp"
 
-namespace feedplan::model_db {
+namespace feedplan::model {
 
 //! Index of each coefficient in ResponseSurfaceModel::beta.
 enum BetaIndex { kBeta0 = 0, kBeta1 = 1, kBeta2 = 2, kBeta11 = 3, kBeta22 = 4, kBeta12 = 5 };
@@ -43,4 +43,4 @@ struct ResponseSurfaceModel {
 //! be the one this project models ("peak_xy_force_per_revolution_n"). Empty when the model is usable.
 std::vector<InputProblem> validate(const ResponseSurfaceModel& model);
 
-}  // namespace feedplan::model_db
+}  // namespace feedplan::model

@@ -33,9 +33,9 @@
 #include <optional>
 #include <string>
 
-#include "feedplan/model_db/response_surface_model.hpp"
+#include "feedplan/model/response_surface_model.hpp"
 
-namespace feedplan::model_db {
+namespace feedplan::model {
 
 //! How the feed relates to the target force (see the file comment for the exact rule).
 enum class FeedSolveStatus {
@@ -72,4 +72,4 @@ struct FeedSolution {
 FeedSolution solve_feed(const ResponseSurfaceModel& model, double chip_factor, double contact_length_mm,
                         double target_force_n);
 
-}  // namespace feedplan::model_db
+}  // namespace feedplan::model

@@ -14,10 +14,10 @@
 #include <string>
 
 #include "feedplan/core/input_error.hpp"
-#include "feedplan/model_db/model_fit.hpp"
-#include "feedplan/model_db/model_prediction.hpp"
+#include "feedplan/model/model_fit.hpp"
+#include "feedplan/model/model_prediction.hpp"
 
-namespace feedplan::model_db {
+namespace feedplan::model {
 namespace {
 
 using ::testing::HasSubstr;
@@ -389,4 +389,4 @@ TEST(ModelFit, NotConvergedWithinTheIterationLimit) {
 }
 
 }  // namespace
-}  // namespace feedplan::model_db
+}  // namespace feedplan::model

@@ -44,9 +44,9 @@
 #include <vector>
 
 #include "feedplan/core/input_error.hpp"
-#include "feedplan/model_db/response_surface_model.hpp"
+#include "feedplan/model/response_surface_model.hpp"
 
-namespace feedplan::model_db {
+namespace feedplan::model {
 
 //! One data point.
 struct FitSample {
@@ -117,4 +117,4 @@ std::vector<InputProblem> validate(const FitOptions& options);
 //! ("samples[3].force_n = nan: must be finite"), and every problem with the options.
 FitResult fit_model(const std::vector<FitSample>& samples, const FitOptions& options = {});
 
-}  // namespace feedplan::model_db
+}  // namespace feedplan::model

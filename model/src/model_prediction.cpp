@@ -1,10 +1,10 @@
-#include "feedplan/model_db/model_prediction.hpp"
+#include "feedplan/model/model_prediction.hpp"
 
 #include <algorithm>
 #include <cassert>
 #include <cmath>
 
-namespace feedplan::model_db {
+namespace feedplan::model {
 namespace {
 
 //! Outside [min, max] by more than kRangeRelativeTolerance · max(|min|, |max|); NaN is outside.
@@ -39,4 +39,4 @@ ForcePrediction predict(const ResponseSurfaceModel& model, double chip_mm, doubl
   return prediction;
 }
 
-}  // namespace feedplan::model_db
+}  // namespace feedplan::model

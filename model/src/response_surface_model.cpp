@@ -1,11 +1,11 @@
-#include "feedplan/model_db/response_surface_model.hpp"
+#include "feedplan/model/response_surface_model.hpp"
 
 #include <cmath>
 #include <string>
 
 #include "feedplan/core/number_text.hpp"
 
-namespace feedplan::model_db {
+namespace feedplan::model {
 namespace {
 
 //! Collects problems as "model.<field> = <value>: <rule>"; field names are built only on failure.
@@ -65,4 +65,4 @@ std::vector<InputProblem> validate(const ResponseSurfaceModel& model) {
   return problems.take();
 }
 
-}  // namespace feedplan::model_db
+}  // namespace feedplan::model

@@ -13,10 +13,10 @@
 #include <string>
 
 #include "feedplan/core/input_error.hpp"
-#include "feedplan/model_db/feed_solve.hpp"
-#include "feedplan/model_db/model_prediction.hpp"
+#include "feedplan/model/feed_solve.hpp"
+#include "feedplan/model/model_prediction.hpp"
 
-namespace feedplan::model_db {
+namespace feedplan::model {
 namespace {
 
 using ::testing::HasSubstr;
@@ -322,4 +322,4 @@ TEST(FeedSolveProperty, RandomIncreasingModels) {
 }
 
 }  // namespace
-}  // namespace feedplan::model_db
+}  // namespace feedplan::model

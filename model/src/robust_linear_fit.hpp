@@ -6,9 +6,9 @@
 #include <string>
 #include <vector>
 
-#include "feedplan/model_db/model_fit.hpp"
+#include "feedplan/model/model_fit.hpp"
 
-namespace feedplan::model_db::detail {
+namespace feedplan::model::detail {
 
 //! What the robust minimisation returned.
 struct RobustLinearFit {
@@ -26,4 +26,4 @@ RobustLinearFit robust_linear_fit(const std::vector<std::array<double, 6>>& regr
                                   FitOptions::Loss loss, double scale_n, const std::array<bool, 6>& active,
                                   const std::array<double, 6>& initial, int max_iterations);
 
-}  // namespace feedplan::model_db::detail
+}  // namespace feedplan::model::detail
