@@ -149,6 +149,135 @@ std::string list_names(const std::array<bool, 6>& mask, bool wanted) {
   return names;
 }
 
+//! 1. Prior spread: σ_j into result.prior_sigma_n; returns √prior_weight / σ_j.
+std::array<double, 6> prior_scale_of(const std::array<double, 6>& beta_prior, const BatchRefitOptions& options,
+                                     BatchRefitResult& result) {
+  std::array<double, 6> prior_scale{};  // √prior_weight / σ_j
+  for (int j = 0; j < 6; ++j) {
+    const double variance = options.prior_covariance_n2 ? (*options.prior_covariance_n2)[j * 6 + j] : 0.0;
+    double sigma = std::sqrt(variance);
+    if (!(sigma > 0.0)) {
+      sigma = options.prior_sigma_fraction *
+              std::max(std::abs(beta_prior[j]), options.prior_floor_fraction * std::abs(beta_prior[model::kBeta0]));
+      if (!(sigma > 0.0)) sigma = 1.0;
+    }
+    result.prior_sigma_n[j] = sigma;
+    prior_scale[j] = std::sqrt(options.prior_weight) / sigma;
+  }
+  return prior_scale;
+}
+
+//! No samples: the prior unchanged, with its own covariance.
+void return_prior_unchanged(const BatchRefitOptions& options, BatchRefitResult& result) {
+  result.status = BatchRefitStatus::kNotEnoughSamples;
+  result.message = "no samples to refit: the prior model is returned unchanged";
+  for (int j = 0; j < 6; ++j) {
+    const double variance = result.prior_sigma_n[j] * result.prior_sigma_n[j] / options.prior_weight;
+    result.covariance[j * 6 + j] = variance;
+    result.standard_error_n[j] = std::sqrt(variance);
+  }
+}
+
+//! The samples as regression data, widening `range` to hold them.
+Data regression_data(const model::ResponseSurfaceModel& prior, const std::vector<LearningSample>& samples,
+                     const BatchRefitOptions& options, model::FittedRange& range) {
+  Data data;
+  const double noise_variance = options.noise_sigma_n * options.noise_sigma_n;
+  for (const LearningSample& s : samples) {
+    data.psi.push_back(model::regressors(prior, s.chip_mm, s.contact_length_mm));
+    data.force_n.push_back(s.force_n);
+    data.weight.push_back(s.weight / noise_variance);
+    range.chip_min_mm = std::min(range.chip_min_mm, s.chip_mm);
+    range.chip_max_mm = std::max(range.chip_max_mm, s.chip_mm);
+    range.contact_length_min_mm = std::min(range.contact_length_min_mm, s.contact_length_mm);
+    range.contact_length_max_mm = std::max(range.contact_length_max_mm, s.contact_length_mm);
+  }
+  return data;
+}
+
+//! (Ψᵀ diag(a) Ψ + Λ), a_i the data weights times `factor(i)`.
+template <class Factor>
+Matrix6 information(const Data& data, const Vector6& prior_information, const Factor& factor) {
+  Matrix6 h = prior_information.asDiagonal();
+  for (std::size_t i = 0; i < data.psi.size(); ++i) {
+    const Eigen::Map<const Vector6> psi(data.psi[i].data());
+    h += (data.weight[i] * factor(i)) * psi * psi.transpose();
+  }
+  return h;
+}
+
+//! The estimate of step 2 and how the robust fit ended.
+struct Estimate {
+  std::array<double, 6> beta{};
+  bool converged = true;
+  std::string report;  // Ceres' message on the last robust fit
+};
+
+//! 2. Estimate: the closed form for squared loss, the start of the robust fits.
+Estimate estimate(const Data& data, const std::array<double, 6>& beta_prior, const std::array<double, 6>& prior_scale,
+                  const Vector6& prior_information, const BatchRefitOptions& options) {
+  const Eigen::Map<const Vector6> beta_prior_vec(beta_prior.data());
+  Vector6 rhs = prior_information.cwiseProduct(beta_prior_vec);
+  for (std::size_t i = 0; i < data.psi.size(); ++i) {
+    rhs += data.weight[i] * data.force_n[i] * Eigen::Map<const Vector6>(data.psi[i].data());
+  }
+  const Vector6 closed_form = information(data, prior_information, [](std::size_t) { return 1.0; }).ldlt().solve(rhs);
+  Estimate e;
+  std::array<double, 6>& beta = e.beta;
+  Eigen::Map<Vector6>(beta.data()) = closed_form;
+  if (options.loss == FitOptions::kCauchy) {
+    robust_minimum(data, beta_prior, prior_scale, FitOptions::kHuber, options.loss_scale_n, options.max_iterations,
+                   beta, e.report);
+  }
+  if (options.loss != FitOptions::kSquared) {
+    e.converged = robust_minimum(data, beta_prior, prior_scale, options.loss, options.loss_scale_n,
+                                 options.max_iterations, beta, e.report);
+  }
+  return e;
+}
+
+//! 3. Covariance and 4. excitation, at the final β.
+void set_covariance_and_excitation(const Data& data, const std::array<double, 6>& beta, const Vector6& prior_information,
+                                   const BatchRefitOptions& options, BatchRefitResult& result) {
+  const Eigen::Map<const Vector6> beta_vec(beta.data());
+  std::vector<double> robust_weight(data.psi.size());
+  for (std::size_t i = 0; i < data.psi.size(); ++i) {
+    const double r = data.force_n[i] - Eigen::Map<const Vector6>(data.psi[i].data()).dot(beta_vec);
+    robust_weight[i] = irls_weight(options.loss, options.loss_scale_n, r);
+    if (robust_weight[i] < 0.5) ++result.downweighted_count;
+  }
+  const Matrix6 covariance = information(data, prior_information, [&](std::size_t i) { return robust_weight[i]; }).inverse();
+  Eigen::Map<Matrix6>(result.covariance.data()) = 0.5 * (covariance + covariance.transpose());
+  for (int j = 0; j < 6; ++j) {
+    result.standard_error_n[j] = std::sqrt(std::max(covariance(j, j), 0.0));
+    result.excited[j] = covariance(j, j) <= kExcitedVarianceRatio / prior_information(j);
+  }
+}
+
+//! Status and message: the errors before and after, which coefficients the data determine, and
+//! whether the robust fit converged.
+void set_status_and_message(const Estimate& fit, const BatchRefitOptions& options, BatchRefitResult& result) {
+  std::string summary = "refitted β to " + std::to_string(result.n) + " samples with " + loss_text(options) +
+                        ": weighted RMS error " + rounded(result.rms_error_before_n) + " N with the prior, " +
+                        rounded(result.rms_error_after_n) + " N refitted";
+  const std::string excited = list_names(result.excited, true);
+  const std::string unexcited = list_names(result.excited, false);
+  summary += excited.empty() ? "; the data excite no coefficient more than the prior"
+                             : "; the data determine " + excited;
+  if (!unexcited.empty()) summary += "; " + unexcited + " stay set by the prior";
+  if (result.downweighted_count > 0) {
+    summary += "; the robust loss weighted " + std::to_string(result.downweighted_count) + " sample(s) below 1/2";
+  }
+  if (fit.converged) {
+    result.status = BatchRefitStatus::kOk;
+    result.message = summary;
+  } else {
+    result.status = BatchRefitStatus::kNoConvergence;
+    result.message = "the robust refit did not converge within " + std::to_string(options.max_iterations) +
+                     " iterations (Ceres: " + fit.report + "); the model is the last iterate. " + summary;
+  }
+}
+
 }  // namespace
 
 std::string to_string(BatchRefitStatus status) {
@@ -204,114 +333,23 @@ BatchRefitResult batch_refit(const model::ResponseSurfaceModel& prior, const std
   result.model = prior;
   result.n = static_cast<int>(samples.size());
 
-  // 1. Prior spread.
   const std::array<double, 6>& beta_prior = prior.beta;
-  std::array<double, 6> prior_scale{};  // √prior_weight / σ_j
-  for (int j = 0; j < 6; ++j) {
-    const double variance = options.prior_covariance_n2 ? (*options.prior_covariance_n2)[j * 6 + j] : 0.0;
-    double sigma = std::sqrt(variance);
-    if (!(sigma > 0.0)) {
-      sigma = options.prior_sigma_fraction *
-              std::max(std::abs(beta_prior[j]), options.prior_floor_fraction * std::abs(beta_prior[model::kBeta0]));
-      if (!(sigma > 0.0)) sigma = 1.0;
-    }
-    result.prior_sigma_n[j] = sigma;
-    prior_scale[j] = std::sqrt(options.prior_weight) / sigma;
-  }
+  const std::array<double, 6> prior_scale = prior_scale_of(beta_prior, options, result);
   if (samples.empty()) {
-    result.status = BatchRefitStatus::kNotEnoughSamples;
-    result.message = "no samples to refit: the prior model is returned unchanged";
-    for (int j = 0; j < 6; ++j) {
-      const double variance = result.prior_sigma_n[j] * result.prior_sigma_n[j] / options.prior_weight;
-      result.covariance[j * 6 + j] = variance;
-      result.standard_error_n[j] = std::sqrt(variance);
-    }
+    return_prior_unchanged(options, result);
     return result;
   }
-
-  Data data;
-  const double noise_variance = options.noise_sigma_n * options.noise_sigma_n;
-  for (const LearningSample& s : samples) {
-    data.psi.push_back(model::regressors(prior, s.chip_mm, s.contact_length_mm));
-    data.force_n.push_back(s.force_n);
-    data.weight.push_back(s.weight / noise_variance);
-    model::FittedRange& range = result.model.range;
-    range.chip_min_mm = std::min(range.chip_min_mm, s.chip_mm);
-    range.chip_max_mm = std::max(range.chip_max_mm, s.chip_mm);
-    range.contact_length_min_mm = std::min(range.contact_length_min_mm, s.contact_length_mm);
-    range.contact_length_max_mm = std::max(range.contact_length_max_mm, s.contact_length_mm);
-  }
-  const Eigen::Map<const Vector6> beta_prior_vec(beta_prior.data());
+  const Data data = regression_data(prior, samples, options, result.model.range);
   Vector6 prior_information;  // diagonal of Λ
   for (int j = 0; j < 6; ++j) prior_information(j) = prior_scale[j] * prior_scale[j];
 
-  // (Ψᵀ diag(a) Ψ + Λ), a_i the data weights times `factor(i)`.
-  const auto information = [&](const auto& factor) {
-    Matrix6 h = prior_information.asDiagonal();
-    for (std::size_t i = 0; i < data.psi.size(); ++i) {
-      const Eigen::Map<const Vector6> psi(data.psi[i].data());
-      h += (data.weight[i] * factor(i)) * psi * psi.transpose();
-    }
-    return h;
-  };
-
-  // 2. Estimate: the closed form for squared loss, the start of the robust fits.
-  Vector6 rhs = prior_information.cwiseProduct(beta_prior_vec);
-  for (std::size_t i = 0; i < data.psi.size(); ++i) {
-    rhs += data.weight[i] * data.force_n[i] * Eigen::Map<const Vector6>(data.psi[i].data());
-  }
-  const Vector6 closed_form = information([](std::size_t) { return 1.0; }).ldlt().solve(rhs);
-  std::array<double, 6> beta{};
-  Eigen::Map<Vector6>(beta.data()) = closed_form;
-  bool converged = true;
-  std::string report;
-  if (options.loss == FitOptions::kCauchy) {
-    robust_minimum(data, beta_prior, prior_scale, FitOptions::kHuber, options.loss_scale_n, options.max_iterations,
-                   beta, report);
-  }
-  if (options.loss != FitOptions::kSquared) {
-    converged = robust_minimum(data, beta_prior, prior_scale, options.loss, options.loss_scale_n,
-                               options.max_iterations, beta, report);
-  }
-  result.model.beta = beta;
-
-  // 3. Covariance and 4. excitation, at the final β.
-  const Eigen::Map<const Vector6> beta_vec(beta.data());
-  std::vector<double> robust_weight(samples.size());
-  for (std::size_t i = 0; i < samples.size(); ++i) {
-    const double r = data.force_n[i] - Eigen::Map<const Vector6>(data.psi[i].data()).dot(beta_vec);
-    robust_weight[i] = irls_weight(options.loss, options.loss_scale_n, r);
-    if (robust_weight[i] < 0.5) ++result.downweighted_count;
-  }
-  const Matrix6 covariance = information([&](std::size_t i) { return robust_weight[i]; }).inverse();
-  Eigen::Map<Matrix6>(result.covariance.data()) = 0.5 * (covariance + covariance.transpose());
-  for (int j = 0; j < 6; ++j) {
-    result.standard_error_n[j] = std::sqrt(std::max(covariance(j, j), 0.0));
-    result.excited[j] = covariance(j, j) <= kExcitedVarianceRatio / prior_information(j);
-  }
+  const Estimate fit = estimate(data, beta_prior, prior_scale, prior_information, options);
+  result.model.beta = fit.beta;
+  set_covariance_and_excitation(data, fit.beta, prior_information, options, result);
 
   result.rms_error_before_n = weighted_rms_error(prior, samples);
   result.rms_error_after_n = weighted_rms_error(result.model, samples);
-
-  std::string summary = "refitted β to " + std::to_string(result.n) + " samples with " + loss_text(options) +
-                        ": weighted RMS error " + rounded(result.rms_error_before_n) + " N with the prior, " +
-                        rounded(result.rms_error_after_n) + " N refitted";
-  const std::string excited = list_names(result.excited, true);
-  const std::string unexcited = list_names(result.excited, false);
-  summary += excited.empty() ? "; the data excite no coefficient more than the prior"
-                             : "; the data determine " + excited;
-  if (!unexcited.empty()) summary += "; " + unexcited + " stay set by the prior";
-  if (result.downweighted_count > 0) {
-    summary += "; the robust loss weighted " + std::to_string(result.downweighted_count) + " sample(s) below 1/2";
-  }
-  if (converged) {
-    result.status = BatchRefitStatus::kOk;
-    result.message = summary;
-  } else {
-    result.status = BatchRefitStatus::kNoConvergence;
-    result.message = "the robust refit did not converge within " + std::to_string(options.max_iterations) +
-                     " iterations (Ceres: " + report + "); the model is the last iterate. " + summary;
-  }
+  set_status_and_message(fit, options, result);
   return result;
 }
 

@@ -3,8 +3,10 @@
 #include <algorithm>
 #include <cassert>
 #include <cmath>
-#include <cstdio>
 #include <limits>
+#include <optional>
+#include <string>
+#include <vector>
 
 #include "feedplan/core/angle.hpp"
 #include "feedplan/core/input_error.hpp"
@@ -12,10 +14,13 @@
 #include "feedplan/geometry/engagement.hpp"
 #include "feedplan/planner/feed_limit.hpp"
 #include "feedplan/force_log/revolution_peaks.hpp"
+#include "fixed_text.hpp"
 
 namespace feedplan::learning {
 
 namespace {
+
+using detail::fixed;
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 // A window holding fewer than this share of the rows one revolution should hold has a gap.
@@ -99,148 +104,179 @@ struct WindowPlace {
   LearningSample sample;  // kEngaged only
 };
 
-std::string fixed(double value, int decimals) {
-  char text[64];
-  std::snprintf(text, sizeof text, "%.*f", decimals, value);
-  return text;
-}
+// The log's rows as signals (step 1). NaN forces read as 0 for force_log::revolution_peaks; nan_rows is
+// NaN there (0 elsewhere), so windows holding one are skipped.
+struct RowSignals {
+  std::vector<double> t, fx, fy, feed, nan_rows;
+};
 
-}  // namespace
-
-MeasuredRevolutions measured_revolutions(const force_log::ForceLog& log, const Alignment& alignment,
-                                         const planner::PlanResult& plan, const model::ResponseSurfaceModel& model,
-                                         int flutes, double spindle_rpm, const MeasuredRevolutionOptions& options) {
-  std::vector<InputProblem> problems;
-  if (flutes < 1) problems.push_back({"flutes", "= " + std::to_string(flutes) + ": must be >= 1"});
-  if (!(std::isfinite(spindle_rpm) && spindle_rpm > 0.0)) {
-    problems.push_back({"spindle_rpm", "= " + shortest_number_text(spindle_rpm) + ": must be > 0"});
-  }
-  if (!(options.min_engagement_rad >= 0.0 && std::isfinite(options.min_engagement_rad))) {
-    problems.push_back(
-        {"min_engagement_rad", "= " + shortest_number_text(options.min_engagement_rad) + ": must be >= 0"});
-  }
-  if (!log.has_forces) {
-    problems.push_back(
-        {"log", "has no forces (only servo currents?): turn them into forces first (forces_from_currents)"});
-  }
-  if (!problems.empty()) throw InputError(std::move(problems));
-  assert(alignment.s_mm.size() == log.rows.size());
-
-  MeasuredRevolutions out;
-  if (!usable(alignment.status)) {
-    out.message =
-        "no revolutions: the alignment is not usable (" + to_string(alignment.status) + ": " + alignment.message + ")";
-    return out;
-  }
+RowSignals row_signals(const force_log::ForceLog& log) {
   const std::size_t n = log.rows.size();
-  if (n < 2 || plan.samples.empty()) {
-    out.message = "no revolutions: too few rows or an empty plan";
-    return out;
-  }
-
-  // 1. Windows. NaN forces read as 0 for force_log::revolution_peaks; windows holding one are skipped below.
-  std::vector<double> t(n), fx(n), fy(n), feed(n), nan_rows(n);
+  RowSignals r;
+  for (std::vector<double>* v : {&r.t, &r.fx, &r.fy, &r.feed, &r.nan_rows}) v->resize(n);
   for (std::size_t i = 0; i < n; ++i) {
     const auto& row = log.rows[i];
-    t[i] = row.t_s;
+    r.t[i] = row.t_s;
     const bool finite = std::isfinite(row.fx_n) && std::isfinite(row.fy_n);
-    fx[i] = finite ? row.fx_n : 0.0;
-    fy[i] = finite ? row.fy_n : 0.0;
-    nan_rows[i] = finite ? 0.0 : kNaN;
-    feed[i] = row.feed_mm_per_min;
+    r.fx[i] = finite ? row.fx_n : 0.0;
+    r.fy[i] = finite ? row.fy_n : 0.0;
+    r.nan_rows[i] = finite ? 0.0 : kNaN;
+    r.feed[i] = row.feed_mm_per_min;
   }
-  const std::vector<force_log::RevolutionPeak> peaks = force_log::revolution_peaks(t, fx, fy, spindle_rpm);
-  const double period_s = 60.0 / spindle_rpm;
-  const double mean_step_s = (t.back() - t.front()) / static_cast<double>(n - 1);
-  const RowSeries rows(t);
+  return r;
+}
 
-  const auto& samples = plan.samples;
-  auto nearest_sample = [&](double s_mm) {
-    const auto it = std::lower_bound(samples.begin(), samples.end(), s_mm,
-                                     [](const planner::PlannedSample& p, double s) { return p.s_mm < s; });
-    std::size_t j = static_cast<std::size_t>(it - samples.begin());
-    if (j == samples.size()) return samples.size() - 1;
-    if (j > 0 && s_mm - samples[j - 1].s_mm < samples[j].s_mm - s_mm) --j;
-    return j;
-  };
-  // XY speed / path speed around s (the plan's samples carry the chip factor without it).
-  auto xy_speed_ratio = [&](double s_mm) {
-    if (samples.size() < 2) return 1.0;
-    const auto it = std::upper_bound(samples.begin(), samples.end(), s_mm,
-                                     [](double s, const planner::PlannedSample& p) { return s < p.s_mm; });
-    std::size_t k = static_cast<std::size_t>(std::max<long>(0, (it - samples.begin()) - 1));
-    k = std::min(k, samples.size() - 2);
-    const auto& a = samples[k];
-    const auto& b = samples[k + 1];
-    const double ds = b.s_mm - a.s_mm;
-    if (ds <= 1e-12) return 1.0;
-    return std::min(1.0, std::hypot(b.position.x_mm - a.position.x_mm, b.position.y_mm - a.position.y_mm) / ds);
-  };
+// What every window (a revolution or a tooth period) is judged against.
+struct WindowContext {
+  const RowSignals& signals;
+  const RowSeries& rows;
+  double mean_step_s;
+  const Alignment& alignment;
+  const std::vector<planner::PlannedSample>& samples;
+  const model::ResponseSurfaceModel& model;
+  int flutes;
+  double spindle_rpm;
+  const MeasuredRevolutionOptions& options;
+};
 
-  // One window (a revolution or a tooth period) → its place and, engaged, its sample.
+// Index of the planned sample nearest to s.
+std::size_t nearest_sample(const std::vector<planner::PlannedSample>& samples, double s_mm) {
+  const auto it = std::lower_bound(samples.begin(), samples.end(), s_mm,
+                                   [](const planner::PlannedSample& p, double s) { return p.s_mm < s; });
+  std::size_t j = static_cast<std::size_t>(it - samples.begin());
+  if (j == samples.size()) return samples.size() - 1;
+  if (j > 0 && s_mm - samples[j - 1].s_mm < samples[j].s_mm - s_mm) --j;
+  return j;
+}
+
+// XY speed / path speed around s (the plan's samples carry the chip factor without it).
+double xy_speed_ratio(const std::vector<planner::PlannedSample>& samples, double s_mm) {
+  if (samples.size() < 2) return 1.0;
+  const auto it = std::upper_bound(samples.begin(), samples.end(), s_mm,
+                                   [](double s, const planner::PlannedSample& p) { return s < p.s_mm; });
+  std::size_t k = static_cast<std::size_t>(std::max<long>(0, (it - samples.begin()) - 1));
+  k = std::min(k, samples.size() - 2);
+  const auto& a = samples[k];
+  const auto& b = samples[k + 1];
+  const double ds = b.s_mm - a.s_mm;
+  if (ds <= 1e-12) return 1.0;
+  return std::min(1.0, std::hypot(b.position.x_mm - a.position.x_mm, b.position.y_mm - a.position.y_mm) / ds);
+}
+
+// Step 1's skip rule: a NaN force in the window, or fewer than half the rows it should hold.
+bool has_nan_or_gap(const WindowContext& c, const force_log::RevolutionPeak& peak, double window_s) {
+  const std::size_t first = c.rows.first_at_or_after(peak.t_start_s);
+  const std::size_t end = c.rows.first_at_or_after(peak.t_end_s);
+  bool has_nan = static_cast<double>(end - first) < kMinRowShare * window_s / c.mean_step_s;
+  for (std::size_t i = first; i < end && !has_nan; ++i) has_nan = std::isnan(c.signals.nan_rows[i]);
+  return has_nan;
+}
+
+// A window's times shifted by the force's lag behind the positions, and the alignment's s there.
+struct ShiftedWindow {
+  double t0 = 0.0, t1 = 0.0, tp = 0.0;      // start, end and peak, s
+  double s0 = 0.0, s1 = 0.0, s_peak = 0.0;  // s at t0, at t1 (or the last row) and at tp, mm
+};
+
+// 2. Place, with the force's lag behind the positions; nothing when a row of the span is not aligned.
+std::optional<ShiftedWindow> place_on_path(const WindowContext& c, const force_log::RevolutionPeak& peak) {
+  const std::vector<double>& t = c.signals.t;
+  const Alignment& alignment = c.alignment;
   const double delay_s = alignment.delay_s;
-  auto evaluate = [&](const force_log::RevolutionPeak& peak, double window_s) {
-    WindowPlace w;
-    const std::size_t first = rows.first_at_or_after(peak.t_start_s);
-    const std::size_t end = rows.first_at_or_after(peak.t_end_s);
-    bool has_nan = static_cast<double>(end - first) < kMinRowShare * window_s / mean_step_s;
-    for (std::size_t i = first; i < end && !has_nan; ++i) has_nan = std::isnan(nan_rows[i]);
-    if (has_nan) {
-      w.outcome = WindowOutcome::kNan;
-      return w;
-    }
-    // 2. Place, with the force's lag behind the positions.
-    const double t0 = peak.t_start_s - delay_s, t1 = peak.t_end_s - delay_s, tp = peak.t_peak_s - delay_s;
-    if (!rows.all_finite(alignment.s_mm, t0, std::min(t1, t.back()))) {
-      w.outcome = WindowOutcome::kNotAligned;
-      return w;
-    }
-    const double s0 = rows.at(alignment.s_mm, t0);
-    // The last window may end a fraction of a row past the last row (force_log::revolution_peaks' rule).
-    const double s1 = rows.at(alignment.s_mm, std::min(t1, t.back()));
-    const double s_peak = rows.at(alignment.s_mm, tp);
-    if (!std::isfinite(s0) || !std::isfinite(s1) || !std::isfinite(s_peak)) {
-      w.outcome = WindowOutcome::kNotAligned;
-      return w;
-    }
-    w.s_start_mm = std::min(s0, s1);
-    w.s_end_mm = std::max(s0, s1);
-    w.s_peak_mm = s_peak;
+  const double t0 = peak.t_start_s - delay_s, t1 = peak.t_end_s - delay_s, tp = peak.t_peak_s - delay_s;
+  if (!c.rows.all_finite(alignment.s_mm, t0, std::min(t1, t.back()))) return std::nullopt;
+  const double s0 = c.rows.at(alignment.s_mm, t0);
+  // The last window may end a fraction of a row past the last row (force_log::revolution_peaks' rule).
+  const double s1 = c.rows.at(alignment.s_mm, std::min(t1, t.back()));
+  const double s_peak = c.rows.at(alignment.s_mm, tp);
+  if (!std::isfinite(s0) || !std::isfinite(s1) || !std::isfinite(s_peak)) return std::nullopt;
+  return ShiftedWindow{t0, t1, tp, s0, s1, s_peak};
+}
 
-    // 3. Model inputs at the peak's place, at the feed run there.
-    const planner::PlannedSample& planned = samples[nearest_sample(s_peak)];
-    geometry::EngagementSample place;
-    place.s_mm = s_peak;
-    place.position = planned.position;
-    place.cutting = planned.engaged;
-    place.engagement_rad = planned.engagement_rad;
-    place.chip_factor = planned.chip_factor;
-    place.xy_speed_ratio = xy_speed_ratio(s_peak);
-    place.contact_length_mm = planned.contact_length_mm;
-    place.axial_depth_mm = planned.axial_depth_mm;
-    double feed_mm_per_min = rows.at(feed, tp);
-    if (!std::isfinite(feed_mm_per_min)) feed_mm_per_min = std::abs(s1 - s0) / (t1 - t0) * 60.0;
+// The model's inputs where a window's peak was measured, at the feed run there.
+struct PeakPlace {
+  const planner::PlannedSample* planned = nullptr;  // nearest to the peak's place
+  geometry::EngagementSample place;
+  double feed_mm_per_min = 0.0;
+};
 
-    // 4. Engaged windows only.
-    if (!planned.engaged || planned.engagement_rad < options.min_engagement_rad ||
-        place.chip_factor * place.xy_speed_ratio < planner::kMinChipFactor || !(feed_mm_per_min > 0.0)) {
-      w.outcome = WindowOutcome::kNotEngaged;
-      return w;
-    }
-    w.outcome = WindowOutcome::kEngaged;
-    w.sample.chip_mm = planner::chip_thickness_mm(place, feed_mm_per_min, flutes, spindle_rpm);
-    w.sample.contact_length_mm = planner::model_contact_length_mm(model, planned.contact_length_mm);
-    w.sample.force_n = peak.peak_xy_n;
-    if (options.scale_to_model_axial_depth) {
-      w.sample.force_n /= planner::axial_depth_ratio(model, planned.axial_depth_mm);
-    }
-    w.sample.weight = 1.0;
-    w.sample.s_mm = 0.5 * (s0 + s1);
+// 3. Model inputs at the peak's place, at the feed run there.
+PeakPlace model_inputs_at_peak(const WindowContext& c, const ShiftedWindow& w) {
+  const double t0 = w.t0, t1 = w.t1, tp = w.tp, s0 = w.s0, s1 = w.s1, s_peak = w.s_peak;
+  const planner::PlannedSample& planned = c.samples[nearest_sample(c.samples, s_peak)];
+  PeakPlace at;
+  at.planned = &planned;
+  geometry::EngagementSample& place = at.place;
+  place.s_mm = s_peak;
+  place.position = planned.position;
+  place.cutting = planned.engaged;
+  place.engagement_rad = planned.engagement_rad;
+  place.chip_factor = planned.chip_factor;
+  place.xy_speed_ratio = xy_speed_ratio(c.samples, s_peak);
+  place.contact_length_mm = planned.contact_length_mm;
+  place.axial_depth_mm = planned.axial_depth_mm;
+  double feed_mm_per_min = c.rows.at(c.signals.feed, tp);
+  if (!std::isfinite(feed_mm_per_min)) feed_mm_per_min = std::abs(s1 - s0) / (t1 - t0) * 60.0;
+  at.feed_mm_per_min = feed_mm_per_min;
+  return at;
+}
+
+// 4. Engaged windows only: true when the plan has the peak's place out of the material (or too little
+//    engaged), without a chip, or the feed is not positive.
+bool not_engaged(const WindowContext& c, const PeakPlace& at) {
+  const planner::PlannedSample& planned = *at.planned;
+  const geometry::EngagementSample& place = at.place;
+  const double feed_mm_per_min = at.feed_mm_per_min;
+  return !planned.engaged || planned.engagement_rad < c.options.min_engagement_rad ||
+         place.chip_factor * place.xy_speed_ratio < planner::kMinChipFactor || !(feed_mm_per_min > 0.0);
+}
+
+// The learning sample of an engaged window.
+LearningSample learning_sample(const WindowContext& c, const force_log::RevolutionPeak& peak, const ShiftedWindow& w,
+                               const PeakPlace& at) {
+  const planner::PlannedSample& planned = *at.planned;
+  LearningSample sample;
+  sample.chip_mm = planner::chip_thickness_mm(at.place, at.feed_mm_per_min, c.flutes, c.spindle_rpm);
+  sample.contact_length_mm = planner::model_contact_length_mm(c.model, planned.contact_length_mm);
+  sample.force_n = peak.peak_xy_n;
+  if (c.options.scale_to_model_axial_depth) {
+    sample.force_n /= planner::axial_depth_ratio(c.model, planned.axial_depth_mm);
+  }
+  sample.weight = 1.0;
+  sample.s_mm = 0.5 * (w.s0 + w.s1);
+  return sample;
+}
+
+// One window (a revolution or a tooth period) → its place and, engaged, its sample (steps 1–4).
+WindowPlace evaluate_window(const WindowContext& c, const force_log::RevolutionPeak& peak, double window_s) {
+  WindowPlace w;
+  if (has_nan_or_gap(c, peak, window_s)) {
+    w.outcome = WindowOutcome::kNan;
     return w;
-  };
+  }
+  const std::optional<ShiftedWindow> shifted = place_on_path(c, peak);
+  if (!shifted) {
+    w.outcome = WindowOutcome::kNotAligned;
+    return w;
+  }
+  w.s_start_mm = std::min(shifted->s0, shifted->s1);
+  w.s_end_mm = std::max(shifted->s0, shifted->s1);
+  w.s_peak_mm = shifted->s_peak;
+  const PeakPlace at = model_inputs_at_peak(c, *shifted);
+  if (not_engaged(c, at)) {
+    w.outcome = WindowOutcome::kNotEngaged;
+    return w;
+  }
+  w.outcome = WindowOutcome::kEngaged;
+  w.sample = learning_sample(c, peak, *shifted, at);
+  return w;
+}
 
+// Every revolution's window into out: its span and peak, its sample when engaged, or why it is skipped.
+void add_revolutions(const WindowContext& c, const std::vector<force_log::RevolutionPeak>& peaks, double period_s,
+                     MeasuredRevolutions& out) {
   for (const force_log::RevolutionPeak& peak : peaks) {
-    const WindowPlace w = evaluate(peak, period_s);
+    const WindowPlace w = evaluate_window(c, peak, period_s);
     switch (w.outcome) {
       case WindowOutcome::kNan: ++out.skipped_nan; continue;
       case WindowOutcome::kNotAligned: ++out.skipped_not_aligned; continue;
@@ -255,13 +291,17 @@ MeasuredRevolutions measured_revolutions(const force_log::ForceLog& log, const A
         break;
     }
   }
+}
 
-  // 5. Tooth periods: the same rule on windows of 1/Z turn (window k in turn k / Z, flute window k mod Z),
-  //    phased so that the tooth peaks lie in the middle of their windows; then each one's runout factor.
-  const std::vector<force_log::RevolutionPeak> periods = tooth_periods_centred_on_peaks(t, fx, fy, spindle_rpm * flutes);
-  const auto z = static_cast<std::size_t>(flutes);
+// 5. Tooth periods: the same rule on windows of 1/Z turn (window k in turn k / Z, flute window k mod Z),
+//    phased so that the tooth peaks lie in the middle of their windows; the engaged ones.
+std::vector<ToothPeriodPeak> engaged_tooth_periods(const WindowContext& c, double period_s) {
+  const RowSignals& s = c.signals;
+  const std::vector<force_log::RevolutionPeak> periods =
+      tooth_periods_centred_on_peaks(s.t, s.fx, s.fy, c.spindle_rpm * c.flutes);
+  std::vector<ToothPeriodPeak> tooth_periods;
   for (const force_log::RevolutionPeak& period : periods) {
-    const WindowPlace w = evaluate(period, period_s / flutes);
+    const WindowPlace w = evaluate_window(c, period, period_s / c.flutes);
     if (w.outcome != WindowOutcome::kEngaged) continue;
     ToothPeriodPeak p;
     p.window = period.revolution;
@@ -270,28 +310,35 @@ MeasuredRevolutions measured_revolutions(const force_log::ForceLog& log, const A
     p.s_peak_mm = w.s_peak_mm;
     p.t_peak_s = period.t_peak_s;
     p.sample = w.sample;
-    out.tooth_periods.push_back(p);
+    tooth_periods.push_back(p);
   }
-  // Runout: the pattern (largest / own peak per flute window) of the steady turns — Z consecutive
-  // engaged windows whose largest peak is within kSteadyTurnChange of the turn before's.
-  struct SteadyTurn {
-    long number = 0;
-    std::vector<double> ratio;  // per flute window
-  };
+  return tooth_periods;
+}
+
+// A steady turn's runout pattern.
+struct SteadyTurn {
+  long number = 0;
+  std::vector<double> ratio;  // per flute window
+};
+
+// Runout: the pattern (largest / own peak per flute window) of the steady turns — Z consecutive
+// engaged windows whose largest peak is within kSteadyTurnChange of the turn before's.
+std::vector<SteadyTurn> steady_turns(const std::vector<ToothPeriodPeak>& tooth_periods, int flutes) {
+  const auto z = static_cast<std::size_t>(flutes);
   std::vector<SteadyTurn> steady;
   double previous_largest = 0.0;
   long previous_number = -2;
-  for (std::size_t k = 0; k + z <= out.tooth_periods.size();) {
-    const long number = out.tooth_periods[k].window / flutes;
+  for (std::size_t k = 0; k + z <= tooth_periods.size();) {
+    const long number = tooth_periods[k].window / flutes;
     std::size_t end = k;
-    while (end < out.tooth_periods.size() && out.tooth_periods[end].window / flutes == number) ++end;
+    while (end < tooth_periods.size() && tooth_periods[end].window / flutes == number) ++end;
     if (end - k == z) {
       double largest = 0.0;
-      for (std::size_t j = k; j < end; ++j) largest = std::max(largest, out.tooth_periods[j].sample.force_n);
+      for (std::size_t j = k; j < end; ++j) largest = std::max(largest, tooth_periods[j].sample.force_n);
       if (number == previous_number + 1 && std::abs(largest / previous_largest - 1.0) < kSteadyTurnChange) {
         SteadyTurn turn{number, std::vector<double>(z, 1.0)};
         for (std::size_t j = k; j < end; ++j) {
-          const auto& p = out.tooth_periods[j];
+          const auto& p = tooth_periods[j];
           if (p.sample.force_n > 0.0) turn.ratio[static_cast<std::size_t>(p.window % flutes)] = largest / p.sample.force_n;
         }
         steady.push_back(std::move(turn));
@@ -301,33 +348,99 @@ MeasuredRevolutions measured_revolutions(const force_log::ForceLog& log, const A
     }
     k = std::max(end, k + 1);
   }
-  // Each tooth period: the median pattern of the kRunoutTurns steady turns nearest to its own.
-  for (auto& p : out.tooth_periods) {
-    if (steady.empty()) break;
-    const long number = p.window / flutes;
-    auto hi = std::lower_bound(steady.begin(), steady.end(), number, [](const SteadyTurn& t, long n) { return t.number < n; });
-    auto lo = hi;
-    std::vector<double> ratios;
-    const auto j = static_cast<std::size_t>(p.window % flutes);
-    while (ratios.size() < kRunoutTurns && (lo != steady.begin() || hi != steady.end())) {
-      const bool take_low = hi == steady.end() || (lo != steady.begin() && number - (lo - 1)->number <= hi->number - number);
-      if (take_low) {
-        --lo;
-        ratios.push_back(lo->ratio[j]);
-      } else {
-        ratios.push_back(hi->ratio[j]);
-        ++hi;
-      }
+  return steady;
+}
+
+// Median of flute window j's ratio over the kRunoutTurns steady turns nearest to turn `number`.
+double runout_factor(const std::vector<SteadyTurn>& steady, long number, std::size_t j) {
+  auto hi = std::lower_bound(steady.begin(), steady.end(), number, [](const SteadyTurn& t, long n) { return t.number < n; });
+  auto lo = hi;
+  std::vector<double> ratios;
+  while (ratios.size() < kRunoutTurns && (lo != steady.begin() || hi != steady.end())) {
+    const bool take_low = hi == steady.end() || (lo != steady.begin() && number - (lo - 1)->number <= hi->number - number);
+    if (take_low) {
+      --lo;
+      ratios.push_back(lo->ratio[j]);
+    } else {
+      ratios.push_back(hi->ratio[j]);
+      ++hi;
     }
-    std::nth_element(ratios.begin(), ratios.begin() + static_cast<long>(ratios.size() / 2), ratios.end());
-    p.runout_factor = ratios[ratios.size() / 2];
+  }
+  std::nth_element(ratios.begin(), ratios.begin() + static_cast<long>(ratios.size() / 2), ratios.end());
+  return ratios[ratios.size() / 2];
+}
+
+// Each tooth period: the median pattern of the kRunoutTurns steady turns nearest to its own.
+void set_runout_factors(std::vector<ToothPeriodPeak>& tooth_periods, int flutes) {
+  const std::vector<SteadyTurn> steady = steady_turns(tooth_periods, flutes);
+  if (steady.empty()) return;
+  for (auto& p : tooth_periods) {
+    p.runout_factor = runout_factor(steady, p.window / flutes, static_cast<std::size_t>(p.window % flutes));
+  }
+}
+
+// Throws InputError when the tool, the speed, the options or the log cannot give samples.
+void check_input(const force_log::ForceLog& log, int flutes, double spindle_rpm,
+                 const MeasuredRevolutionOptions& options) {
+  std::vector<InputProblem> problems;
+  if (flutes < 1) problems.push_back({"flutes", "= " + std::to_string(flutes) + ": must be >= 1"});
+  if (!(std::isfinite(spindle_rpm) && spindle_rpm > 0.0)) {
+    problems.push_back({"spindle_rpm", "= " + shortest_number_text(spindle_rpm) + ": must be > 0"});
+  }
+  if (!(options.min_engagement_rad >= 0.0 && std::isfinite(options.min_engagement_rad))) {
+    problems.push_back(
+        {"min_engagement_rad", "= " + shortest_number_text(options.min_engagement_rad) + ": must be >= 0"});
+  }
+  if (!log.has_forces) {
+    problems.push_back(
+        {"log", "has no forces (only servo currents?): turn them into forces first (forces_from_currents)"});
+  }
+  if (!problems.empty()) throw InputError(std::move(problems));
+}
+
+// Counts and reasons, for people.
+std::string counts_message(std::size_t revolutions, double spindle_rpm, double delay_s, const MeasuredRevolutions& out) {
+  std::string message = std::to_string(revolutions) + " complete revolutions at " + fixed(spindle_rpm, 0) +
+                        " rpm: " + std::to_string(out.samples.size()) + " engaged samples; skipped " +
+                        std::to_string(out.skipped_not_engaged) + " out of the material, " +
+                        std::to_string(out.skipped_nan) + " with NaN forces or gaps, " +
+                        std::to_string(out.skipped_not_aligned) + " not aligned";
+  if (delay_s != 0.0) message += "; places shifted by the force delay " + fixed(1e3 * delay_s, 1) + " ms";
+  return message;
+}
+
+}  // namespace
+
+MeasuredRevolutions measured_revolutions(const force_log::ForceLog& log, const Alignment& alignment,
+                                         const planner::PlanResult& plan, const model::ResponseSurfaceModel& model,
+                                         int flutes, double spindle_rpm, const MeasuredRevolutionOptions& options) {
+  check_input(log, flutes, spindle_rpm, options);
+  assert(alignment.s_mm.size() == log.rows.size());
+
+  MeasuredRevolutions out;
+  if (!usable(alignment.status)) {
+    out.message =
+        "no revolutions: the alignment is not usable (" + to_string(alignment.status) + ": " + alignment.message + ")";
+    return out;
+  }
+  const std::size_t n = log.rows.size();
+  if (n < 2 || plan.samples.empty()) {
+    out.message = "no revolutions: too few rows or an empty plan";
+    return out;
   }
 
-  out.message = std::to_string(peaks.size()) + " complete revolutions at " + fixed(spindle_rpm, 0) +
-                " rpm: " + std::to_string(out.samples.size()) + " engaged samples; skipped " +
-                std::to_string(out.skipped_not_engaged) + " out of the material, " + std::to_string(out.skipped_nan) +
-                " with NaN forces or gaps, " + std::to_string(out.skipped_not_aligned) + " not aligned";
-  if (delay_s != 0.0) out.message += "; places shifted by the force delay " + fixed(1e3 * delay_s, 1) + " ms";
+  const RowSignals signals = row_signals(log);
+  const std::vector<double>& t = signals.t;
+  const std::vector<force_log::RevolutionPeak> peaks = force_log::revolution_peaks(t, signals.fx, signals.fy, spindle_rpm);
+  const double period_s = 60.0 / spindle_rpm;
+  const double mean_step_s = (t.back() - t.front()) / static_cast<double>(n - 1);
+  const RowSeries rows(t);
+  const WindowContext context{signals, rows, mean_step_s, alignment, plan.samples, model, flutes, spindle_rpm, options};
+
+  add_revolutions(context, peaks, period_s, out);
+  out.tooth_periods = engaged_tooth_periods(context, period_s);
+  set_runout_factors(out.tooth_periods, flutes);
+  out.message = counts_message(peaks.size(), spindle_rpm, alignment.delay_s, out);
   return out;
 }
 

@@ -24,7 +24,7 @@ struct LearningSample {
 //! finite and > 0.
 void validate(const LearningSample& sample, const std::string& prefix, std::vector<InputProblem>& problems);
 
-//! Appends the problems with a model to learn from (model_db::validate) and with every sample
+//! Appends the problems with a model to learn from (model::validate) and with every sample
 //! ("samples[i]." + member) to `problems`.
 void validate(const model::ResponseSurfaceModel& model, const std::vector<LearningSample>& samples,
               std::vector<InputProblem>& problems);

@@ -113,7 +113,7 @@ struct PlanSettings {
 inline constexpr double kMinForceCorrection = 0.2;
 inline constexpr double kMaxForceCorrection = 5.0;  //!< see kMinForceCorrection
 
-//! Every problem with the settings (model via model_db::validate as "model.…", "target_force_n",
+//! Every problem with the settings (model via model::validate as "model.…", "target_force_n",
 //! "spindle_rpm", "machine.…", "options.…"), with the value and the allowed range; empty when valid.
 //! Also checks them against the geometry's tool (flutes ≥ 1).
 std::vector<InputProblem> validate(const PlanSettings& settings, const geometry::Tool& tool);

@@ -1,0 +1,57 @@
+#include "contact_signal.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <limits>
+
+#include "feedplan/force_log/logged_spindle_speed.hpp"
+#include "log_rows.hpp"
+#include "sampled_signal.hpp"
+
+namespace feedplan::learning::detail {
+
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+// The tool is in contact where the measured peak envelope exceeds this share of its (robust) maximum.
+constexpr double kContactFraction = 0.1;
+
+}  // namespace
+
+std::vector<double> force_xy(const force_log::ForceLog& log) {
+  std::vector<double> f(log.rows.size(), kNaN);
+  for (std::size_t i = 0; i < log.rows.size(); ++i) {
+    if (finite_force(log.rows[i])) f[i] = std::hypot(log.rows[i].fx_n, log.rows[i].fy_n);
+  }
+  return f;
+}
+
+double spindle_rpm_for(const force_log::ForceLog& log, const planner::PlanResult& plan) {
+  if (const double logged = logged_spindle_rpm(log); logged > 0.0) return logged;
+  double most = 0.0;
+  for (const auto& block : plan.program.blocks) most = std::max(most, block.spindle_rpm);
+  return most;
+}
+
+int revolution_bins(double rpm, double bin_s) {
+  return rpm > 0.0 ? 2 * static_cast<int>(0.5 * (60.0 / rpm) / bin_s) + 1 : 1;
+}
+
+std::vector<double> in_contact(const std::vector<double>& force_bins, int width) {
+  std::vector<double> envelope = moving_max(force_bins, width);
+  std::vector<double> finite;
+  for (double v : envelope) {
+    if (std::isfinite(v)) finite.push_back(v);
+  }
+  if (finite.empty()) return envelope;
+  const std::size_t k = static_cast<std::size_t>(0.999 * static_cast<double>(finite.size() - 1));
+  std::nth_element(finite.begin(), finite.begin() + static_cast<long>(k), finite.end());
+  const double threshold = kContactFraction * finite[k];
+  for (double& v : envelope) {
+    if (std::isfinite(v)) v = v > threshold ? 1.0 : 0.0;
+  }
+  return envelope;
+}
+
+}  // namespace feedplan::learning::detail

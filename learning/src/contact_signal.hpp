@@ -1,0 +1,27 @@
+#pragma once
+// When the tool touches the stock by the measured force (log_alignment.hpp, "Why contact"): |F_xy| per
+// row, its peak envelope over one spindle revolution, and 1 where that exceeds a tenth of its maximum.
+// Internal to learning.
+
+#include <vector>
+
+#include "feedplan/force_log/force_log.hpp"
+#include "feedplan/planner/feed_plan.hpp"
+
+namespace feedplan::learning::detail {
+
+//! |F_xy| = √(Fx² + Fy²) per row; NaN where a force is NaN.
+std::vector<double> force_xy(const force_log::ForceLog& log);
+
+//! Spindle speed for smoothing over one revolution: the log's column, its metadata, else the program's
+//! largest S, rpm (0 when none is known).
+double spindle_rpm_for(const force_log::ForceLog& log, const planner::PlanResult& plan);
+
+//! Bins of `bin_s` in one revolution at `rpm`, made odd for a centred window; 1 without a speed.
+int revolution_bins(double rpm, double bin_s);
+
+//! 1 where the measured peak envelope (running maximum over `width` bins) exceeds 10 % of its maximum
+//! (the 99.9th percentile, so single spikes do not set it), 0 elsewhere, NaN without data.
+std::vector<double> in_contact(const std::vector<double>& force_bins, int width);
+
+}  // namespace feedplan::learning::detail

@@ -1,0 +1,80 @@
+#include "force_delay.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <limits>
+#include <vector>
+
+#include "contact_signal.hpp"
+#include "cross_correlation.hpp"
+#include "fixed_text.hpp"
+#include "log_rows.hpp"
+#include "sampled_signal.hpp"
+
+namespace feedplan::learning::detail {
+
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+// Delay search: bins no finer than this, s (the estimate is interpolated between bins).
+constexpr double kMinDelayBinS = 0.5e-3;
+
+// Per row: 1 where the plan has the tool engaged at the row's aligned place, 0 where it is not or the
+// row has a position off the aligned path, NaN without a position.
+std::vector<double> planned_engagement_at_rows(const force_log::ForceLog& log, const planner::PlanResult& plan,
+                                               const std::vector<double>& s_mm) {
+  std::vector<double> plan_s, plan_engaged;
+  for (const auto& sample : plan.samples) {
+    plan_s.push_back(sample.s_mm);
+    plan_engaged.push_back(sample.engaged ? 1.0 : 0.0);
+  }
+  const std::size_t n = log.rows.size();
+  std::vector<double> predicted(n, kNaN);
+  for (std::size_t i = 0; i < n; ++i) {
+    if (std::isfinite(s_mm[i])) {
+      predicted[i] = interpolate(plan_s, plan_engaged, s_mm[i], 0.0);
+    } else if (finite_xy(log.rows[i])) {
+      predicted[i] = 0.0;  // before or after the program, or off the path: not cutting the planned stock
+    }
+  }
+  return predicted;
+}
+
+}  // namespace
+
+void estimate_delay(const force_log::ForceLog& log, const planner::PlanResult& plan, const AlignmentOptions& options,
+                    Alignment& out, std::string& text) {
+  if (!log.has_forces) {
+    text += "; force delay not estimated (the log has no forces)";
+    return;
+  }
+  const std::size_t n = log.rows.size();
+  std::vector<double> t(n);
+  for (std::size_t i = 0; i < n; ++i) t[i] = log.rows[i].t_s;
+  const std::vector<double> predicted = planned_engagement_at_rows(log, plan, out.s_mm);
+  const std::vector<double> measured_rows = force_xy(log);
+  const double span_s = t.back() - t.front();
+  double bin_s = std::max(median_step_s(log), kMinDelayBinS);
+  bin_s = std::max(bin_s, span_s / 2e4);  // keeps the search small on long logs
+  const std::size_t bins = static_cast<std::size_t>(span_s / bin_s) + 1;
+  const int width = revolution_bins(spindle_rpm_for(log, plan), bin_s);
+  const std::vector<double> measured = in_contact(bin_means(t, measured_rows, t.front(), bin_s, bins), width);
+  const std::vector<double> expected = moving_max(bin_means(t, predicted, t.front(), bin_s, bins), width);
+  const long max_lag = static_cast<long>(std::ceil(options.max_delay_s / bin_s));
+  const CorrelationPeak peak = correlate(measured, expected, -max_lag, max_lag, 0.0);
+  if (!peak.found) {
+    text += "; force delay not estimated (no contact, or contact throughout, in the measured or planned force)";
+    return;
+  }
+  out.delay_s = std::clamp(peak.lag_bins * bin_s, -options.max_delay_s, options.max_delay_s);
+  out.delay_correlation = peak.correlation;
+  text += "; force delay " + fixed(1e3 * out.delay_s, 1) + " ms (correlation " + fixed(peak.correlation, 2) + ")";
+  if (peak.at_edge) {
+    text += " at the edge of the searched range +-" + fixed(1e3 * options.max_delay_s, 0) +
+            " ms: the true delay may be larger";
+  }
+  if (peak.correlation < 0.5) text += ", weak: check that the log belongs to this plan";
+}
+
+}  // namespace feedplan::learning::detail

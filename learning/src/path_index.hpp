@@ -1,0 +1,84 @@
+#pragma once
+// The planned path as a polyline through the plan's samples, with a uniform XY grid of its segments:
+// which segments can lie within reach of a point, and where on a segment the point's nearest place is.
+// Internal to learning (log alignment by positions).
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <vector>
+
+#include "feedplan/planner/feed_plan.hpp"
+
+namespace feedplan::learning::detail {
+
+//! A point's nearest place on a segment.
+struct Projection {
+  double distance_mm = 0.0;  // from the point, mm
+  double s_mm = 0.0;         // arc length of the nearest place, mm
+};
+
+//! The path's segments (between neighbouring plan samples) and the grid cells each lies within reach of.
+class PathIndex {
+ public:
+  // Needs a plan with samples (asserted); `reach_mm` is the farthest a point may be from a segment
+  // that candidates() lists for it.
+  PathIndex(const planner::PlanResult& plan, double reach_mm);
+
+  int segment_count() const { return static_cast<int>(points_.size()) - 1; }
+  double s_of_segment_start(int k) const { return s_[static_cast<std::size_t>(k)]; }
+  double length_mm() const { return s_.back() - s_.front(); }
+
+  // Nearest point of segment k to q (z compared only when finite).
+  Projection project(int k, double x, double y, double z) const {
+    const auto& a = points_[static_cast<std::size_t>(k)];
+    const auto& b = points_[static_cast<std::size_t>(k) + 1];
+    const bool use_z = std::isfinite(z);
+    const double dx = b.x_mm - a.x_mm, dy = b.y_mm - a.y_mm, dz = use_z ? b.z_mm - a.z_mm : 0.0;
+    const double qx = x - a.x_mm, qy = y - a.y_mm, qz = use_z ? z - a.z_mm : 0.0;
+    const double len2 = dx * dx + dy * dy + dz * dz;
+    const double t = len2 > 0.0 ? std::clamp((qx * dx + qy * dy + qz * dz) / len2, 0.0, 1.0) : 0.0;
+    const double ex = qx - t * dx, ey = qy - t * dy, ez = qz - t * dz;
+    const double sa = s_[static_cast<std::size_t>(k)];
+    const double sb = s_[static_cast<std::size_t>(k) + 1];
+    return {std::sqrt(ex * ex + ey * ey + ez * ez), sa + t * (sb - sa)};
+  }
+
+  // Distance from q to the whole path (linear in its length; for messages only).
+  double distance_to_path(double x, double y, double z) const {
+    double best = 1e300;
+    for (int k = 0; k < segment_count(); ++k) best = std::min(best, project(k, x, y, z).distance_mm);
+    return best;
+  }
+
+  // Segment containing s (the last one starting at or before it).
+  int segment_at(double s_mm) const {
+    const auto it = std::upper_bound(s_.begin(), s_.end() - 1, s_mm);
+    return std::max(0, static_cast<int>(it - s_.begin()) - 1);
+  }
+
+  // Every segment within reach of q is in this list (sorted by index), with others near it; empty
+  // outside the grid.
+  const std::vector<int>& candidates(double x, double y) const {
+    static const std::vector<int> none;
+    const double fx = (x - x0_) / cell_mm_, fy = (y - y0_) / cell_mm_;
+    if (!(fx >= 0.0 && fy >= 0.0 && fx < nx_ && fy < ny_)) return none;
+    return cells_[index(static_cast<int>(fx), static_cast<int>(fy))];
+  }
+
+ private:
+  int cell_x(double x) const { return std::clamp(static_cast<int>((x - x0_) / cell_mm_), 0, nx_ - 1); }
+  int cell_y(double y) const { return std::clamp(static_cast<int>((y - y0_) / cell_mm_), 0, ny_ - 1); }
+  std::size_t index(int i, int j) const {
+    return static_cast<std::size_t>(j) * static_cast<std::size_t>(nx_) + static_cast<std::size_t>(i);
+  }
+
+  double reach_mm_;
+  std::vector<geometry::Point3> points_;
+  std::vector<double> s_;
+  double x0_ = 0, y0_ = 0, cell_mm_ = 1;
+  int nx_ = 1, ny_ = 1;
+  std::vector<std::vector<int>> cells_;
+};
+
+}  // namespace feedplan::learning::detail
