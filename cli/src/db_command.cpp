@@ -185,7 +185,7 @@ int run_show(const DbOptions& o) {
   const auto tests = store.cutting_tests(o.tool, o.material);
   if (o.json) {
     json out = model_json(*chosen);
-    out["covariance_n2"] = chosen->fit.covariance;
+    out["covariance_n2"] = chosen->fit.covariance.entries();
     out["cutting_tests"] = tests.size();
     std::cout << out.dump(2) << "\n";
   } else {

@@ -99,8 +99,8 @@ int run_learn_command(const LearnOptions& o) {
   }
 
   // 3. Learn.
-  std::optional<std::array<double, 36>> prior_covariance;
-  if (before->fit.covariance[0] > 0.0) prior_covariance = before->fit.covariance;
+  std::optional<model::Covariance> prior_covariance;
+  if (before->fit.covariance(0, 0) > 0.0) prior_covariance = before->fit.covariance;
   // Every earlier learning step of this tool and material (stored with its samples): the refit spans them all.
   std::vector<learning::LearningSample> earlier;
   for (const model_db::LearnedSample& stored : store.learned_samples(before->tool_name, before->material_name)) {

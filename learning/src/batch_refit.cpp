@@ -154,7 +154,7 @@ std::array<double, 6> prior_scale_of(const std::array<double, 6>& beta_prior, co
                                      BatchRefitResult& result) {
   std::array<double, 6> prior_scale{};  // √prior_weight / σ_j
   for (int j = 0; j < 6; ++j) {
-    const double variance = options.prior_covariance_n2 ? (*options.prior_covariance_n2)[j * 6 + j] : 0.0;
+    const double variance = options.prior_covariance_n2 ? options.prior_covariance_n2->variance(j) : 0.0;
     double sigma = std::sqrt(variance);
     if (!(sigma > 0.0)) {
       sigma = options.prior_sigma_fraction *
@@ -173,7 +173,7 @@ void return_prior_unchanged(const BatchRefitOptions& options, BatchRefitResult& 
   result.message = "no samples to refit: the prior model is returned unchanged";
   for (int j = 0; j < 6; ++j) {
     const double variance = result.prior_sigma_n[j] * result.prior_sigma_n[j] / options.prior_weight;
-    result.covariance[j * 6 + j] = variance;
+    result.covariance(j, j) = variance;
     result.standard_error_n[j] = std::sqrt(variance);
   }
 }
@@ -247,7 +247,7 @@ void set_covariance_and_excitation(const Data& data, const std::array<double, 6>
     if (robust_weight[i] < 0.5) ++result.downweighted_count;
   }
   const Matrix6 covariance = information(data, prior_information, [&](std::size_t i) { return robust_weight[i]; }).inverse();
-  Eigen::Map<Matrix6>(result.covariance.data()) = 0.5 * (covariance + covariance.transpose());
+  Eigen::Map<Matrix6>(result.covariance.entries().data()) = 0.5 * (covariance + covariance.transpose());
   for (int j = 0; j < 6; ++j) {
     result.standard_error_n[j] = std::sqrt(std::max(covariance(j, j), 0.0));
     result.excited[j] = covariance(j, j) <= kExcitedVarianceRatio / prior_information(j);
@@ -310,7 +310,7 @@ std::vector<InputProblem> validate(const BatchRefitOptions& options) {
   }
   if (options.prior_covariance_n2) {
     for (int j = 0; j < 6; ++j) {
-      const double v = (*options.prior_covariance_n2)[j * 6 + j];
+      const double v = options.prior_covariance_n2->variance(j);
       if (!(std::isfinite(v) && v >= 0.0)) {
         problems.push_back({"refit.prior_covariance_n2[" + std::to_string(j * 6 + j) + "]",
                             "= " + text(v) + ": a variance (of " + kBetaNames[j] + ") must be finite and ≥ 0 N²"});

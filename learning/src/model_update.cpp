@@ -34,7 +34,7 @@ std::string to_string(ModelUpdateStatus status) { return status == ModelUpdateSt
 
 ModelUpdate update_model(const planner::PlanResult& plan, const planner::PlanSettings& settings, int flutes,
                          const std::vector<NamedLog>& logs, const std::vector<LearningSample>& earlier,
-                         const std::optional<std::array<double, 36>>& prior_covariance,
+                         const std::optional<model::Covariance>& prior_covariance,
                          const ModelUpdateOptions& options) {
   ModelUpdate update;
   update.model = settings.model;
@@ -72,8 +72,8 @@ ModelUpdate update_model(const planner::PlanResult& plan, const planner::PlanSet
   for (double& beta : prior.beta) beta *= gain;
   BatchRefitOptions batch = options.batch;
   if (prior_covariance) {
-    std::array<double, 36> scaled = *prior_covariance;
-    for (double& c : scaled) c *= gain * gain;
+    model::Covariance scaled = *prior_covariance;
+    for (double& c : scaled.entries()) c *= gain * gain;
     batch.prior_covariance_n2 = scaled;
   }
   update.gain = gain;

@@ -21,9 +21,9 @@ void throw_if_any(std::vector<InputProblem> problems) {
   if (!problems.empty()) throw InputError(std::move(problems));
 }
 
-std::array<double, 36> initial_covariance(const RlsOptions& options) {
-  std::array<double, 36> p{};
-  for (int j = 0; j < 6; ++j) p[j * 6 + j] = options.initial_variance_n2;
+model::Covariance initial_covariance(const RlsOptions& options) {
+  model::Covariance p;
+  for (int j = 0; j < 6; ++j) p(j, j) = options.initial_variance_n2;
   return p;
 }
 
@@ -99,7 +99,7 @@ RlsStep RecursiveLeastSquares::add(const LearningSample& sample) {
   const std::array<double, 6> regressors = model::regressors(model_, sample.chip_mm, sample.contact_length_mm);
   const Eigen::Map<const Vector6> psi(regressors.data());
   Eigen::Map<Vector6> theta(model_.beta.data());
-  Eigen::Map<Matrix6> p(covariance_.data());
+  Eigen::Map<Matrix6> p(covariance_.entries().data());
 
   RlsStep step;
   step.error_n = sample.force_n - psi.dot(theta);  // step 1

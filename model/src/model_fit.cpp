@@ -303,7 +303,7 @@ FitResult fit_model(const std::vector<FitSample>& samples, const FitOptions& opt
                       "one with the robust weights";
   }
   for (int a = 0; a < p; ++a) {
-    for (int b = 0; b < p; ++b) result.covariance[columns[a] * 6 + columns[b]] = cov(a, b);
+    for (int b = 0; b < p; ++b) result.covariance(columns[a], columns[b]) = cov(a, b);
     result.standard_error_n[columns[a]] = std::sqrt(std::max(cov(a, a), 0.0));
   }
 

@@ -56,7 +56,7 @@ Json to_json(const ModelRecord& record, const std::optional<int>& parent_version
   json["fit"] = Json{{"n", record.fit.n},
                      {"rmse_n", record.fit.rmse_n},
                      {"r_squared", record.fit.r_squared},
-                     {"covariance", record.fit.covariance},
+                     {"covariance", record.fit.covariance.entries()},
                      {"standard_errors", record.fit.standard_errors},
                      {"loo_rmse_n", record.fit.loo_rmse_n}};
   return json;

@@ -161,7 +161,7 @@ IncomingModel read_model(JsonFields& fields, const Json& json, const std::string
   record.fit.n = fields.integer(f, fit_path, "n");
   record.fit.rmse_n = fields.number(f, fit_path, "rmse_n");
   record.fit.r_squared = fields.number(f, fit_path, "r_squared");
-  record.fit.covariance = fields.fixed_numbers<36>(f, fit_path, "covariance");
+  record.fit.covariance = model::Covariance::from_entries(fields.fixed_numbers<36>(f, fit_path, "covariance"));
   record.fit.standard_errors = fields.fixed_numbers<6>(f, fit_path, "standard_errors");
   record.fit.loo_rmse_n = fields.number(f, fit_path, "loo_rmse_n");
   return incoming;

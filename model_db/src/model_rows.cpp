@@ -59,7 +59,7 @@ ModelRecord read_model(const Statement& row) {
   record.fit.n = row.column_int(c++);
   record.fit.rmse_n = row.column_double(c++);
   record.fit.r_squared = row.column_double(c++);
-  record.fit.covariance = numbers_from_json<36>(row.column_text(c++));
+  record.fit.covariance = model::Covariance::from_entries(numbers_from_json<36>(row.column_text(c++)));
   record.fit.standard_errors = numbers_from_json<6>(row.column_text(c++));
   record.fit.loo_rmse_n = row.column_double(c++);
   // The CHECK constraint admits only the three source names.
@@ -147,7 +147,7 @@ RowId insert_model_row(Connection& db, RowId tool_id, RowId material_id, const M
                      model.contact_length_scale_mm, model.range.chip_min_mm, model.range.chip_max_mm,
                      model.range.contact_length_min_mm, model.range.contact_length_max_mm, model.axial_depth_mm,
                      model.spindle_rpm, model.quantity);
-  statement.bind_all(record.fit.n, record.fit.rmse_n, record.fit.r_squared, numbers_to_json(record.fit.covariance),
+  statement.bind_all(record.fit.n, record.fit.rmse_n, record.fit.r_squared, numbers_to_json(record.fit.covariance.entries()),
                      numbers_to_json(record.fit.standard_errors), record.fit.loo_rmse_n);
   statement.bind_all(to_string(record.source), record.created_at, record.note);
   statement.run();

@@ -155,9 +155,9 @@ std::vector<InputProblem> validate(const PlanSettings& settings, const geometry:
       problems.push_back({"uncertainty.relative", "= " + num(u.relative) + ": must be a finite number ≥ 0"});
     }
     for (std::size_t k = 0; k < 36; ++k) {
-      if (!std::isfinite(u.covariance[k]) || (k % 7 == 0 && u.covariance[k] < 0.0)) {
+      if (!std::isfinite(u.covariance.entries()[k]) || (k % 7 == 0 && u.covariance.entries()[k] < 0.0)) {
         problems.push_back({"uncertainty.covariance[" + std::to_string(k) + "]",
-                            "= " + num(u.covariance[k]) + ": must be finite (and ≥ 0 on the diagonal)"});
+                            "= " + num(u.covariance.entries()[k]) + ": must be finite (and ≥ 0 on the diagonal)"});
       }
     }
   }

@@ -132,10 +132,10 @@ TEST(BatchRefit, SquaredLossIsTheClosedFormPosterior) {
   const ResponseSurfaceModel prior = thirty_percent_off();
   BatchRefitOptions options = with(FitOptions::kSquared, 3.0);
   options.prior_weight = 2.0;
-  std::array<double, 36> covariance{};
+  model::Covariance covariance;
   const Vector variances{100.0, 49.0, 25.0, 16.0, 0.0, 9.0};  // β22 "held": falls back to the rule
-  for (int j = 0; j < 6; ++j) covariance[j * 6 + j] = variances[j];
-  covariance[1] = covariance[6] = 5.0;  // off-diagonal entries are not used
+  for (int j = 0; j < 6; ++j) covariance(j, j) = variances[j];
+  covariance(0, 1) = covariance(1, 0) = 5.0;  // off-diagonal entries are not used
   options.prior_covariance_n2 = covariance;
   const BatchRefitResult r = batch_refit(prior, samples, options);
   ASSERT_EQ(r.status, BatchRefitStatus::kOk) << r.message;
@@ -165,7 +165,7 @@ TEST(BatchRefit, SquaredLossIsTheClosedFormPosterior) {
     Vector unit{};
     unit[c] = 1.0;
     const Vector column = solve(a, unit);
-    for (int i = 0; i < 6; ++i) EXPECT_NEAR(r.covariance[i * 6 + c], column[i], 1e-9 * column[c]) << i << "," << c;
+    for (int i = 0; i < 6; ++i) EXPECT_NEAR(r.covariance(i, c), column[i], 1e-9 * column[c]) << i << "," << c;
     EXPECT_NEAR(r.standard_error_n[c], std::sqrt(column[c]), 1e-9 * std::sqrt(column[c]));
     EXPECT_EQ(r.excited[c], column[c] <= 0.5 * sigma[c] * sigma[c] / options.prior_weight) << c;
   }
@@ -197,7 +197,7 @@ TEST(BatchRefit, UnexcitedCoefficientsStayAtThePrior) {
     const Vector psi = model::regressors(prior, chip, 7.0);
     double variance = 0.0;
     for (int i = 0; i < 6; ++i) {
-      for (int j = 0; j < 6; ++j) variance += psi[i] * r.covariance[i * 6 + j] * psi[j];
+      for (int j = 0; j < 6; ++j) variance += psi[i] * r.covariance(i, j) * psi[j];
     }
     EXPECT_LT(std::sqrt(variance), 1.5) << "t_m " << chip;
     EXPECT_NEAR(model::predict(r.model, chip, 7.0).force_n, model::predict(truth(), chip, 7.0).force_n,
@@ -302,8 +302,8 @@ TEST(BatchRefit, BadInputThrowsNamingEveryProblem) {
   bad.prior_weight = 0.0;
   bad.prior_sigma_fraction = std::numeric_limits<double>::infinity();
   bad.prior_floor_fraction = -0.1;
-  std::array<double, 36> covariance{};
-  covariance[2 * 6 + 2] = -4.0;
+  model::Covariance covariance;
+  covariance(2, 2) = -4.0;
   bad.prior_covariance_n2 = covariance;
   bad.max_iterations = 0;
   std::vector<LearningSample> samples{{0.05, 4.0, std::numeric_limits<double>::quiet_NaN(), 1.0, 0.0}};

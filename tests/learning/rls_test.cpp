@@ -70,9 +70,9 @@ std::vector<LearningSample> grid(const ResponseSurfaceModel& model, int passes, 
 }
 
 
-double trace(const std::array<double, 36>& p) {
+double trace(const model::Covariance& p) {
   double t = 0.0;
-  for (int j = 0; j < 6; ++j) t += p[j * 6 + j];
+  for (int j = 0; j < 6; ++j) t += p(j, j);
   return t;
 }
 
@@ -144,8 +144,8 @@ TEST(Rls, MatchesTheClosedFormOfExponentiallyWeightedLeastSquares) {
     unit[c] = 1.0;
     const Vector column = solve(a, unit);
     for (int i = 0; i < 6; ++i) {
-      EXPECT_NEAR(r.covariance[i * 6 + c], column[i], 1e-8 * std::abs(column[c])) << "P(" << i << "," << c << ")";
-      EXPECT_EQ(r.covariance[i * 6 + c], r.covariance[c * 6 + i]);
+      EXPECT_NEAR(r.covariance(i, c), column[i], 1e-8 * std::abs(column[c])) << "P(" << i << "," << c << ")";
+      EXPECT_EQ(r.covariance(i, c), r.covariance(c, i));
     }
   }
 
@@ -261,8 +261,8 @@ TEST(Rls, CovarianceResetsOnWindupWithoutExcitation) {
   for (int i = 0; i < 200; ++i) {
     if (rls.add(samples[i]).reset) {
       reset_at.push_back(i + 1);
-      std::array<double, 36> p0{};
-      for (int j = 0; j < 6; ++j) p0[j * 6 + j] = options.initial_variance_n2;
+      model::Covariance p0;
+      for (int j = 0; j < 6; ++j) p0(j, j) = options.initial_variance_n2;
       EXPECT_EQ(rls.covariance(), p0);
     }
   }

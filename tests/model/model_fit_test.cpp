@@ -92,8 +92,8 @@ TEST(ModelFit, RecoversCoefficientsWithinTheirStandardErrors) {
       // 3.5 SE: (β̂ − β)/SE is Student-t with 34 degrees of freedom, P(|T| > 3.5) = 0.0013, so a random seed
       // fails this by chance about once in a hundred; the coverage test below checks the statistics.
       EXPECT_LE(std::abs(fit.model.beta[j] - t.beta[j]), 3.5 * se) << kNames[j] << " seed " << seed;
-      EXPECT_DOUBLE_EQ(se * se, fit.covariance[j * 6 + j]);
-      for (int k = 0; k < 6; ++k) EXPECT_DOUBLE_EQ(fit.covariance[j * 6 + k], fit.covariance[k * 6 + j]);
+      EXPECT_DOUBLE_EQ(se * se, fit.covariance(j, j));
+      for (int k = 0; k < 6; ++k) EXPECT_DOUBLE_EQ(fit.covariance(j, k), fit.covariance(k, j));
     }
     // 40·RMSE²/σ² is χ² with 34 degrees of freedom: inside [11, 75] but with probability 1e-4.
     EXPECT_GT(fit.rmse_n, std::sqrt(11.0 * 16.0 / 40.0));
@@ -258,8 +258,8 @@ TEST(ModelFit, ReducedModelWhenContactLengthIsFixed) {
     EXPECT_EQ(fit.model.beta[j], 0.0);
     EXPECT_EQ(fit.standard_error_n[j], 0.0);
     for (int k = 0; k < 6; ++k) {
-      EXPECT_EQ(fit.covariance[j * 6 + k], 0.0);
-      EXPECT_EQ(fit.covariance[k * 6 + j], 0.0);
+      EXPECT_EQ(fit.covariance(j, k), 0.0);
+      EXPECT_EQ(fit.covariance(k, j), 0.0);
     }
   }
   for (int j : {kBeta0, kBeta1, kBeta11}) {

@@ -73,7 +73,7 @@ inline ModelRecord model(const std::string& tool_name, const std::string& materi
   r.fit.rmse_n = 4.2 * k;
   r.fit.r_squared = 0.9987;
   for (int i = 0; i < 6; ++i) {
-    for (int j = 0; j < 6; ++j) r.fit.covariance[static_cast<std::size_t>(6 * i + j)] = (i == j ? 2.0 : 0.1) / (1 + i + j);
+    for (int j = 0; j < 6; ++j) r.fit.covariance(i, j) = (i == j ? 2.0 : 0.1) / (1 + i + j);
   }
   r.fit.standard_errors = {1.41, 0.5, 0.3, 0.2, 0.1, 0.1 / 3.0};
   r.fit.loo_rmse_n = 5.1 * k;

@@ -198,9 +198,9 @@ TEST_F(StoreWithCatalog, AModelReadsBackFieldByField) {
   EXPECT_EQ(out.fit.n, 25);
   EXPECT_EQ(out.fit.rmse_n, 4.2);
   EXPECT_EQ(out.fit.r_squared, 0.9987);
-  EXPECT_EQ(out.fit.covariance[0], 2.0);
-  EXPECT_EQ(out.fit.covariance[35], 2.0 / 11.0);  // exact: stored as text that reads back to the same double
-  EXPECT_EQ(out.fit.covariance[1], 0.1 / 2.0);
+  EXPECT_EQ(out.fit.covariance(0, 0), 2.0);
+  EXPECT_EQ(out.fit.covariance(5, 5), 2.0 / 11.0);  // exact: stored as text that reads back to the same double
+  EXPECT_EQ(out.fit.covariance(0, 1), 0.1 / 2.0);
   EXPECT_EQ(out.fit.standard_errors[5], 0.1 / 3.0);
   EXPECT_EQ(out.fit.loo_rmse_n, 5.1);
   EXPECT_EQ(out.source, ModelSource::kCuttingTests);
@@ -287,7 +287,7 @@ TEST_F(StoreWithCatalog, NanCoefficientIsAnInputErrorAndNothingIsWritten) {
   EXPECT_EQ(input_error_of([&] { store_.add_model(bad); }), "models.beta[2] = nan: must be finite");
   bad.model.beta[2] = 1.0;
   bad.model.chip_scale_mm = 0.0;
-  bad.fit.covariance[7] = std::numeric_limits<double>::infinity();
+  bad.fit.covariance(1, 1) = std::numeric_limits<double>::infinity();
   bad.model.range.chip_min_mm = 0.09;
   EXPECT_EQ(input_error_of([&] { store_.add_model(bad); }),
             "models.chip_scale_mm = 0: must be finite and > 0\n"

@@ -292,11 +292,11 @@ TEST(CautiousPlan, HoldsTheUpperBoundAtTheTargetAndTightensWithTheCovariance) {
   PlanSettings settings = settings_for(spec, testing::s50c_like_model());
   const PlanResult plain = plan(geometry, settings);
   ForceUncertainty uncertainty;
-  for (std::size_t j = 0; j < 6; ++j) uncertainty.covariance[7 * j] = std::pow(0.1 * settings.model.beta[j], 2);
+  for (std::size_t j = 0; j < 6; ++j) uncertainty.covariance(j, j) = std::pow(0.1 * settings.model.beta[j], 2);
   uncertainty.relative = 0.1;
   settings.uncertainty = uncertainty;
   const PlanResult cautious = plan(geometry, settings);
-  for (double& c : settings.uncertainty->covariance) c *= 0.25;
+  for (double& c : settings.uncertainty->covariance.entries()) c *= 0.25;
   settings.uncertainty->relative = 0.05;
   const PlanResult tighter = plan(geometry, settings);
   EXPECT_GT(cautious.summary.cycle_time_s, tighter.summary.cycle_time_s);
@@ -353,7 +353,7 @@ TEST(CautiousPlan, BadUncertaintyIsAnInputError) {
   PlanSettings settings = settings_for(spec, testing::s50c_like_model());
   settings.uncertainty = ForceUncertainty{};
   settings.uncertainty->sigmas = -1.0;
-  settings.uncertainty->covariance[7] = std::nan("");
+  settings.uncertainty->covariance(1, 1) = std::nan("");
   try {
     plan(geometry_for(spec, 0.2), settings);
     ADD_FAILURE() << "no InputError";

@@ -10,7 +10,7 @@ LoopResult run_learning_loop(const LoopRequest& request) {
   planner::PlanSettings settings = request.settings;
   // The first cycle: the starting model's fit covariance and the relative uncertainty of a model not yet
   // checked on this machine; later cycles: the refit's covariance alone.
-  std::optional<std::array<double, 36>> covariance;
+  std::optional<model::Covariance> covariance;
   double relative = request.first_cut_uncertainty;
   if (request.first_cut_uncertainty > 0.0) covariance = request.start_fit_covariance;
   std::vector<learning::LearningSample> earlier;

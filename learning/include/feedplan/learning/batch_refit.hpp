@@ -28,6 +28,7 @@
 #include <string>
 #include <vector>
 
+#include "feedplan/model/covariance.hpp"
 #include "feedplan/core/input_error.hpp"
 #include "feedplan/learning/learning_sample.hpp"
 #include "feedplan/model/model_fit.hpp"
@@ -53,7 +54,7 @@ struct BatchRefitOptions {
   double prior_floor_fraction = 0.1;
   //! The prior model's fit covariance (model::FitResult::covariance), row-major 6×6 in BetaIndex order,
   //! N²; when given, its diagonal sets σ_j (entries must be finite and ≥ 0; 0 falls back to the rule above).
-  std::optional<std::array<double, 36>> prior_covariance_n2;
+  std::optional<model::Covariance> prior_covariance_n2;
   //! Ceres iterations for the robust losses (≥ 1).
   int max_iterations = 1000;
 };
@@ -82,7 +83,7 @@ struct BatchRefitResult {
   int n = 0;                            //!< samples fitted
   double rms_error_before_n = 0.0;      //!< weighted RMS of F − F̂ over the samples with the prior, N
   double rms_error_after_n = 0.0;       //!< the same with the refitted model, N
-  std::array<double, 36> covariance{};  //!< covariance of β (step 3), row-major 6×6 in BetaIndex order, N²
+  model::Covariance covariance;         //!< covariance of β (step 3), N²
   std::array<double, 6> standard_error_n{};  //!< √ of its diagonal, N
   std::array<double, 6> prior_sigma_n{};     //!< σ_j of the prior (step 1), N
   std::array<bool, 6> excited{};        //!< the data determine β_j more than the prior does (step 4)

@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "feedplan/model/covariance.hpp"
 #include "feedplan/learning/batch_refit.hpp"
 #include "feedplan/learning/learning_sample.hpp"
 #include "feedplan/learning/log_alignment.hpp"
@@ -74,7 +75,7 @@ struct ModelUpdate {
   PredictionErrors after_batch;              //!< the refitted model on them
   double gain = 1.0;                         //!< median measured / predicted: the prior of the refit is the plan's model × this
   model::ResponseSurfaceModel model;      //!< the next model: the batch refit (the plan's model on kNoEvidence)
-  std::array<double, 36> covariance{};       //!< its covariance, N² (for the next cautious plan)
+  model::Covariance covariance;              //!< its covariance, N² (for the next cautious plan)
 };
 
 //! Learns from `logs` of cycles cut with `plan` (planned with `settings`, tool with `flutes`). The batch
@@ -84,7 +85,7 @@ struct ModelUpdate {
 //! left out; when none is usable the status is kNoEvidence and the model is the plan's.
 ModelUpdate update_model(const planner::PlanResult& plan, const planner::PlanSettings& settings, int flutes,
                          const std::vector<NamedLog>& logs, const std::vector<LearningSample>& earlier,
-                         const std::optional<std::array<double, 36>>& prior_covariance,
+                         const std::optional<model::Covariance>& prior_covariance,
                          const ModelUpdateOptions& options = {});
 
 }  // namespace feedplan::learning

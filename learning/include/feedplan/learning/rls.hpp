@@ -23,6 +23,7 @@
 #include <array>
 #include <vector>
 
+#include "feedplan/model/covariance.hpp"
 #include "feedplan/core/input_error.hpp"
 #include "feedplan/learning/learning_sample.hpp"
 #include "feedplan/model/response_surface_model.hpp"
@@ -71,7 +72,7 @@ class RecursiveLeastSquares {
   //! The current model: the start with θ as β and the range extended over the samples seen.
   const model::ResponseSurfaceModel& model() const { return model_; }
   //! P, row-major 6×6 in BetaIndex order, N² (symmetric).
-  const std::array<double, 36>& covariance() const { return covariance_; }
+  const model::Covariance& covariance() const { return covariance_; }
   int updates() const { return updates_; }                            //!< samples that changed θ
   int skipped_in_dead_zone() const { return skipped_in_dead_zone_; }  //!< samples within the dead zone
   int resets() const { return resets_; }                              //!< covariance resets
@@ -79,7 +80,7 @@ class RecursiveLeastSquares {
  private:
   model::ResponseSurfaceModel model_;
   RlsOptions options_;
-  std::array<double, 36> covariance_{};
+  model::Covariance covariance_;
   int updates_ = 0;
   int skipped_in_dead_zone_ = 0;
   int resets_ = 0;
@@ -96,7 +97,7 @@ struct RlsResult {
   int resets = 0;                   //!< covariance resets
   double rms_error_before_n = 0.0;  //!< weighted RMS of F − F̂ over the samples with the start model, N (0 for none)
   double rms_error_after_n = 0.0;   //!< the same with the final model (a posteriori), N
-  std::array<double, 36> covariance{};  //!< the final P, row-major 6×6 in BetaIndex order, N²
+  model::Covariance covariance;         //!< the final P, N²
 };
 
 //! Runs RecursiveLeastSquares from `start` over `samples` in order. The RMS errors are √(Σ w e² / Σ w).

@@ -44,6 +44,7 @@
 #include <vector>
 
 #include "feedplan/core/input_error.hpp"
+#include "feedplan/model/covariance.hpp"
 #include "feedplan/model/response_surface_model.hpp"
 
 namespace feedplan::model {
@@ -97,7 +98,7 @@ struct FitResult {
   double rmse_n = 0.0;                              //!< weighted RMS residual, N
   double r_squared = 0.0;                           //!< weighted coefficient of determination
   std::array<double, 6> standard_error_n{};         //!< standard error of each β (BetaIndex order), N; 0 if held
-  std::array<double, 36> covariance{};              //!< covariance of β, row-major 6×6 in BetaIndex order, N²
+  Covariance covariance;                            //!< covariance of β, N²
   double loo_rmse_n = 0.0;                          //!< weighted leave-one-out RMS prediction error, N
   std::array<bool, 6> estimated{};                  //!< false: held at 0 in a reduced model
   std::vector<double> residual_n;                   //!< F_i − F̂_i for each sample, in input order, N

@@ -13,6 +13,7 @@
 
 #include "feedplan/core/input_error.hpp"
 #include "feedplan/model_db/cutting_test.hpp"
+#include "feedplan/model/covariance.hpp"
 #include "feedplan/model/response_surface_model.hpp"
 
 namespace feedplan::model_db {
@@ -76,7 +77,7 @@ struct ModelFitStatistics {
   int n = 0;                                 //!< number of data points fitted
   double rmse_n = 0.0;                       //!< root-mean-square residual, N
   double r_squared = 0.0;                    //!< coefficient of determination
-  std::array<double, 36> covariance{};       //!< 6×6 covariance of β (row-major, model::BetaIndex order), N²
+  model::Covariance covariance;              //!< covariance of β, N²
   std::array<double, 6> standard_errors{};   //!< standard error of each β, N
   double loo_rmse_n = 0.0;                   //!< leave-one-out RMS prediction error, N
 };

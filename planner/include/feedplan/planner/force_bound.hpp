@@ -23,13 +23,14 @@
 
 #include <array>
 
+#include "feedplan/model/covariance.hpp"
 #include "feedplan/model/response_surface_model.hpp"
 
 namespace feedplan::planner {
 
 //! Covariance of β and how many standard deviations to plan on.
 struct ForceUncertainty {
-  std::array<double, 36> covariance{};  //!< 6×6 covariance of β (row-major, BetaIndex order), N²
+  model::Covariance covariance;         //!< covariance of β, N²
   double sigmas = 2.0;                  //!< z: the bound is F̂ + z·σ (≥ 0)
   double relative = 0.0;                //!< r: relative standard deviation of F̂ not in the covariance (≥ 0)
   bool off_straight_cut = false;        //!< multiply the bound by the sample's chip-area ratio ρ

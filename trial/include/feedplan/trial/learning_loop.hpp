@@ -8,6 +8,7 @@
 #include <optional>
 #include <vector>
 
+#include "feedplan/model/covariance.hpp"
 #include "feedplan/learning/model_update.hpp"
 #include "feedplan/trial/virtual_machine_run.hpp"
 #include "feedplan/planner/feed_plan.hpp"
@@ -24,7 +25,7 @@ struct LoopRequest {
   //! uncertainty r (planner::ForceUncertainty); later cycles use the refit's covariance alone. 0: off.
   double first_cut_uncertainty = 0.0;
   double sigmas = 2.0;                //!< z of the cautious bound
-  std::array<double, 36> start_fit_covariance{};  //!< the starting model's own fit covariance, N²
+  model::Covariance start_fit_covariance;         //!< the starting model's own fit covariance, N²
   learning::ModelUpdateOptions update;          //!< how to learn
   //! Also learn along the path: the next plan scales the model by a correction per place, learned per
   //! tooth period (path_correction.hpp) — what repeated parts of one program allow beyond the model.
@@ -51,7 +52,7 @@ struct LoopCycle {
 struct LoopResult {
   std::vector<LoopCycle> cycles;             //!< in order
   model::ResponseSurfaceModel final_model; //!< after the last cycle's learning
-  std::array<double, 36> final_covariance{};  //!< its covariance, N²
+  model::Covariance final_covariance;         //!< its covariance, N²
 };
 
 //! Runs the loop. Throws InputError on invalid settings (planner::validate) or cycles < 1.
