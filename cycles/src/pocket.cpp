@@ -158,120 +158,171 @@ std::vector<InputProblem> validate(const PocketSpec& spec, const geometry::Tool&
   return problems;
 }
 
-Cycle generate_pocket(const PocketSpec& spec, const geometry::Tool& tool, const ZLevels& z) {
-  if (auto problems = validate(spec, tool); !problems.empty()) throw InputError(std::move(problems));
-  using detail::format_number;
-  const PocketPlan p = plan_of(spec, tool);
-  const Point2 c = spec.center;
-  const double depth = spec.depth_mm;
-  Cycle cycle;
-  cycle.tool = tool;
-  auto add_notes = [&](const Cycle& sub, const std::string& prefix) {
-    for (const auto& note : sub.notes) cycle.notes.push_back(prefix + note);
-  };
+namespace {
 
-  // 1. Boring.
-  const Cycle boring = generate_helical_boring({c, p.hole_diameter, p.helix_pitch, depth, spec.direction}, tool, z);
-  detail::append(cycle.path, boring.path, "boring: ");
-  add_notes(boring, "boring: ");
+using detail::format_number;
+
+// Appends a sub-cycle's path and notes, both under `prefix`.
+void append_sub_cycle(Cycle& cycle, const Cycle& sub, const std::string& prefix) {
+  detail::append(cycle.path, sub.path, prefix);
+  for (const auto& note : sub.notes) cycle.notes.push_back(prefix + note);
+}
+
+// Motion step 1: the helical boring at C.
+void bore_centre(const PocketSpec& spec, const PocketPlan& p, const geometry::Tool& tool, const ZLevels& z,
+                 Cycle& cycle) {
+  const Cycle boring =
+      generate_helical_boring({spec.center, p.hole_diameter, p.helix_pitch, spec.depth_mm, spec.direction}, tool, z);
+  append_sub_cycle(cycle, boring, "boring: ");
   if (p.clamped_hole) {
     cycle.notes.push_back("boring: hole diameter " + format_number(p.hole_diameter) + " mm instead of " +
                           format_number(kBorePerDiameter * p.d) + " mm to fit the pocket; no spiral");
   }
+}
 
-  // 2. Spiral.
-  if (p.spiral) {
-    const Cycle spiral = generate_spiral({c, 0.5 * p.hole_diameter, p.rough_radius, p.spiral_pitch, spec.direction},
-                                         tool, depth, z);
-    detail::append(cycle.path, spiral.path, "spiral: ");
-    add_notes(spiral, "spiral: ");
+// Motion step 2: the spiral from the bore out to R_s.
+void expand_bore(const PocketSpec& spec, const PocketPlan& p, const geometry::Tool& tool, const ZLevels& z,
+                 Cycle& cycle) {
+  const Cycle spiral = generate_spiral(
+      {spec.center, 0.5 * p.hole_diameter, p.rough_radius, p.spiral_pitch, spec.direction}, tool, spec.depth_mm, z);
+  append_sub_cycle(cycle, spiral, "spiral: ");
+}
+
+// Motion step 3: the trochoid slots along the long axis, + first.
+void cut_slots(const PocketSpec& spec, const PocketPlan& p, const geometry::Tool& tool, const ZLevels& z,
+               Cycle& cycle) {
+  const Point2 c = spec.center;
+  for (const double sign : {1.0, -1.0}) {
+    const std::string prefix = "slot " + (sign > 0 ? p.plus : p.minus) + ": ";
+    const Point2 end{c.x_mm + sign * p.slot_length * p.ex.x_mm, c.y_mm + sign * p.slot_length * p.ex.y_mm};
+    const Cycle slot =
+        generate_trochoid({c, end, p.loop_radius, p.trochoid_pitch, spec.direction}, tool, spec.depth_mm, z);
+    append_sub_cycle(cycle, slot, prefix);
+  }
+  if (p.reduced_trochoid_pitch) {
+    cycle.notes.push_back("slots: trochoid pitch reduced to " + format_number(p.trochoid_pitch) +
+                          " mm, half the loop radius " + format_number(p.loop_radius) + " mm");
+  }
+}
+
+// The wall pass's canonical coordinates: a along the long axis, b along its left normal, mirrored for
+// kCw; positions at the cutting depth z_c.
+struct WallFrame {
+  WallFrame(const PocketSpec& spec, const PocketPlan& p, const ZLevels& z)
+      : c(spec.center),
+        ex(p.ex),
+        ey(p.ey),
+        sign(spec.direction == Direction::kCcw ? 1.0 : -1.0),
+        z_cut(z.top_z_mm - spec.depth_mm),
+        hx(0.5 * p.long_side - p.r),
+        hy(0.5 * p.short_side - p.r),
+        sx(hx - (spec.corner_radius_mm - p.r)),
+        sy(hy - (spec.corner_radius_mm - p.r)) {}
+  bool ccw() const { return sign > 0; }
+  Point2 xy(double a, double b) const {
+    return Point2{c.x_mm + a * ex.x_mm + sign * b * ey.x_mm, c.y_mm + a * ex.y_mm + sign * b * ey.y_mm};
+  }
+  Point3 at(double a, double b) const {
+    const Point2 q = xy(a, b);
+    return Point3{q.x_mm, q.y_mm, z_cut};
   }
 
-  // 3. Slots along the long axis, + first.
-  if (p.slot_length > 1e-9) {
-    for (const double sign : {1.0, -1.0}) {
-      const std::string prefix = "slot " + (sign > 0 ? p.plus : p.minus) + ": ";
-      const Point2 end{c.x_mm + sign * p.slot_length * p.ex.x_mm, c.y_mm + sign * p.slot_length * p.ex.y_mm};
-      const Cycle slot = generate_trochoid({c, end, p.loop_radius, p.trochoid_pitch, spec.direction}, tool, depth, z);
-      detail::append(cycle.path, slot.path, prefix);
-      add_notes(slot, prefix);
-    }
-    if (p.reduced_trochoid_pitch) {
-      cycle.notes.push_back("slots: trochoid pitch reduced to " + format_number(p.trochoid_pitch) +
-                            " mm, half the loop radius " + format_number(p.loop_radius) + " mm");
-    }
-  }
+  Point2 c, ex, ey;  // pocket centre C, long axis, its left normal
+  double sign;       // +1 for kCcw, −1 for kCw
+  double z_cut;      // z_c = top − depth
+  double hx, hy;     // half sizes of the tool-centre contour (walls inset by r)
+  double sx, sy;     // corner centres of the contour (radius R_c − r)
+};
 
-  // 4. Walls. Canonical coordinates (a along the long axis, b along its left normal; b mirrored for kCw).
-  {
-    const double sign = spec.direction == Direction::kCcw ? 1.0 : -1.0;
-    const bool ccw = sign > 0;
-    const double z_cut = z.top_z_mm - depth;
-    const double r = p.r;
-    const double hx = 0.5 * p.long_side - r;
-    const double hy = 0.5 * p.short_side - r;
-    const double rc = spec.corner_radius_mm - r;
-    const double sx = hx - rc;
-    const double sy = hy - rc;
-    auto w2 = [&](double a, double b) {
-      return Point2{c.x_mm + a * p.ex.x_mm + sign * b * p.ey.x_mm, c.y_mm + a * p.ex.y_mm + sign * b * p.ey.y_mm};
-    };
-    auto w = [&](double a, double b) {
-      const Point2 q = w2(a, b);
-      return Point3{q.x_mm, q.y_mm, z_cut};
-    };
-    detail::PathBuilder b({});
-    b.begin_part("entry");
-    b.enter(c, z, z_cut);
-    // Lead-in: the semicircle with diameter C–E, tangent to wall 1 at E. The tool stays inside the
-    // roughed disc of radius R_s about C while its centre is within R_s − r = hy − a of C, i.e. for
-    // the first ψ_t = 2·asin((hy − a) / hy) of the sweep.
-    const double lead_radius = 0.5 * hy;
-    const Point2 lead_center = w2(0, -lead_radius);
-    const double air_sweep = 2.0 * std::asin((hy - p.allowance) / hy);
-    const double touch_angle = 0.5 * kPi + air_sweep;
-    b.arc_to(w(lead_radius * std::cos(touch_angle), -lead_radius + lead_radius * std::sin(touch_angle)), lead_center,
-             ccw, air_sweep, false, 0);
-    b.begin_part("lead-in");
-    b.arc_to(w(0, -hy), lead_center, ccw, kPi - air_sweep, true, depth);
-    const double quarter = 0.5 * kPi;
-    b.begin_part("wall 1");
-    b.line_to(w(sx, -hy), true, depth);
-    b.begin_part("corner 1");
-    b.arc_to(w(hx, -sy), w2(sx, -sy), ccw, quarter, true, depth);
-    b.begin_part("wall 2");
-    b.line_to(w(hx, sy), true, depth);
-    b.begin_part("corner 2");
-    b.arc_to(w(sx, hy), w2(sx, sy), ccw, quarter, true, depth);
-    b.begin_part("wall 3");
-    b.line_to(w(-sx, hy), true, depth);
-    b.begin_part("corner 3");
-    b.arc_to(w(-hx, sy), w2(-sx, sy), ccw, quarter, true, depth);
-    b.begin_part("wall 4");
-    b.line_to(w(-hx, -sy), true, depth);
-    b.begin_part("corner 4");
-    b.arc_to(w(-sx, -hy), w2(-sx, -sy), ccw, quarter, true, depth);
-    b.begin_part("wall 1 end");
-    b.line_to(w(0, -hy), true, depth);
-    b.begin_part("exit");
-    b.line_to(w(0, 0), false, 0);
-    b.retract(z);
-    detail::append(cycle.path, b.finish(), "walls: ");
-    // Thickest wall stock: at the corners, measured from the slot end centre (DESIGN: round slot ends).
-    const double s2 = 0.5 * p.short_side;
-    const double thickest = std::sqrt(2.0) * (s2 - spec.corner_radius_mm) + spec.corner_radius_mm - p.rough_radius;
-    if (thickest > p.allowance + 1e-6) {
-      cycle.notes.push_back("walls: the roughing leaves up to " + format_number(thickest) +
-                            " mm on the walls at the corners (" + format_number(p.allowance) +
-                            " mm on the long walls); the wall pass takes it with a larger engagement");
-    }
-  }
+// Motion step 4: down at C to z_c, then the lead-in: the semicircle with diameter C–E, tangent to
+// wall 1 at E. The tool stays inside the roughed disc of radius R_s about C while its centre is within
+// R_s − r = hy − a of C, i.e. for the first ψ_t = 2·asin((hy − a) / hy) of the sweep.
+void enter_walls(detail::PathBuilder& b, const WallFrame& w, const PocketPlan& p, const ZLevels& z, double depth) {
+  const double hy = w.hy;
+  b.begin_part("entry");
+  b.enter(w.c, z, w.z_cut);
+  const double lead_radius = 0.5 * hy;
+  const Point2 lead_center = w.xy(0, -lead_radius);
+  const double air_sweep = 2.0 * std::asin((hy - p.allowance) / hy);
+  const double touch_angle = 0.5 * kPi + air_sweep;
+  b.arc_to(w.at(lead_radius * std::cos(touch_angle), -lead_radius + lead_radius * std::sin(touch_angle)), lead_center,
+           w.ccw(), air_sweep, false, 0);
+  b.begin_part("lead-in");
+  b.arc_to(w.at(0, -hy), lead_center, w.ccw(), kPi - air_sweep, true, depth);
+}
 
+// Motion step 5: from E along wall 1, the corners and the other walls, and back to E.
+void follow_walls(detail::PathBuilder& b, const WallFrame& w, double depth) {
+  const bool ccw = w.ccw();
+  const double hx = w.hx, hy = w.hy, sx = w.sx, sy = w.sy;
+  const double quarter = 0.5 * kPi;
+  b.begin_part("wall 1");
+  b.line_to(w.at(sx, -hy), true, depth);
+  b.begin_part("corner 1");
+  b.arc_to(w.at(hx, -sy), w.xy(sx, -sy), ccw, quarter, true, depth);
+  b.begin_part("wall 2");
+  b.line_to(w.at(hx, sy), true, depth);
+  b.begin_part("corner 2");
+  b.arc_to(w.at(sx, hy), w.xy(sx, sy), ccw, quarter, true, depth);
+  b.begin_part("wall 3");
+  b.line_to(w.at(-sx, hy), true, depth);
+  b.begin_part("corner 3");
+  b.arc_to(w.at(-hx, sy), w.xy(-sx, sy), ccw, quarter, true, depth);
+  b.begin_part("wall 4");
+  b.line_to(w.at(-hx, -sy), true, depth);
+  b.begin_part("corner 4");
+  b.arc_to(w.at(-sx, -hy), w.xy(-sx, -sy), ccw, quarter, true, depth);
+  b.begin_part("wall 1 end");
+  b.line_to(w.at(0, -hy), true, depth);
+}
+
+// Motion step 6: back to C in air, up to the clearance height.
+void leave_walls(detail::PathBuilder& b, const WallFrame& w, const ZLevels& z) {
+  b.begin_part("exit");
+  b.line_to(w.at(0, 0), false, 0);
+  b.retract(z);
+}
+
+// Motion steps 4–6: the wall pass, and a note when the corners hold more than the allowance.
+void finish_walls(const PocketSpec& spec, const PocketPlan& p, const ZLevels& z, Cycle& cycle) {
+  const WallFrame w(spec, p, z);
+  detail::PathBuilder b({});
+  enter_walls(b, w, p, z, spec.depth_mm);
+  follow_walls(b, w, spec.depth_mm);
+  leave_walls(b, w, z);
+  detail::append(cycle.path, b.finish(), "walls: ");
+  // Thickest wall stock: at the corners, measured from the slot end centre (DESIGN: round slot ends).
+  const double s2 = 0.5 * p.short_side;
+  const double thickest = std::sqrt(2.0) * (s2 - spec.corner_radius_mm) + spec.corner_radius_mm - p.rough_radius;
+  if (thickest > p.allowance + 1e-6) {
+    cycle.notes.push_back("walls: the roughing leaves up to " + format_number(thickest) +
+                          " mm on the walls at the corners (" + format_number(p.allowance) +
+                          " mm on the long walls); the wall pass takes it with a larger engagement");
+  }
+}
+
+// The solid block before any sub-cycle: the pocket's rectangle grown by 2·D on each side.
+geometry::Stock pocket_stock(const PocketSpec& spec, const PocketPlan& p, const ZLevels& z) {
+  const Point2 c = spec.center;
   const double margin = 2.0 * p.d;
   const double hw = 0.5 * spec.width_mm + margin;
   const double hh = 0.5 * spec.height_mm + margin;
-  cycle.stock = detail::block_stock(
-      {{geometry::Contour::rectangle({c.x_mm - hw, c.y_mm - hh}, {c.x_mm + hw, c.y_mm + hh}), {}}}, z, depth);
+  return detail::block_stock(
+      {{geometry::Contour::rectangle({c.x_mm - hw, c.y_mm - hh}, {c.x_mm + hw, c.y_mm + hh}), {}}}, z, spec.depth_mm);
+}
+
+}  // namespace
+
+Cycle generate_pocket(const PocketSpec& spec, const geometry::Tool& tool, const ZLevels& z) {
+  if (auto problems = validate(spec, tool); !problems.empty()) throw InputError(std::move(problems));
+  const PocketPlan p = plan_of(spec, tool);
+  Cycle cycle;
+  cycle.tool = tool;
+  bore_centre(spec, p, tool, z, cycle);
+  if (p.spiral) expand_bore(spec, p, tool, z, cycle);
+  if (p.slot_length > 1e-9) cut_slots(spec, p, tool, z, cycle);
+  finish_walls(spec, p, z, cycle);
+  cycle.stock = pocket_stock(spec, p, z);
   return cycle;
 }
 

@@ -148,6 +148,189 @@ std::string describe(const Move& move, std::size_t index, const std::vector<std:
   return out.str();
 }
 
+// The earlier sweeps and the path as short pieces (split_into_pieces).
+struct PathPieces {
+  std::vector<SweptPiece> pieces;
+  std::size_t first_path_piece = 0;                 // the stock's pieces come before it
+  std::vector<std::size_t> move_first_piece;        // first piece of every move
+  std::vector<std::vector<double>> move_fractions;  // every move's piece bounds, as fractions of the move
+};
+
+// Earlier sweeps as short pieces, in the order they were cut: the stock's, then the path's.
+PathPieces split_into_pieces(const ToolPath& path, const Stock& stock, double r) {
+  PathPieces split;
+  std::vector<SweptPiece>& pieces = split.pieces;
+  const double max_piece_mm = 2.0 * r;
+  for (const auto& swept : stock.removed) {
+    detail::split_move(swept.move, swept.tool_radius_mm, max_piece_mm, pieces, nullptr);
+  }
+  split.first_path_piece = pieces.size();
+  split.move_first_piece.resize(path.moves.size());
+  split.move_fractions.resize(path.moves.size());
+  for (std::size_t i = 0; i < path.moves.size(); ++i) {
+    split.move_first_piece[i] = pieces.size();
+    detail::split_move(path.moves[i], r, max_piece_mm, pieces, &split.move_fractions[i]);
+  }
+  return split;
+}
+
+// Sampling the path: what every sample reads, and what carries over from one sample to the next.
+struct Sampler {
+  const ToolPath& path;
+  const Stock& stock;
+  const double r;
+  const EngagementOptions& options;
+  const PathPieces& split;
+  const std::vector<std::vector<std::uint32_t>>& candidates;  // earlier pieces per piece
+  EngagementProfile& profile;                                 // the samples so far
+  AngleIntervals cuts;                                        // exclusions not yet subtracted (reused)
+  double last_direction_rad = 0.0;                            // of the last sample with XY travel
+  std::vector<bool> warned;                                   // per move: its contact with material is reported
+};
+
+// The move being sampled.
+struct MoveSampling {
+  std::size_t index;
+  const Move& move;
+  double s_start_mm;     // arc length at its start
+  double length_mm;      // in space
+  double xy_length_mm;
+  bool cutting;          // a cutting move (not air, not a rapid)
+  MoveFrame frame;
+};
+
+// The sample at fraction f of the move: where the tool is and how it travels there.
+EngagementSample place_sample(Sampler& sampler, const MoveSampling& m, double f) {
+  const double move_length = m.length_mm;
+  const double move_xy_length = m.xy_length_mm;
+  EngagementSample sample;
+  sample.s_mm = m.s_start_mm + f * move_length;
+  const double direction = m.frame.evaluate(f, sample.position);
+  sample.move_index = static_cast<int>(m.index);
+  sample.part = m.move.part;
+  sample.cutting = m.cutting;
+  sample.axial_depth_mm = m.move.axial_depth_mm;
+  sample.xy_speed_ratio = move_length > 0.0 ? move_xy_length / move_length : 0.0;
+  if (std::isnan(direction) || move_xy_length <= 0.0) {
+    sample.feed_direction_rad = sampler.last_direction_rad;
+    sample.xy_speed_ratio = 0.0;
+  } else {
+    sample.feed_direction_rad = direction;
+    sampler.last_direction_rad = direction;
+  }
+  return sample;
+}
+
+// The piece being travelled, from its start up to the tool (at fraction f of the move), taken from
+// `remaining`. Returns the piece's index.
+std::size_t exclude_travelled_piece(Sampler& sampler, const MoveSampling& m, double f, Vec2 p, double height,
+                                    AngleIntervals& remaining) {
+  const double r = sampler.r;
+  AngleIntervals& cuts = sampler.cuts;
+  const auto& fractions = sampler.split.move_fractions[m.index];
+  std::size_t piece_in_move = 0;
+  while (piece_in_move + 2 < fractions.size() && f >= fractions[piece_in_move + 1]) ++piece_in_move;
+  const std::size_t current = sampler.split.move_first_piece[m.index] + piece_in_move;
+  const double g = (f - fractions[piece_in_move]) / (fractions[piece_in_move + 1] - fractions[piece_in_move]);
+  cuts.clear();
+  if (g > 0.0) {
+    const SweptPiece& piece = sampler.split.pieces[current];
+    const bool reversed = piece.is_arc && !m.move.ccw;  // clockwise arcs are stored counter-clockwise
+    if (reversed) {
+      detail::append_excluded(detail::sub_piece(piece, 1.0 - g, 1.0), p, r, height, false, true, cuts);
+    } else {
+      detail::append_excluded(detail::sub_piece(piece, 0.0, g), p, r, height, true, false, cuts);
+    }
+    remaining = detail::subtract_union(remaining, cuts, 1e-12);
+    cuts.clear();
+  }
+  return current;
+}
+
+// Earlier pieces, most recent first, culled by the box of what is still engaged, taken from `remaining`.
+void exclude_earlier_pieces(Sampler& sampler, std::size_t current, Vec2 p, double height, AngleIntervals& remaining) {
+  const double r = sampler.r;
+  AngleIntervals& cuts = sampler.cuts;
+  Box box = arcs_box(remaining, p, r);
+  int contributed = 0;
+  for (const std::uint32_t j : sampler.candidates[current]) {
+    if (remaining.empty()) break;
+    const SweptPiece& piece = sampler.split.pieces[j];
+    if (!sweep_may_reach(box, piece)) continue;
+    if (detail::append_excluded(piece, p, r, height, true, true, cuts) && ++contributed == kCompactEvery) {
+      remaining = detail::subtract_union(remaining, cuts, 1e-12);
+      cuts.clear();
+      box = arcs_box(remaining, p, r);
+      contributed = 0;
+    }
+  }
+  remaining = detail::subtract_union(remaining, cuts, kMinEngagedRad);
+}
+
+// The engaged world angles at the sample: the initial material at the evaluation height, less what
+// the travelled piece and the earlier pieces swept.
+AngleIntervals engaged_angles(Sampler& sampler, const MoveSampling& m, double f, const EngagementSample& sample) {
+  const Vec2 p = detail::to_vec(sample.position);
+  const double height = sampler.options.evaluation_z_mm
+                            ? *sampler.options.evaluation_z_mm
+                            : sample.position.z_mm + std::max(0.5 * m.move.axial_depth_mm, 1e-6);
+  AngleIntervals remaining;
+  if (height > sample.position.z_mm) remaining = detail::initial_material(sampler.stock, p, sampler.r, height);
+  if (!remaining.empty()) {
+    const std::size_t current = exclude_travelled_piece(sampler, m, f, p, height, remaining);
+    exclude_earlier_pieces(sampler, current, p, height, remaining);
+  }
+  return remaining;
+}
+
+// The sample's totals from its engaged intervals (the last ones of the profile).
+void summarise_intervals(const EngagementProfile& profile, double r, EngagementSample& sample) {
+  sample.interval_count = static_cast<int>(profile.intervals.size()) - sample.interval_begin;
+  if (sample.interval_count > 0) {
+    const EngagedInterval* first = profile.intervals.data() + sample.interval_begin;
+    const EngagedInterval* end = first + sample.interval_count;
+    for (const auto* e = first; e != end; ++e) sample.engagement_rad += e->exit_rad - e->entry_rad;
+    sample.entry_rad = first->entry_rad;
+    sample.exit_rad = (end - 1)->exit_rad;
+    sample.chip_factor = sample.xy_speed_ratio > 0.0 ? chip_factor(first, end) : 0.0;
+    sample.chip_area_ratio = chip_area_ratio(first, end);
+  }
+  sample.contact_length_mm = r * sample.engagement_rad;
+}
+
+// A rapid or air move that meets material: one warning, at its first such sample.
+void warn_of_contact_in_air(Sampler& sampler, const MoveSampling& m, const EngagementSample& sample) {
+  const std::size_t i = m.index;
+  if (!m.cutting && sample.engagement_rad > kAirContactRad && !sampler.warned[i]) {
+    sampler.warned[i] = true;
+    std::ostringstream out;
+    out << describe(m.move, i, sampler.path.part_names) << " meets material at s = " << sample.s_mm
+        << " mm (engagement " << rad_to_deg(sample.engagement_rad) << " deg): a collision or a gouge";
+    sampler.profile.warnings.push_back(out.str());
+  }
+}
+
+// The samples of move i, every ds_mm or less; its end point is the next move's first sample (the
+// last move's is its own).
+void sample_move(Sampler& sampler, std::size_t i, double s_start_mm) {
+  const Move& move = sampler.path.moves[i];
+  const double move_length = length_mm(move);
+  const int steps = std::max(1, static_cast<int>(std::ceil(move_length / sampler.options.ds_mm - 1e-9)));
+  const int last_step = i + 1 == sampler.path.moves.size() ? steps : steps - 1;
+  const MoveSampling m{i, move, s_start_mm, move_length, xy_length_mm(move),
+                       move.cutting && move.kind != MoveKind::kRapid, MoveFrame(move)};
+  EngagementProfile& profile = sampler.profile;
+  for (int k = 0; k <= last_step; ++k) {
+    const double f = static_cast<double>(k) / steps;
+    EngagementSample sample = place_sample(sampler, m, f);
+    sample.interval_begin = static_cast<int>(profile.intervals.size());
+    to_immersion(engaged_angles(sampler, m, f, sample), sample.feed_direction_rad, profile.intervals);
+    summarise_intervals(profile, sampler.r, sample);
+    warn_of_contact_in_air(sampler, m, sample);
+    profile.samples.push_back(sample);
+  }
+}
+
 }  // namespace
 
 EngagementProfile compute_engagement(const ToolPath& path, const Stock& stock, double tool_radius_mm,
@@ -159,119 +342,15 @@ EngagementProfile compute_engagement(const ToolPath& path, const Stock& stock, d
   profile.ds_mm = options.ds_mm;
   profile.part_names = path.part_names;
 
-  // 1. Earlier sweeps as short pieces, in the order they were cut: the stock's, then the path's.
-  const double max_piece_mm = 2.0 * r;
-  std::vector<SweptPiece> pieces;
-  for (const auto& swept : stock.removed) {
-    detail::split_move(swept.move, swept.tool_radius_mm, max_piece_mm, pieces, nullptr);
-  }
-  const std::size_t first_path_piece = pieces.size();
-  std::vector<std::size_t> move_first_piece(path.moves.size());
-  std::vector<std::vector<double>> move_fractions(path.moves.size());
-  for (std::size_t i = 0; i < path.moves.size(); ++i) {
-    move_first_piece[i] = pieces.size();
-    detail::split_move(path.moves[i], r, max_piece_mm, pieces, &move_fractions[i]);
-  }
-
-  // 2. Candidate earlier pieces for every piece of the path.
-  const auto candidates = detail::earlier_candidates(pieces, r, first_path_piece);
-
-  // 3. Samples.
-  AngleIntervals cuts;
+  const PathPieces split = split_into_pieces(path, stock, r);
+  // Candidate earlier pieces for every piece of the path.
+  const auto candidates = detail::earlier_candidates(split.pieces, r, split.first_path_piece);
+  Sampler sampler{path, stock, r, options, split, candidates, profile, {}, 0.0,
+                  std::vector<bool>(path.moves.size(), false)};
   double s_start_mm = 0.0;
-  double last_direction_rad = 0.0;
-  std::vector<bool> warned(path.moves.size(), false);
   for (std::size_t i = 0; i < path.moves.size(); ++i) {
-    const Move& move = path.moves[i];
-    const double move_length = length_mm(move);
-    const double move_xy_length = xy_length_mm(move);
-    const int steps = std::max(1, static_cast<int>(std::ceil(move_length / options.ds_mm - 1e-9)));
-    const int last_step = i + 1 == path.moves.size() ? steps : steps - 1;
-    const auto& fractions = move_fractions[i];
-    const bool is_cutting = move.cutting && move.kind != MoveKind::kRapid;
-    const MoveFrame frame(move);
-    for (int k = 0; k <= last_step; ++k) {
-      const double f = static_cast<double>(k) / steps;
-      EngagementSample sample;
-      sample.s_mm = s_start_mm + f * move_length;
-      const double direction = frame.evaluate(f, sample.position);
-      sample.move_index = static_cast<int>(i);
-      sample.part = move.part;
-      sample.cutting = is_cutting;
-      sample.axial_depth_mm = move.axial_depth_mm;
-      sample.xy_speed_ratio = move_length > 0.0 ? move_xy_length / move_length : 0.0;
-      if (std::isnan(direction) || move_xy_length <= 0.0) {
-        sample.feed_direction_rad = last_direction_rad;
-        sample.xy_speed_ratio = 0.0;
-      } else {
-        sample.feed_direction_rad = direction;
-        last_direction_rad = direction;
-      }
-      sample.interval_begin = static_cast<int>(profile.intervals.size());
-
-      const Vec2 p = detail::to_vec(sample.position);
-      const double height = options.evaluation_z_mm
-                                ? *options.evaluation_z_mm
-                                : sample.position.z_mm + std::max(0.5 * move.axial_depth_mm, 1e-6);
-      AngleIntervals remaining;
-      if (height > sample.position.z_mm) remaining = detail::initial_material(stock, p, r, height);
-      if (!remaining.empty()) {
-        // The piece being travelled, from its start up to the tool.
-        std::size_t piece_in_move = 0;
-        while (piece_in_move + 2 < fractions.size() && f >= fractions[piece_in_move + 1]) ++piece_in_move;
-        const std::size_t current = move_first_piece[i] + piece_in_move;
-        const double g = (f - fractions[piece_in_move]) / (fractions[piece_in_move + 1] - fractions[piece_in_move]);
-        cuts.clear();
-        if (g > 0.0) {
-          const SweptPiece& piece = pieces[current];
-          const bool reversed = piece.is_arc && !move.ccw;  // clockwise arcs are stored counter-clockwise
-          if (reversed) {
-            detail::append_excluded(detail::sub_piece(piece, 1.0 - g, 1.0), p, r, height, false, true, cuts);
-          } else {
-            detail::append_excluded(detail::sub_piece(piece, 0.0, g), p, r, height, true, false, cuts);
-          }
-          remaining = detail::subtract_union(remaining, cuts, 1e-12);
-          cuts.clear();
-        }
-        // Earlier pieces, most recent first, culled by the box of what is still engaged.
-        Box box = arcs_box(remaining, p, r);
-        int contributed = 0;
-        for (const std::uint32_t j : candidates[current]) {
-          if (remaining.empty()) break;
-          const SweptPiece& piece = pieces[j];
-          if (!sweep_may_reach(box, piece)) continue;
-          if (detail::append_excluded(piece, p, r, height, true, true, cuts) && ++contributed == kCompactEvery) {
-            remaining = detail::subtract_union(remaining, cuts, 1e-12);
-            cuts.clear();
-            box = arcs_box(remaining, p, r);
-            contributed = 0;
-          }
-        }
-        remaining = detail::subtract_union(remaining, cuts, kMinEngagedRad);
-        to_immersion(remaining, sample.feed_direction_rad, profile.intervals);
-      }
-
-      sample.interval_count = static_cast<int>(profile.intervals.size()) - sample.interval_begin;
-      if (sample.interval_count > 0) {
-        const EngagedInterval* first = profile.intervals.data() + sample.interval_begin;
-        const EngagedInterval* end = first + sample.interval_count;
-        for (const auto* e = first; e != end; ++e) sample.engagement_rad += e->exit_rad - e->entry_rad;
-        sample.entry_rad = first->entry_rad;
-        sample.exit_rad = (end - 1)->exit_rad;
-        sample.chip_factor = sample.xy_speed_ratio > 0.0 ? chip_factor(first, end) : 0.0;
-        sample.chip_area_ratio = chip_area_ratio(first, end);
-      }
-      sample.contact_length_mm = r * sample.engagement_rad;
-      if (!is_cutting && sample.engagement_rad > kAirContactRad && !warned[i]) {
-        warned[i] = true;
-        std::ostringstream out;
-        out << describe(move, i, path.part_names) << " meets material at s = " << sample.s_mm
-            << " mm (engagement " << rad_to_deg(sample.engagement_rad) << " deg): a collision or a gouge";
-        profile.warnings.push_back(out.str());
-      }
-      profile.samples.push_back(sample);
-    }
-    s_start_mm += move_length;
+    sample_move(sampler, i, s_start_mm);
+    s_start_mm += length_mm(path.moves[i]);
   }
   return profile;
 }

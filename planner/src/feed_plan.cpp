@@ -195,122 +195,184 @@ std::vector<InputProblem> validate(const PlanSettings& settings, const geometry:
   return problems;
 }
 
-PlanResult plan(const PlanGeometry& geometry, const PlanSettings& settings) {
-  {
-    std::vector<InputProblem> problems = validate(settings, geometry.tool);
-    const std::size_t n_samples = geometry.engagement.samples.size();
-    if (!settings.force_correction.empty() && settings.force_correction.size() != n_samples) {
-      problems.push_back({"force_correction", "has " + std::to_string(settings.force_correction.size()) +
-                                                  " values for " + std::to_string(n_samples) +
-                                                  " engagement samples: it belongs to another path or sampling"});
-    }
-    if (!problems.empty()) throw InputError(std::move(problems));
-  }
-  const auto& samples = geometry.engagement.samples;
-  const geometry::ToolPath& path = geometry.path;
-  assert(!samples.empty());
-  const std::size_t n = samples.size();
-  const cycles::MachineLimits& machine = settings.machine;
-  const PlanOptions& options = settings.options;
-  const int flutes = geometry.tool.flutes;
-  const double rpm = settings.spindle_rpm;
-  const double air_feed = options.air_feed_mm_per_min > 0.0 ? options.air_feed_mm_per_min : machine.max_feed_mm_per_min;
-  const ForceUncertainty* uncertainty = settings.uncertainty ? &*settings.uncertainty : nullptr;
-  const auto correction = [&](std::size_t i) {
+namespace {
+
+// What every step of plan() reads: the inputs, and the values derived from them once.
+struct PlanContext {
+  PlanContext(const PlanGeometry& geometry, const PlanSettings& settings);
+  double correction(std::size_t i) const {
     return settings.force_correction.empty() ? 1.0 : settings.force_correction[i];
-  };
+  }
+  const geometry::EngagementSample& bound_sample(std::size_t i) const {
+    return corrected_bound_samples.empty() ? samples[i] : corrected_bound_samples[i];
+  }
+
+  const PlanSettings& settings;
+  const geometry::ToolPath& path;
+  const geometry::EngagementProfile& engagement;
+  const std::vector<geometry::EngagementSample>& samples;
+  const std::size_t n;
+  const int flutes;
+  const double rpm;
+  const double air_feed;                      // mm/min
+  const ForceUncertainty* const uncertainty;  // null: the plain model
+  std::vector<double> s;                      // s_mm of every sample
+  std::vector<int> move_first;                // first_samples(path, engagement)
   // The sample the bound is evaluated on: with a correction c measured along the path, the entry factor
   // is max(ρ, c) in all (force_bound.hpp), so its chip-area ratio becomes max(ρ / c, 1).
   // Copies only when both apply (ρ ≥ 1 already without a correction).
   std::vector<geometry::EngagementSample> corrected_bound_samples;
+};
+
+PlanContext::PlanContext(const PlanGeometry& geometry, const PlanSettings& settings)
+    : settings(settings),
+      path(geometry.path),
+      engagement(geometry.engagement),
+      samples(geometry.engagement.samples),
+      n(samples.size()),
+      flutes(geometry.tool.flutes),
+      rpm(settings.spindle_rpm),
+      air_feed(settings.options.air_feed_mm_per_min > 0.0 ? settings.options.air_feed_mm_per_min
+                                                          : settings.machine.max_feed_mm_per_min),
+      uncertainty(settings.uncertainty ? &*settings.uncertainty : nullptr),
+      s(n),
+      move_first(first_samples(path, engagement)) {
+  assert(!samples.empty());
   if (uncertainty && uncertainty->off_straight_cut && !settings.force_correction.empty()) {
     corrected_bound_samples = samples;
     for (std::size_t i = 0; i < n; ++i) {
       corrected_bound_samples[i].chip_area_ratio = std::max(samples[i].chip_area_ratio / correction(i), 1.0);
     }
   }
-  const auto bound_sample = [&](std::size_t i) -> const geometry::EngagementSample& {
-    return corrected_bound_samples.empty() ? samples[i] : corrected_bound_samples[i];
-  };
-
-  PlanResult result;
-  result.samples.resize(n);
-  std::vector<double> s(n);
   for (std::size_t i = 0; i < n; ++i) s[i] = samples[i].s_mm;
-  const std::vector<int> move_first = first_samples(path, geometry.engagement);
+}
 
-  // Acceleration the passes use (with the jerk heuristic of PlanOptions::jerk_limit_mm_per_s3).
-  double accel = machine.max_accel_mm_per_s2;
-
-  // 1. Feed limits per sample; the limit of a node shared by two moves is the smaller of both sides.
-  const std::vector<double> centripetal = centripetal_caps_mm_per_s(path, geometry.engagement, accel);
-  std::vector<double> limit_mm_per_min(n);
-  int target_below_model = 0;
-  for (std::size_t i = 0; i < n; ++i) {
-    const geometry::EngagementSample& sample = samples[i];
-    PlannedSample& planned = result.samples[i];
-    planned.s_mm = sample.s_mm;
-    planned.position = sample.position;
-    planned.move_index = sample.move_index;
-    planned.engaged = is_engaged(sample);
-    planned.engagement_rad = sample.engagement_rad;
-    planned.chip_factor = sample.chip_factor;
-    planned.contact_length_mm = sample.contact_length_mm;
-    planned.axial_depth_mm = sample.axial_depth_mm;
-
-    const geometry::Move& move = path.moves[static_cast<std::size_t>(sample.move_index)];
-    if (move.kind == geometry::MoveKind::kRapid) {
-      planned.limit_reason = FeedLimitReason::kRapid;
-      limit_mm_per_min[i] = machine.rapid_feed_mm_per_min;
-      planned.feed_limit_mm_per_min = machine.rapid_feed_mm_per_min;
-      continue;
-    }
-    const SampleFeedLimit limit = sample_feed_limit(settings.model, bound_sample(i), settings.target_force_n / correction(i), flutes, rpm, air_feed,
-                                                    uncertainty);
-    double feed = limit.feed_mm_per_min;
-    FeedLimitReason reason = limit.reason;
-    if (feed > machine.max_feed_mm_per_min) {
-      feed = machine.max_feed_mm_per_min;
-      if (reason != FeedLimitReason::kAirFeed) reason = FeedLimitReason::kMaxFeed;
-    }
-    auto apply_centripetal = [&](std::size_t interval) {
-      const double cap = centripetal[interval] * 60.0;
-      if (cap < feed) {
-        feed = cap;
-        reason = FeedLimitReason::kCentripetal;
-      }
-    };
-    if (i + 1 < n) apply_centripetal(i);
-    if (i > 0 && samples[i - 1].move_index != sample.move_index) apply_centripetal(i - 1);
-    if (feed < machine.min_feed_mm_per_min) {
-      feed = machine.min_feed_mm_per_min;
-      reason = FeedLimitReason::kMinFeed;
-    }
-    if (limit.target_below_model) ++target_below_model;
-    planned.limit_reason = reason;
-    planned.extrapolated = limit.extrapolated && (reason == FeedLimitReason::kForce || reason == FeedLimitReason::kMinFeed);
-    limit_mm_per_min[i] = feed;
-    planned.feed_limit_mm_per_min = feed;
+// Throws InputError with every problem validate() finds, and a force correction of another path.
+void check_plan_input(const PlanGeometry& geometry, const PlanSettings& settings) {
+  std::vector<InputProblem> problems = validate(settings, geometry.tool);
+  const std::size_t n_samples = geometry.engagement.samples.size();
+  if (!settings.force_correction.empty() && settings.force_correction.size() != n_samples) {
+    problems.push_back({"force_correction", "has " + std::to_string(settings.force_correction.size()) +
+                                                " values for " + std::to_string(n_samples) +
+                                                " engagement samples: it belongs to another path or sampling"});
   }
-  // The sample at a move boundary belongs to the next move; the previous move's end is the same point,
-  // and its limit must hold there too (the rapid/feed distinction is the next move's).
+  if (!problems.empty()) throw InputError(std::move(problems));
+}
+
+// Step 1's result.
+struct FeedLimits {
+  std::vector<double> centripetal;  // cap per interval at the machine's acceleration, mm/s
+  std::vector<double> mm_per_min;   // feed limit per sample, mm/min
+  int target_below_model = 0;       // samples where the model predicts more than the target at any feed
+};
+
+// A sample of the plan with the engagement it was planned for.
+PlannedSample planned_engagement(const geometry::EngagementSample& sample) {
+  PlannedSample planned;
+  planned.s_mm = sample.s_mm;
+  planned.position = sample.position;
+  planned.move_index = sample.move_index;
+  planned.engaged = is_engaged(sample);
+  planned.engagement_rad = sample.engagement_rad;
+  planned.chip_factor = sample.chip_factor;
+  planned.contact_length_mm = sample.contact_length_mm;
+  planned.axial_depth_mm = sample.axial_depth_mm;
+  return planned;
+}
+
+// Step 1 at sample i: the model's feed for the (corrected) target, clamped to the machine's feed range,
+// capped by the centripetal cap of the interval after it and, at a move's first sample, of the one before
+// it; rapids at the rapid rate.
+double feed_limit_at(const PlanContext& c, const std::vector<double>& centripetal, std::size_t i,
+                     PlannedSample& planned, int& target_below_model) {
+  const auto& samples = c.samples;
+  const std::size_t n = c.n;
+  const auto& machine = c.settings.machine;
+  const geometry::EngagementSample& sample = samples[i];
+  const geometry::Move& move = c.path.moves[static_cast<std::size_t>(sample.move_index)];
+  if (move.kind == geometry::MoveKind::kRapid) {
+    planned.limit_reason = FeedLimitReason::kRapid;
+    planned.feed_limit_mm_per_min = machine.rapid_feed_mm_per_min;
+    return machine.rapid_feed_mm_per_min;
+  }
+  const SampleFeedLimit limit = sample_feed_limit(c.settings.model, c.bound_sample(i),
+                                                  c.settings.target_force_n / c.correction(i), c.flutes, c.rpm,
+                                                  c.air_feed, c.uncertainty);
+  double feed = limit.feed_mm_per_min;
+  FeedLimitReason reason = limit.reason;
+  if (feed > machine.max_feed_mm_per_min) {
+    feed = machine.max_feed_mm_per_min;
+    if (reason != FeedLimitReason::kAirFeed) reason = FeedLimitReason::kMaxFeed;
+  }
+  auto apply_centripetal = [&](std::size_t interval) {
+    const double cap = centripetal[interval] * 60.0;
+    if (cap < feed) {
+      feed = cap;
+      reason = FeedLimitReason::kCentripetal;
+    }
+  };
+  if (i + 1 < n) apply_centripetal(i);
+  if (i > 0 && samples[i - 1].move_index != sample.move_index) apply_centripetal(i - 1);
+  if (feed < machine.min_feed_mm_per_min) {
+    feed = machine.min_feed_mm_per_min;
+    reason = FeedLimitReason::kMinFeed;
+  }
+  if (limit.target_below_model) ++target_below_model;
+  planned.limit_reason = reason;
+  planned.extrapolated = limit.extrapolated && (reason == FeedLimitReason::kForce || reason == FeedLimitReason::kMinFeed);
+  planned.feed_limit_mm_per_min = feed;
+  return feed;
+}
+
+// The sample at a move boundary belongs to the next move; the previous move's end is the same point,
+// and its limit must hold there too (the rapid/feed distinction is the next move's).
+void hold_feed_limit_before_rapids(const PlanContext& c, std::vector<double>& limit_mm_per_min) {
+  const geometry::ToolPath& path = c.path;
   for (std::size_t m = 1; m < path.moves.size(); ++m) {
-    const auto i = static_cast<std::size_t>(move_first[m]);
-    if (i >= n || i == 0) continue;
+    const auto i = static_cast<std::size_t>(c.move_first[m]);
+    if (i >= c.n || i == 0) continue;
     const bool rapid_before = path.moves[m - 1].kind == geometry::MoveKind::kRapid;
     const bool rapid_after = path.moves[m].kind == geometry::MoveKind::kRapid;
     if (rapid_before == rapid_after) continue;
     // A feed move beside a rapid: the boundary node keeps the feed side's limit.
     if (rapid_after) limit_mm_per_min[i] = limit_mm_per_min[i - 1];
   }
+}
 
-  // 2. Command profile: the greatest profile under the limits and the acceleration (no stops).
-  auto command_profile = [&](double a) {
-    std::vector<double> cap(n);
-    for (std::size_t i = 0; i < n; ++i) cap[i] = limit_mm_per_min[i] / 60.0;
-    return greatest_speeds(s, cap, a);
-  };
-  std::vector<double> command = command_profile(accel);
+// Step 1. Feed limits per sample; the limit of a node shared by two moves is the smaller of both sides.
+FeedLimits limit_feeds(const PlanContext& c, PlanResult& result) {
+  FeedLimits limits;
+  limits.centripetal = centripetal_caps_mm_per_s(c.path, c.engagement, c.settings.machine.max_accel_mm_per_s2);
+  limits.mm_per_min.resize(c.n);
+  result.samples.resize(c.n);
+  for (std::size_t i = 0; i < c.n; ++i) {
+    result.samples[i] = planned_engagement(c.samples[i]);
+    limits.mm_per_min[i] = feed_limit_at(c, limits.centripetal, i, result.samples[i], limits.target_below_model);
+  }
+  hold_feed_limit_before_rapids(c, limits.mm_per_min);
+  return limits;
+}
+
+// Step 2's result.
+struct CommandProfile {
+  double accel_mm_per_s2 = 0.0;    // acceleration the passes use (a, or a_eff with a jerk limit)
+  std::vector<double> mm_per_min;  // command feed per sample
+};
+
+// The greatest profile under the limits at acceleration a, mm/s.
+std::vector<double> greatest_command(const PlanContext& c, const std::vector<double>& limit_mm_per_min, double a) {
+  std::vector<double> cap(c.n);
+  for (std::size_t i = 0; i < c.n; ++i) cap[i] = limit_mm_per_min[i] / 60.0;
+  return greatest_speeds(c.s, cap, a);
+}
+
+// Step 2. Command profile: the greatest profile under the limits and the acceleration (no stops).
+CommandProfile plan_command_profile(const PlanContext& c, const FeedLimits& limits, PlanResult& result) {
+  const auto& machine = c.settings.machine;
+  const PlanOptions& options = c.settings.options;
+  // Acceleration the passes use (with the jerk heuristic of PlanOptions::jerk_limit_mm_per_s3).
+  double accel = machine.max_accel_mm_per_s2;
+  std::vector<double> command = greatest_command(c, limits.mm_per_min, accel);
   if (options.jerk_limit_mm_per_s3 > 0.0) {
     // Heuristic: an S-curve with acceleration limit a and jerk limit J covers a speed change Δv in
     // Δv/a + a/J, i.e. at the mean acceleration a_eff = a·Δv / (Δv + a²/J). Taken for the largest
@@ -321,34 +383,63 @@ PlanResult plan(const PlanGeometry& geometry, const PlanSettings& settings) {
     if (largest_change > 0.0) {
       const double a = machine.max_accel_mm_per_s2;
       accel = a * largest_change / (largest_change + a * a / options.jerk_limit_mm_per_s3);
-      command = command_profile(accel);
+      command = greatest_command(c, limits.mm_per_min, accel);
     }
   }
   result.summary.accel_used_mm_per_s2 = accel;
-  std::vector<double> command_mm_per_min(n);
-  for (std::size_t i = 0; i < n; ++i) {
-    command_mm_per_min[i] = command[i] * 60.0;
-    result.samples[i].command_feed_mm_per_min = command_mm_per_min[i];
+  CommandProfile profile;
+  profile.accel_mm_per_s2 = accel;
+  profile.mm_per_min.resize(c.n);
+  for (std::size_t i = 0; i < c.n; ++i) {
+    profile.mm_per_min[i] = command[i] * 60.0;
+    result.samples[i].command_feed_mm_per_min = profile.mm_per_min[i];
   }
+  return profile;
+}
 
-  // 3. Blocks.
+// Step 3. Blocks.
+void split_into_blocks(const PlanContext& c, const CommandProfile& command, PlanResult& result) {
+  const PlanOptions& options = c.settings.options;
+  const auto& machine = c.settings.machine;
   detail::BlockSplitSettings split;
   split.mode = options.mode;
   split.merge_tolerance = options.merge_tolerance;
   split.feed_resolution_mm_per_min = options.feed_resolution_mm_per_min;
   split.block_time_min_s = machine.block_time_min_s;
   split.min_feed_mm_per_min = machine.min_feed_mm_per_min;
-  split.accel_mm_per_s2 = accel;
-  result.blocks = detail::split_blocks(path, s, command_mm_per_min, move_first, split, result.summary.short_blocks);
+  split.accel_mm_per_s2 = command.accel_mm_per_s2;
+  result.blocks =
+      detail::split_blocks(c.path, c.s, command.mm_per_min, c.move_first, split, result.summary.short_blocks);
+}
 
-  // 4. Prediction.
-  const std::vector<bool> stops = controller_stops(path, geometry.engagement);
-  std::vector<bool> interval_cutting(n - 1);
-  for (std::size_t j = 0; j + 1 < n; ++j) interval_cutting[j] = samples[j].cutting;
-  const double rapid_mm_per_s = machine.rapid_feed_mm_per_min / 60.0;
-  const ControllerRun run = run_controller(
-      s, block_caps(result.blocks, n - 1, centripetal, path, rapid_mm_per_s), stops, interval_cutting, accel);
+// The controller model (controller_model.hpp) set up for this path: runs a list of its blocks.
+struct BlockRunner {
+  BlockRunner(const PlanContext& c, const FeedLimits& limits, double accel);
+  ControllerRun run(const std::vector<PlannedBlock>& blocks) const {
+    return run_controller(c.s, block_caps(blocks, c.n - 1, centripetal, c.path, rapid_mm_per_s), stops,
+                          interval_cutting, accel);
+  }
 
+  const PlanContext& c;
+  const std::vector<double>& centripetal;  // mm/s per interval
+  const double accel;                      // mm/s²
+  const double rapid_mm_per_s;
+  std::vector<bool> stops;
+  std::vector<bool> interval_cutting;
+};
+
+BlockRunner::BlockRunner(const PlanContext& c, const FeedLimits& limits, double accel)
+    : c(c),
+      centripetal(limits.centripetal),
+      accel(accel),
+      rapid_mm_per_s(c.settings.machine.rapid_feed_mm_per_min / 60.0),
+      stops(controller_stops(c.path, c.engagement)),
+      interval_cutting(c.n - 1) {
+  for (std::size_t j = 0; j + 1 < c.n; ++j) interval_cutting[j] = c.samples[j].cutting;
+}
+
+// Every block's smallest limit and predicted duration; every sample's block and block F.
+void time_blocks(const ControllerRun& run, const std::vector<double>& limit_mm_per_min, PlanResult& result) {
   for (std::size_t b = 0; b < result.blocks.size(); ++b) {
     PlannedBlock& block = result.blocks[b];
     block.min_limit_mm_per_min = std::numeric_limits<double>::infinity();
@@ -363,19 +454,32 @@ PlanResult plan(const PlanGeometry& geometry, const PlanSettings& settings) {
     block.duration_s = run.time_s[static_cast<std::size_t>(block.last_sample)] -
                        run.time_s[static_cast<std::size_t>(block.first_sample)];
   }
+}
 
+// The first samples the status messages name (null: none).
+struct FirstProblems {
+  const geometry::EngagementSample* over = nullptr;          // predicted above the target
+  const geometry::EngagementSample* extrapolated = nullptr;  // the model extrapolates and sets the feed
+};
+
+// Every sample's speed, time, chip and forces as the machine runs the blocks; the summary's counts.
+FirstProblems predict_samples(const PlanContext& c, const ControllerRun& run, PlanResult& result) {
+  const auto& samples = c.samples;
+  const PlanSettings& settings = c.settings;
   PlanSummary& summary = result.summary;
-  const geometry::EngagementSample* first_over = nullptr;
-  const geometry::EngagementSample* first_extrapolated = nullptr;
-  for (std::size_t i = 0; i < n; ++i) {
+  FirstProblems first;
+  for (std::size_t i = 0; i < c.n; ++i) {
     PlannedSample& planned = result.samples[i];
     planned.feed_mm_per_min = run.speed_mm_per_s[i] * 60.0;
     planned.time_s = run.time_s[i];
-    planned.chip_thickness_mm = planned.engaged ? chip_thickness_mm(samples[i], planned.feed_mm_per_min, flutes, rpm) : 0.0;
-    planned.predicted_force_n = correction(i) * predicted_force_n(settings.model, samples[i], planned.feed_mm_per_min, flutes, rpm);
-    planned.upper_force_n =
-        uncertainty ? correction(i) * upper_force_n(settings.model, bound_sample(i), planned.feed_mm_per_min, flutes, rpm, uncertainty)
-                    : planned.predicted_force_n;
+    planned.chip_thickness_mm =
+        planned.engaged ? chip_thickness_mm(samples[i], planned.feed_mm_per_min, c.flutes, c.rpm) : 0.0;
+    planned.predicted_force_n =
+        c.correction(i) * predicted_force_n(settings.model, samples[i], planned.feed_mm_per_min, c.flutes, c.rpm);
+    planned.upper_force_n = c.uncertainty ? c.correction(i) * upper_force_n(settings.model, c.bound_sample(i),
+                                                                            planned.feed_mm_per_min, c.flutes, c.rpm,
+                                                                            c.uncertainty)
+                                          : planned.predicted_force_n;
     planned.within_model_range = planned.engaged && !model::chip_outside(settings.model.range, planned.chip_thickness_mm) &&
                                  !model::contact_length_outside(settings.model.range, planned.contact_length_mm);
     summary.max_predicted_force_n = std::max(summary.max_predicted_force_n, planned.predicted_force_n);
@@ -383,13 +487,19 @@ PlanResult plan(const PlanGeometry& geometry, const PlanSettings& settings) {
     if (planned.limit_reason == FeedLimitReason::kForce) ++summary.force_limited_samples;
     if (planned.extrapolated) {
       ++summary.extrapolated_samples;
-      if (!first_extrapolated) first_extrapolated = &samples[i];
+      if (!first.extrapolated) first.extrapolated = &samples[i];
     }
     if (planned.engaged && planned.upper_force_n > settings.target_force_n * (1.0 + 1e-9)) {
       ++summary.over_target_samples;
-      if (!first_over) first_over = &samples[i];
+      if (!first.over) first.over = &samples[i];
     }
   }
+  return first;
+}
+
+// The summary's times and block feed range.
+void summarise_run(const ControllerRun& run, PlanResult& result) {
+  PlanSummary& summary = result.summary;
   summary.cycle_time_s = run.cycle_time_s;
   summary.cutting_time_s = run.cutting_time_s;
   summary.air_time_s = run.air_time_s;
@@ -400,47 +510,73 @@ PlanResult plan(const PlanGeometry& geometry, const PlanSettings& settings) {
     summary.max_feed_mm_per_min = std::max(summary.max_feed_mm_per_min, block.feed_mm_per_min);
   }
   if (!std::isfinite(summary.min_feed_mm_per_min)) summary.min_feed_mm_per_min = 0.0;
+}
 
-  // 5. Baseline: the one feed whose predicted peak equals the plan's, on every feed move.
-  ConstantFeedBaseline& baseline = summary.baseline;
+// Step 4. Prediction: the controller runs the blocks.
+FirstProblems predict(const PlanContext& c, const FeedLimits& limits, const BlockRunner& runner, PlanResult& result) {
+  const ControllerRun run = runner.run(result.blocks);
+  time_blocks(run, limits.mm_per_min, result);
+  const FirstProblems first = predict_samples(c, run, result);
+  summarise_run(run, result);
+  return first;
+}
+
+// The one feed whose predicted peak equals the plan's, on every feed move.
+double baseline_feed_mm_per_min(const PlanContext& c, const PlanResult& result) {
+  const auto& machine = c.settings.machine;
+  const PlanSummary& summary = result.summary;
   if (summary.max_predicted_force_n > 0.0) {
     double feed = machine.max_feed_mm_per_min;
-    for (std::size_t i = 0; i < n; ++i) {
+    for (std::size_t i = 0; i < c.n; ++i) {
       if (!result.samples[i].engaged) continue;
-      const SampleFeedLimit limit =
-          sample_feed_limit(settings.model, samples[i], summary.max_predicted_force_n / correction(i), flutes, rpm, air_feed);
+      const SampleFeedLimit limit = sample_feed_limit(c.settings.model, c.samples[i],
+                                                      summary.max_predicted_force_n / c.correction(i), c.flutes,
+                                                      c.rpm, c.air_feed);
       if (limit.reason == FeedLimitReason::kAirFeed) continue;
       feed = std::min(feed, limit.target_below_model ? machine.min_feed_mm_per_min : limit.feed_mm_per_min);
     }
-    const double r = options.feed_resolution_mm_per_min;
-    baseline.feed_mm_per_min = std::max(machine.min_feed_mm_per_min, std::floor(feed / r + 1e-9) * r);
-  } else {
-    baseline.feed_mm_per_min = air_feed;
+    const double r = c.settings.options.feed_resolution_mm_per_min;
+    return std::max(machine.min_feed_mm_per_min, std::floor(feed / r + 1e-9) * r);
   }
-  {
-    std::vector<PlannedBlock> constant;
-    for (std::size_t m = 0; m < path.moves.size(); ++m) {
-      PlannedBlock block;
-      block.move_index = static_cast<int>(m);
-      block.first_sample = move_first[m];
-      block.last_sample = move_first[m + 1];
-      block.feed_mm_per_min = baseline.feed_mm_per_min;
-      constant.push_back(block);
-    }
-    const ControllerRun base_run = run_controller(
-        s, block_caps(constant, n - 1, centripetal, path, rapid_mm_per_s), stops, interval_cutting, accel);
-    baseline.cycle_time_s = base_run.cycle_time_s;
-    baseline.cutting_time_s = base_run.cutting_time_s;
-    for (std::size_t i = 0; i < n; ++i) {
-      baseline.peak_force_n = std::max(
-          baseline.peak_force_n,
-          correction(i) * predicted_force_n(settings.model, samples[i], base_run.speed_mm_per_s[i] * 60.0, flutes, rpm));
-    }
+  return c.air_feed;
+}
+
+// One block per move, all at `feed_mm_per_min`.
+std::vector<PlannedBlock> constant_feed_blocks(const PlanContext& c, double feed_mm_per_min) {
+  std::vector<PlannedBlock> constant;
+  for (std::size_t m = 0; m < c.path.moves.size(); ++m) {
+    PlannedBlock block;
+    block.move_index = static_cast<int>(m);
+    block.first_sample = c.move_first[m];
+    block.last_sample = c.move_first[m + 1];
+    block.feed_mm_per_min = feed_mm_per_min;
+    constant.push_back(block);
+  }
+  return constant;
+}
+
+// Step 5. Baseline: the one feed whose predicted peak equals the plan's, on every feed move; the time saved.
+void plan_baseline(const PlanContext& c, const BlockRunner& runner, PlanResult& result) {
+  PlanSummary& summary = result.summary;
+  ConstantFeedBaseline& baseline = summary.baseline;
+  baseline.feed_mm_per_min = baseline_feed_mm_per_min(c, result);
+  const ControllerRun base_run = runner.run(constant_feed_blocks(c, baseline.feed_mm_per_min));
+  baseline.cycle_time_s = base_run.cycle_time_s;
+  baseline.cutting_time_s = base_run.cutting_time_s;
+  for (std::size_t i = 0; i < c.n; ++i) {
+    baseline.peak_force_n =
+        std::max(baseline.peak_force_n, c.correction(i) * predicted_force_n(c.settings.model, c.samples[i],
+                                                                             base_run.speed_mm_per_s[i] * 60.0,
+                                                                             c.flutes, c.rpm));
   }
   summary.time_saved_percent =
       baseline.cycle_time_s > 0.0 ? 100.0 * (baseline.cycle_time_s - summary.cycle_time_s) / baseline.cycle_time_s : 0.0;
+}
 
-  // Program: one move per block, M3 at the settings' speed.
+// Program: one move per block, M3 at the settings' speed.
+void write_program(const PlanContext& c, PlanResult& result) {
+  const geometry::ToolPath& path = c.path;
+  const std::vector<int>& move_first = c.move_first;
   for (const PlannedBlock& block : result.blocks) {
     const geometry::Move& move = path.moves[static_cast<std::size_t>(block.move_index)];
     const int first = move_first[static_cast<std::size_t>(block.move_index)];
@@ -448,35 +584,46 @@ PlanResult plan(const PlanGeometry& geometry, const PlanSettings& settings) {
     result.program.path.moves.push_back(sub_move(move, block.first_sample - first, block.last_sample - first, steps));
     geometry::BlockCommand command_block;
     command_block.feed_mm_per_min = block.feed_mm_per_min;
-    command_block.spindle_rpm = rpm;
+    command_block.spindle_rpm = c.rpm;
     command_block.spindle = geometry::SpindleDirection::kClockwise;
     result.program.blocks.push_back(command_block);
   }
   result.program.path.part_names = path.part_names;
+}
 
-  // Status and messages.
+std::string target_not_met_message(const PlanContext& c, const FeedLimits& limits, const FirstProblems& first,
+                                   const PlanSummary& summary) {
+  const PlanSettings& settings = c.settings;
+  return "target " + num(settings.target_force_n) + " N not met at " + std::to_string(summary.over_target_samples) +
+         " samples, first at " + where(*first.over) + ": " +
+         (limits.target_below_model > 0 ? "the model predicts more than the target even as the feed goes to 0"
+                                        : "the target needs less than the machine's minimum feed " +
+                                              num(settings.machine.min_feed_mm_per_min) + " mm/min") +
+         "; planned at the minimum feed, predicted up to " + fixed(summary.max_predicted_force_n, 1) + " N";
+}
+
+std::string extrapolation_message(const PlanContext& c, const FirstProblems& first, const PlanSummary& summary) {
+  const PlanSettings& settings = c.settings;
+  const geometry::EngagementSample& e = *first.extrapolated;
+  const auto& range = settings.model.range;
+  return "the model extrapolates where it sets the feed at " + std::to_string(summary.extrapolated_samples) +
+         " samples, first at " + where(e) + " (L = " + fixed(e.contact_length_mm, 3) + " mm, fitted " +
+         fixed(range.contact_length_min_mm, 3) + "–" + fixed(range.contact_length_max_mm, 3) + " mm; t_m fitted " +
+         fixed(range.chip_min_mm, 4) + "–" + fixed(range.chip_max_mm, 4) + " mm; a_p " + num(e.axial_depth_mm) +
+         " mm, fitted at " + num(settings.model.axial_depth_mm) + " mm)";
+}
+
+// Status and messages.
+void report_outcome(const PlanContext& c, const FeedLimits& limits, const FirstProblems& first, PlanResult& result) {
+  const PlanSettings& settings = c.settings;
+  const PlanSummary& summary = result.summary;
   if (summary.over_target_samples > 0) {
     result.status = PlanStatus::kTargetNotMet;
-    result.messages.push_back(
-        "target " + num(settings.target_force_n) + " N not met at " + std::to_string(summary.over_target_samples) +
-        " samples, first at " + where(*first_over) + ": " +
-        (target_below_model > 0 ? "the model predicts more than the target even as the feed goes to 0"
-                                : "the target needs less than the machine's minimum feed " +
-                                      num(machine.min_feed_mm_per_min) + " mm/min") +
-        "; planned at the minimum feed, predicted up to " + fixed(summary.max_predicted_force_n, 1) + " N");
+    result.messages.push_back(target_not_met_message(c, limits, first, summary));
   } else if (summary.extrapolated_samples > 0) {
     result.status = PlanStatus::kExtrapolated;
   }
-  if (summary.extrapolated_samples > 0) {
-    const geometry::EngagementSample& e = *first_extrapolated;
-    const model::FittedRange& range = settings.model.range;
-    result.messages.push_back(
-        "the model extrapolates where it sets the feed at " + std::to_string(summary.extrapolated_samples) +
-        " samples, first at " + where(e) + " (L = " + fixed(e.contact_length_mm, 3) + " mm, fitted " +
-        fixed(range.contact_length_min_mm, 3) + "–" + fixed(range.contact_length_max_mm, 3) + " mm; t_m fitted " +
-        fixed(range.chip_min_mm, 4) + "–" + fixed(range.chip_max_mm, 4) + " mm; a_p " + num(e.axial_depth_mm) +
-        " mm, fitted at " + num(settings.model.axial_depth_mm) + " mm)");
-  }
+  if (summary.extrapolated_samples > 0) result.messages.push_back(extrapolation_message(c, first, summary));
   int range_limited = 0;
   for (const PlannedSample& planned : result.samples) range_limited += planned.limit_reason == FeedLimitReason::kModelRange;
   if (range_limited > 0) {
@@ -486,10 +633,27 @@ PlanResult plan(const PlanGeometry& geometry, const PlanSettings& settings) {
   }
   if (summary.short_blocks > 0) {
     result.messages.push_back(std::to_string(summary.short_blocks) +
-                              " blocks last less than the block time " + num(machine.block_time_min_s) +
+                              " blocks last less than the block time " + num(settings.machine.block_time_min_s) +
                               " s (whole moves that short; the controller may slow down there)");
   }
-  for (const std::string& warning : geometry.engagement.warnings) result.messages.push_back(warning);
+  for (const std::string& warning : c.engagement.warnings) result.messages.push_back(warning);
+}
+
+}  // namespace
+
+// The steps of the method in feed_plan.hpp, in order.
+PlanResult plan(const PlanGeometry& geometry, const PlanSettings& settings) {
+  check_plan_input(geometry, settings);
+  const PlanContext context(geometry, settings);
+  PlanResult result;
+  const FeedLimits limits = limit_feeds(context, result);
+  const CommandProfile command = plan_command_profile(context, limits, result);
+  split_into_blocks(context, command, result);
+  const BlockRunner runner(context, limits, command.accel_mm_per_s2);
+  const FirstProblems first = predict(context, limits, runner, result);
+  plan_baseline(context, runner, result);
+  write_program(context, result);
+  report_outcome(context, limits, first, result);
   return result;
 }
 
