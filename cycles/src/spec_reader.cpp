@@ -14,8 +14,8 @@
 #include <vector>
 
 #include "common_checks.hpp"
-#include "feedplan/core/did_you_mean.hpp"
 #include "feedplan/core/input_error.hpp"
+#include "feedplan/core/yaml_fields.hpp"
 #include "feedplan/core/yaml_text.hpp"
 #include "feedplan/cycles/cycle.hpp"
 #include "problems.hpp"
@@ -40,47 +40,21 @@ std::string join(const std::vector<std::string>& items, const std::string& separ
 }
 
 // Reads one document into a CycleSpec, collecting structural problems (types, unknown and missing
-// fields) and the YAML line of every field it visits.
-class SpecReader {
+// fields) and the YAML line of every field it visits. The field rules are core's YamlFieldReader.
+class SpecReader : public YamlFieldReader<YAML::Node> {
  public:
-  std::vector<InputProblem> problems;    // structural problems, fields already carry their line
-  std::set<std::string> reported;        // fields with a structural problem (their value is a placeholder)
-  std::map<std::string, int> lines;      // field path → YAML line (1-based)
+  SpecReader() : YamlFieldReader(YamlSectionWording::kSection) {}
 
   // Checks that `node` (the value of `path`) is a mapping with known keys only; records key lines.
   bool mapping(const YAML::Node& node, const std::string& path, const std::vector<std::string>& allowed) {
-    if (!node.IsMap()) {
-      type_problem(path, node, "must be a mapping of fields (" + join(allowed, ", ") + ")");
-      return false;
-    }
-    for (const auto& item : node) {
-      const std::string key = item.first.IsScalar() ? item.first.Scalar() : yaml_value_text(item.first);
-      const std::string field = child(path, key);
-      lines[field] = yaml_line(item.first);
-      if (std::find(allowed.begin(), allowed.end(), key) != allowed.end()) continue;
-      std::string message = "is not a known field; expected one of " + join(allowed, ", ");
-      const std::string best = closest_name(key, allowed, LetterCase::kSensitive);
-      if (!best.empty()) message += " (did you mean " + best + "?)";
-      add(field, yaml_line(item.first), message);
-    }
-    return true;
+    return check_mapping(node, path, allowed, "must be a mapping of fields (" + join(allowed, ", ") + ")");
   }
 
   // A number; absent: `fallback` (or, when required, a problem and NaN).
   double number(const YAML::Node& map, const std::string& path, const std::string& key, bool required,
                 double fallback, const std::string& meaning) {
-    const YAML::Node node = map[key];
-    if (!node) {
-      if (required) missing(map, path, key, meaning);
-      return required ? kNaN : fallback;
-    }
-    const std::string field = child(path, key);
-    double value = 0;
-    if (!node.IsScalar() || node.Tag() == "!" || !YAML::convert<double>::decode(node, value)) {
-      type_problem(field, node, "must be a number — " + meaning);
-      return kNaN;
-    }
-    return value;
+    if (!required && !map[key]) return fallback;
+    return YamlFieldReader::number(map, path, key, required, meaning).value_or(kNaN);
   }
 
   std::optional<double> optional_number(const YAML::Node& map, const std::string& path, const std::string& key,
@@ -104,32 +78,7 @@ class SpecReader {
 
   int integer(const YAML::Node& map, const std::string& path, const std::string& key, bool required, int fallback,
               const std::string& meaning) {
-    const YAML::Node node = map[key];
-    if (!node) {
-      if (required) missing(map, path, key, meaning);
-      return fallback;
-    }
-    long long value = 0;
-    if (!node.IsScalar() || node.Tag() == "!" || !YAML::convert<long long>::decode(node, value) ||
-        value < std::numeric_limits<int>::min() || value > std::numeric_limits<int>::max()) {
-      type_problem(child(path, key), node, "must be an integer — " + meaning);
-      return fallback;
-    }
-    return static_cast<int>(value);
-  }
-
-  std::string text(const YAML::Node& map, const std::string& path, const std::string& key, bool required,
-                   const std::string& meaning) {
-    const YAML::Node node = map[key];
-    if (!node) {
-      if (required) missing(map, path, key, meaning);
-      return {};
-    }
-    if (!node.IsScalar()) {
-      type_problem(child(path, key), node, "must be text — " + meaning);
-      return {};
-    }
-    return node.Scalar();
+    return YamlFieldReader::integer(map, path, key, required, meaning).value_or(fallback);
   }
 
   Point2 point(const YAML::Node& map, const std::string& path, const std::string& key, bool required,
@@ -248,19 +197,8 @@ class SpecReader {
     return result;
   }
 
-  void add(const std::string& field, int line, const std::string& message) {
-    problems.push_back({with_yaml_line(field, line), message});
-    reported.insert(field);
-  }
-
-  static std::string child(const std::string& path, const std::string& key) {
-    return path.empty() ? key : path + "." + key;
-  }
-
  private:
-  bool coordinate(const YAML::Node& node, double& value) {
-    return node.IsScalar() && node.Tag() != "!" && YAML::convert<double>::decode(node, value);
-  }
+  bool coordinate(const YAML::Node& node, double& value) { return decode_yaml_number(node, value); }
 
   // A value-range problem found while reading (stock contours), attributed like a structural one.
   void detail_check(const std::string& field, double value, const detail::Range& range, const std::string& why) {
@@ -269,17 +207,6 @@ class SpecReader {
     if (!detail::check(found, field, value, range, why)) add(field, lines.count(field) ? lines[field] : 0, found.front().message);
   }
 
-  void missing(const YAML::Node& map, const std::string& path, const std::string& key, const std::string& meaning) {
-    const std::string where =
-        path.empty() ? "" : " from the " + path + " section (line " + std::to_string(yaml_line(map)) + ")";
-    problems.push_back({child(path, key), "is missing" + where + ": required — " + meaning});
-    reported.insert(child(path, key));
-  }
-
-  void type_problem(const std::string& field, const YAML::Node& node, const std::string& expected) {
-    const std::string value = node.IsNull() ? "has no value" : "= " + yaml_value_text(node);
-    add(field, yaml_line(node), value + ": " + expected);
-  }
 };
 
 CycleGeometry read_corner(SpecReader& in, const YAML::Node& node) {
