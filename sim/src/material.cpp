@@ -15,6 +15,7 @@
 
 #include "feedplan/core/did_you_mean.hpp"
 #include "feedplan/core/number_text.hpp"
+#include "feedplan/core/yaml_fields.hpp"
 #include "feedplan/core/yaml_text.hpp"
 
 namespace feedplan::sim {
@@ -69,70 +70,23 @@ std::string join(const std::vector<std::string>& items, const std::string& separ
 
 std::string child(const std::string& path, const std::string& key) { return path.empty() ? key : path + "." + key; }
 
-// Collects structural and value problems while walking the YAML tree.
-class Reader {
+// Collects structural and value problems while walking the YAML tree. The field rules are core's
+// YamlFieldReader.
+class Reader : public YamlFieldReader<YAML::Node> {
  public:
-  std::vector<InputProblem> problems;
-
-  void add(const std::string& field, int line, const std::string& message) {
-    problems.push_back({with_yaml_line(field, line), message});
-  }
+  Reader() : YamlFieldReader(YamlSectionWording::kPath) {}
 
   // Checks that `node` (the value of `path`) is a mapping with known keys only.
   bool mapping(const YAML::Node& node, const std::string& path, const std::vector<std::string>& allowed,
                const std::string& what) {
-    if (!node.IsMap()) {
-      type_problem(path, node, "must be a mapping — " + what + " with fields " + join(allowed, ", "));
-      return false;
-    }
-    // Suggest among the fields not given yet: "kte_n_per_mm2" is one edit from both ktc_n_per_mm2
-    // and kte_n_per_mm, but only the missing one is meant.
-    std::vector<std::string> unused;
-    for (const auto& name : allowed) {
-      if (!node[name]) unused.push_back(name);
-    }
-    for (const auto& item : node) {
-      const std::string key = item.first.IsScalar() ? item.first.Scalar() : yaml_value_text(item.first);
-      if (std::find(allowed.begin(), allowed.end(), key) != allowed.end()) continue;
-      std::string message = "is not a known field; expected one of " + join(allowed, ", ");
-      std::string best = closest_name(key, unused, LetterCase::kIgnored);
-      if (best.empty()) best = closest_name(key, allowed, LetterCase::kIgnored);
-      if (!best.empty()) message += " (did you mean " + best + "?)";
-      add(child(path, key), yaml_line(item.first), message);
-    }
-    return true;
+    return check_mapping(node, path, allowed, "must be a mapping — " + what + " with fields " + join(allowed, ", "));
   }
 
   // A number at map[key]; nullopt (and a problem) when missing or not a number. ".nan" and ".inf" are
   // numbers here: the range checks report them with the allowed range.
   std::optional<double> number(const YAML::Node& map, const std::string& path, const std::string& key,
                                const std::string& meaning) {
-    const YAML::Node node = map[key];
-    if (!node) {
-      missing(map, path, key, meaning);
-      return std::nullopt;
-    }
-    double value = 0;
-    if (!node.IsScalar() || node.Tag() == "!" || !YAML::convert<double>::decode(node, value)) {
-      type_problem(child(path, key), node, "must be a number — " + meaning);
-      return std::nullopt;
-    }
-    return value;
-  }
-
-  // Text at map[key]; empty when missing (a problem only when required) or not text.
-  std::string text(const YAML::Node& map, const std::string& path, const std::string& key, bool required,
-                   const std::string& meaning) {
-    const YAML::Node node = map[key];
-    if (!node) {
-      if (required) missing(map, path, key, meaning);
-      return {};
-    }
-    if (!node.IsScalar()) {
-      type_problem(child(path, key), node, "must be text — " + meaning);
-      return {};
-    }
-    return node.Scalar();
+    return YamlFieldReader::number(map, path, key, true, meaning);
   }
 
   // Appends `<field> = <value>: must be ≥ 0 N/mm² — ...` unless the value is finite and in range.
@@ -144,17 +98,6 @@ class Reader {
         "= " + shortest_number_text(value) + ": must be " + (std::isfinite(value) ? "" : "a finite number ") + range +
             " — " + why);
   }
-
-  void missing(const YAML::Node& map, const std::string& path, const std::string& key, const std::string& meaning) {
-    const std::string where = path.empty() ? "" : " from " + path + " (line " + std::to_string(yaml_line(map)) + ")";
-    problems.push_back({child(path, key), "is missing" + where + ": required — " + meaning});
-  }
-
-  void type_problem(const std::string& field, const YAML::Node& node, const std::string& expected) {
-    const std::string value = node.IsNull() ? "has no value" : "= " + yaml_value_text(node);
-    add(field, yaml_line(node), value + ": " + expected);
-  }
-
 };
 
 // Where a name or alias was first used, to report duplicates.
@@ -268,7 +211,7 @@ Material read_material(Reader& in, const YAML::Node& node, const std::string& pa
     keys.emplace_back("size_effect");
     if (in.mapping(sources, sources_path, keys, "where single coefficients come from")) {
       for (const auto& item : sources) {
-        const std::string key = item.first.IsScalar() ? item.first.Scalar() : yaml_value_text(item.first);
+        const std::string key = yaml_key_text(item.first);
         if (std::find(keys.begin(), keys.end(), key) == keys.end()) continue;  // reported by mapping()
         if (!item.second.IsScalar() || trim(item.second.Scalar()).empty()) {
           in.type_problem(child(sources_path, key), item.second, "must be text saying where " + key + " comes from");
