@@ -389,8 +389,8 @@ bool read_geometry(SpecReader& in, const YAML::Node& root, CycleSpec& spec) {
   return section.IsMap();
 }
 
-// The value problems of a spec read without structural problems in its geometry; without geometry,
-// those of the tool and the rest.
+// The value problems of `spec`: all of them when its cycle section was read as a mapping; without
+// geometry to check, still those of the tool and the rest.
 std::vector<InputProblem> validate_read_spec(const CycleSpec& spec, bool have_geometry) {
   if (have_geometry) return validate(spec);
   std::vector<InputProblem> semantic = validate_tool(spec.tool);
