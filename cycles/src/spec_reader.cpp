@@ -14,8 +14,8 @@
 #include <vector>
 
 #include "common_checks.hpp"
-#include "feedplan/core/did_you_mean.hpp"
 #include "feedplan/core/input_error.hpp"
+#include "feedplan/core/yaml_fields.hpp"
 #include "feedplan/core/yaml_text.hpp"
 #include "feedplan/cycles/cycle.hpp"
 #include "problems.hpp"
@@ -40,47 +40,21 @@ std::string join(const std::vector<std::string>& items, const std::string& separ
 }
 
 // Reads one document into a CycleSpec, collecting structural problems (types, unknown and missing
-// fields) and the YAML line of every field it visits.
-class SpecReader {
+// fields) and the YAML line of every field it visits. The field rules are core's YamlFieldReader.
+class SpecReader : public YamlFieldReader<YAML::Node> {
  public:
-  std::vector<InputProblem> problems;    // structural problems, fields already carry their line
-  std::set<std::string> reported;        // fields with a structural problem (their value is a placeholder)
-  std::map<std::string, int> lines;      // field path → YAML line (1-based)
+  SpecReader() : YamlFieldReader(YamlSectionWording::kSection) {}
 
   // Checks that `node` (the value of `path`) is a mapping with known keys only; records key lines.
   bool mapping(const YAML::Node& node, const std::string& path, const std::vector<std::string>& allowed) {
-    if (!node.IsMap()) {
-      type_problem(path, node, "must be a mapping of fields (" + join(allowed, ", ") + ")");
-      return false;
-    }
-    for (const auto& item : node) {
-      const std::string key = item.first.IsScalar() ? item.first.Scalar() : yaml_value_text(item.first);
-      const std::string field = child(path, key);
-      lines[field] = yaml_line(item.first);
-      if (std::find(allowed.begin(), allowed.end(), key) != allowed.end()) continue;
-      std::string message = "is not a known field; expected one of " + join(allowed, ", ");
-      const std::string best = closest_name(key, allowed, LetterCase::kSensitive);
-      if (!best.empty()) message += " (did you mean " + best + "?)";
-      add(field, yaml_line(item.first), message);
-    }
-    return true;
+    return check_mapping(node, path, allowed, "must be a mapping of fields (" + join(allowed, ", ") + ")");
   }
 
   // A number; absent: `fallback` (or, when required, a problem and NaN).
   double number(const YAML::Node& map, const std::string& path, const std::string& key, bool required,
                 double fallback, const std::string& meaning) {
-    const YAML::Node node = map[key];
-    if (!node) {
-      if (required) missing(map, path, key, meaning);
-      return required ? kNaN : fallback;
-    }
-    const std::string field = child(path, key);
-    double value = 0;
-    if (!node.IsScalar() || node.Tag() == "!" || !YAML::convert<double>::decode(node, value)) {
-      type_problem(field, node, "must be a number — " + meaning);
-      return kNaN;
-    }
-    return value;
+    if (!required && !map[key]) return fallback;
+    return YamlFieldReader::number(map, path, key, required, meaning).value_or(kNaN);
   }
 
   std::optional<double> optional_number(const YAML::Node& map, const std::string& path, const std::string& key,
@@ -104,32 +78,7 @@ class SpecReader {
 
   int integer(const YAML::Node& map, const std::string& path, const std::string& key, bool required, int fallback,
               const std::string& meaning) {
-    const YAML::Node node = map[key];
-    if (!node) {
-      if (required) missing(map, path, key, meaning);
-      return fallback;
-    }
-    long long value = 0;
-    if (!node.IsScalar() || node.Tag() == "!" || !YAML::convert<long long>::decode(node, value) ||
-        value < std::numeric_limits<int>::min() || value > std::numeric_limits<int>::max()) {
-      type_problem(child(path, key), node, "must be an integer — " + meaning);
-      return fallback;
-    }
-    return static_cast<int>(value);
-  }
-
-  std::string text(const YAML::Node& map, const std::string& path, const std::string& key, bool required,
-                   const std::string& meaning) {
-    const YAML::Node node = map[key];
-    if (!node) {
-      if (required) missing(map, path, key, meaning);
-      return {};
-    }
-    if (!node.IsScalar()) {
-      type_problem(child(path, key), node, "must be text — " + meaning);
-      return {};
-    }
-    return node.Scalar();
+    return YamlFieldReader::integer(map, path, key, required, meaning).value_or(fallback);
   }
 
   Point2 point(const YAML::Node& map, const std::string& path, const std::string& key, bool required,
@@ -248,19 +197,8 @@ class SpecReader {
     return result;
   }
 
-  void add(const std::string& field, int line, const std::string& message) {
-    problems.push_back({with_yaml_line(field, line), message});
-    reported.insert(field);
-  }
-
-  static std::string child(const std::string& path, const std::string& key) {
-    return path.empty() ? key : path + "." + key;
-  }
-
  private:
-  bool coordinate(const YAML::Node& node, double& value) {
-    return node.IsScalar() && node.Tag() != "!" && YAML::convert<double>::decode(node, value);
-  }
+  bool coordinate(const YAML::Node& node, double& value) { return decode_yaml_number(node, value); }
 
   // A value-range problem found while reading (stock contours), attributed like a structural one.
   void detail_check(const std::string& field, double value, const detail::Range& range, const std::string& why) {
@@ -269,17 +207,6 @@ class SpecReader {
     if (!detail::check(found, field, value, range, why)) add(field, lines.count(field) ? lines[field] : 0, found.front().message);
   }
 
-  void missing(const YAML::Node& map, const std::string& path, const std::string& key, const std::string& meaning) {
-    const std::string where =
-        path.empty() ? "" : " from the " + path + " section (line " + std::to_string(yaml_line(map)) + ")";
-    problems.push_back({child(path, key), "is missing" + where + ": required — " + meaning});
-    reported.insert(child(path, key));
-  }
-
-  void type_problem(const std::string& field, const YAML::Node& node, const std::string& expected) {
-    const std::string value = node.IsNull() ? "has no value" : "= " + yaml_value_text(node);
-    add(field, yaml_line(node), value + ": " + expected);
-  }
 };
 
 CycleGeometry read_corner(SpecReader& in, const YAML::Node& node) {
@@ -356,6 +283,121 @@ CycleGeometry read_pocket(SpecReader& in, const YAML::Node& node) {
   return g;
 }
 
+// A cycle spec document must be a mapping; anything else says what was expected.
+void require_spec_mapping(const YAML::Node& root, const std::string& source_name) {
+  if (!root || root.IsNull()) {
+    throw InputError(source_name, "is empty: expected a cycle spec, a YAML mapping with cycle, tool, axial_depth_mm "
+                                  "and the cycle's section (see samples/*.yaml)");
+  }
+  if (!root.IsMap()) {
+    throw InputError(source_name, "is not a YAML mapping (it is " + std::string(root.IsSequence() ? "a list" : "a single value") +
+                                      "): expected fields such as cycle: trochoid, tool: {diameter_mm: 10, flutes: 4}");
+  }
+}
+
+std::vector<std::string> top_level_fields() {
+  std::vector<std::string> top_fields = {"cycle", "tool", "material", "spindle_rpm", "axial_depth_mm",
+                                         "target_force_n", "machine", "clearance_z_mm", "stock"};
+  top_fields.insert(top_fields.end(), kCycleNames.begin(), kCycleNames.end());
+  return top_fields;
+}
+
+// spec.cycle; true when it names a known cycle (an unknown name is a problem).
+bool read_cycle_name(SpecReader& in, const YAML::Node& root, CycleSpec& spec) {
+  spec.cycle = in.text(root, "", "cycle", true, "one of " + join(kCycleNames, ", "));
+  const bool cycle_known = std::find(kCycleNames.begin(), kCycleNames.end(), spec.cycle) != kCycleNames.end();
+  if (!cycle_known && in.reported.count("cycle") == 0) {
+    in.add("cycle", yaml_line(root["cycle"]),
+           "= " + yaml_value_text(root["cycle"]) + ": unknown cycle; expected one of " + join(kCycleNames, ", "));
+  }
+  return cycle_known;
+}
+
+// The tool section; a missing or malformed one leaves the diameter NaN.
+void read_tool(SpecReader& in, const YAML::Node& root, geometry::Tool& tool_spec) {
+  if (const YAML::Node tool = root["tool"]) {
+    if (in.mapping(tool, "tool", {"diameter_mm", "flutes", "helix_deg", "name"})) {
+      tool_spec.diameter_mm = in.number(tool, "tool", "diameter_mm", true, kNaN, "cutting diameter of the end mill in mm");
+      tool_spec.flutes = in.integer(tool, "tool", "flutes", true, 4, "number of teeth");
+      tool_spec.helix_deg = in.number(tool, "tool", "helix_deg", false, 30.0, "helix angle in deg");
+      tool_spec.name = in.text(tool, "tool", "name", false, "free text shown in reports");
+    } else {
+      tool_spec.diameter_mm = kNaN;
+    }
+  } else {
+    in.text(root, "", "tool", true, "the end mill: {diameter_mm, flutes, helix_deg, name}");
+    tool_spec.diameter_mm = kNaN;
+  }
+}
+
+// Material, spindle speed, target force, clearance and axial depth (required for layered cycles).
+void read_cutting_conditions(SpecReader& in, const YAML::Node& root, CycleSpec& spec) {
+  spec.material = in.text(root, "", "material", false, "workpiece material name");
+  spec.spindle_rpm = in.positive_if_given(root, "", "spindle_rpm", "spindle speed in rev/min");
+  spec.target_force_n = in.positive_if_given(root, "", "target_force_n", "cutting force to hold in N");
+  spec.clearance_z_mm = in.number(root, "", "clearance_z_mm", false, 5.0, "rapid height above the stock top in mm");
+  const bool layered = spec.cycle == "corner" || spec.cycle == "trochoid" || spec.cycle == "spiral";
+  spec.axial_depth_mm = in.number(root, "", "axial_depth_mm", layered, 0.0, "axial depth of cut A_d in mm");
+}
+
+// The optional machine section over the defaults in spec.machine.
+void read_machine(SpecReader& in, const YAML::Node& root, CycleSpec& spec) {
+  const YAML::Node machine = root["machine"];
+  if (!machine) return;
+  const std::string p = "machine";
+  if (!in.mapping(machine, p, {"max_feed_mm_per_min", "min_feed_mm_per_min", "max_accel_mm_per_s2",
+                              "rapid_feed_mm_per_min", "block_time_min_s"})) {
+    return;
+  }
+  MachineLimits& m = spec.machine;
+  m.max_feed_mm_per_min = in.number(machine, p, "max_feed_mm_per_min", false, m.max_feed_mm_per_min, "mm/min");
+  m.min_feed_mm_per_min = in.number(machine, p, "min_feed_mm_per_min", false, m.min_feed_mm_per_min, "mm/min");
+  m.max_accel_mm_per_s2 = in.number(machine, p, "max_accel_mm_per_s2", false, m.max_accel_mm_per_s2, "mm/s²");
+  m.rapid_feed_mm_per_min = in.number(machine, p, "rapid_feed_mm_per_min", false, m.rapid_feed_mm_per_min, "mm/min");
+  m.block_time_min_s = in.number(machine, p, "block_time_min_s", false, m.block_time_min_s, "s");
+}
+
+// A section for a cycle other than `cycle` is a problem: it would be silently ignored.
+void report_sections_of_other_cycles(SpecReader& in, const YAML::Node& root, const std::string& cycle) {
+  for (const auto& name : kCycleNames) {
+    if (name == cycle || !root[name]) continue;
+    in.add(name, yaml_line(root[name]),
+           "is a section for cycle " + name + ", but cycle is " + (cycle.empty() ? "not given" : cycle) +
+               ": remove it or change cycle");
+  }
+}
+
+// The known cycle's section into spec.geometry; true when it was a mapping (otherwise the reader
+// reported it and the values are placeholders).
+bool read_geometry(SpecReader& in, const YAML::Node& root, CycleSpec& spec) {
+  const YAML::Node section = root[spec.cycle];
+  if (!section) {
+    in.text(root, "", spec.cycle, true, "the " + spec.cycle + " cycle's parameters");
+    return false;
+  }
+  if (spec.cycle == "corner") {
+    spec.geometry = read_corner(in, section);
+  } else if (spec.cycle == "trochoid") {
+    spec.geometry = read_trochoid(in, section);
+  } else if (spec.cycle == "spiral") {
+    spec.geometry = read_spiral(in, section);
+  } else if (spec.cycle == "helical_boring") {
+    spec.geometry = read_helical_boring(in, section);
+  } else {
+    spec.geometry = read_pocket(in, section);
+  }
+  return section.IsMap();
+}
+
+// The value problems of `spec`: all of them when its cycle section was read as a mapping; without
+// geometry to check, still those of the tool and the rest.
+std::vector<InputProblem> validate_read_spec(const CycleSpec& spec, bool have_geometry) {
+  if (have_geometry) return validate(spec);
+  std::vector<InputProblem> semantic = validate_tool(spec.tool);
+  for (auto& problem : detail::validate_common(spec)) semantic.push_back(std::move(problem));
+  return semantic;
+}
+
 // The line of `field` or, failing that, of its nearest recorded ancestor ("a.b[2].c" → "a.b[2]" → "a.b").
 int line_for(const std::map<std::string, int>& lines, std::string field) {
   while (!field.empty()) {
@@ -382,6 +424,35 @@ std::string stock_part_of(const std::string& field) {
 bool is_within(const std::string& field, const std::string& part) {
   if (field.rfind(part, 0) != 0) return false;
   return field.size() == part.size() || field[part.size()] == '.' || field[part.size()] == '[';
+}
+
+// Contours (or z fields, or the region list) of the stock that had structural problems hold
+// placeholders: geometry::validate's findings about them would only repeat those problems.
+std::vector<std::string> bad_stock_parts(const std::set<std::string>& reported) {
+  std::vector<std::string> parts;
+  for (const auto& field : reported) {
+    if (field.rfind("stock", 0) == 0) parts.push_back(stock_part_of(field));
+  }
+  return parts;
+}
+
+// Drops the problems about fields within any of `parts`.
+void drop_problems_within(std::vector<InputProblem>& problems, const std::vector<std::string>& parts) {
+  std::erase_if(problems, [&](const InputProblem& p) {
+    return std::any_of(parts.begin(), parts.end(), [&](const std::string& part) { return is_within(p.field, part); });
+  });
+}
+
+// The reader's structural problems, then the value problems of fields it did not report, each
+// field with its line.
+std::vector<InputProblem> structural_then_semantic(SpecReader& in, std::vector<InputProblem> semantic) {
+  std::vector<InputProblem> problems = std::move(in.problems);
+  for (auto& problem : semantic) {
+    if (in.reported.count(problem.field) != 0) continue;
+    problem.field = with_yaml_line(problem.field, line_for(in.lines, problem.field));
+    problems.push_back(std::move(problem));
+  }
+  return problems;
 }
 
 // Parses YAML text; malformed YAML is an InputError naming the source, line and column.
@@ -416,114 +487,22 @@ CycleSpec read_cycle_spec(const std::string& yaml_text, const std::string& sourc
   const YAML::Node loaded = load_yaml(yaml_text, source_name);
   // Const access only: a non-const operator[] may add the key it looks up.
   const YAML::Node& root = loaded;
-  if (!root || root.IsNull()) {
-    throw InputError(source_name, "is empty: expected a cycle spec, a YAML mapping with cycle, tool, axial_depth_mm "
-                                  "and the cycle's section (see samples/*.yaml)");
-  }
-  if (!root.IsMap()) {
-    throw InputError(source_name, "is not a YAML mapping (it is " + std::string(root.IsSequence() ? "a list" : "a single value") +
-                                      "): expected fields such as cycle: trochoid, tool: {diameter_mm: 10, flutes: 4}");
-  }
+  require_spec_mapping(root, source_name);
 
   SpecReader in;
-  std::vector<std::string> top_fields = {"cycle", "tool", "material", "spindle_rpm", "axial_depth_mm",
-                                         "target_force_n", "machine", "clearance_z_mm", "stock"};
-  top_fields.insert(top_fields.end(), kCycleNames.begin(), kCycleNames.end());
-  in.mapping(root, "", top_fields);
-
+  in.mapping(root, "", top_level_fields());
   CycleSpec spec;
-  spec.cycle = in.text(root, "", "cycle", true, "one of " + join(kCycleNames, ", "));
-  const bool cycle_known = std::find(kCycleNames.begin(), kCycleNames.end(), spec.cycle) != kCycleNames.end();
-  if (!cycle_known && in.reported.count("cycle") == 0) {
-    in.add("cycle", yaml_line(root["cycle"]),
-           "= " + yaml_value_text(root["cycle"]) + ": unknown cycle; expected one of " + join(kCycleNames, ", "));
-  }
-
-  if (const YAML::Node tool = root["tool"]) {
-    if (in.mapping(tool, "tool", {"diameter_mm", "flutes", "helix_deg", "name"})) {
-      spec.tool.diameter_mm = in.number(tool, "tool", "diameter_mm", true, kNaN, "cutting diameter of the end mill in mm");
-      spec.tool.flutes = in.integer(tool, "tool", "flutes", true, 4, "number of teeth");
-      spec.tool.helix_deg = in.number(tool, "tool", "helix_deg", false, 30.0, "helix angle in deg");
-      spec.tool.name = in.text(tool, "tool", "name", false, "free text shown in reports");
-    } else {
-      spec.tool.diameter_mm = kNaN;
-    }
-  } else {
-    in.text(root, "", "tool", true, "the end mill: {diameter_mm, flutes, helix_deg, name}");
-    spec.tool.diameter_mm = kNaN;
-  }
-  spec.material = in.text(root, "", "material", false, "workpiece material name");
-  spec.spindle_rpm = in.positive_if_given(root, "", "spindle_rpm", "spindle speed in rev/min");
-  spec.target_force_n = in.positive_if_given(root, "", "target_force_n", "cutting force to hold in N");
-  spec.clearance_z_mm = in.number(root, "", "clearance_z_mm", false, 5.0, "rapid height above the stock top in mm");
-  const bool layered = spec.cycle == "corner" || spec.cycle == "trochoid" || spec.cycle == "spiral";
-  spec.axial_depth_mm = in.number(root, "", "axial_depth_mm", layered, 0.0, "axial depth of cut A_d in mm");
-  if (const YAML::Node machine = root["machine"]) {
-    const std::string p = "machine";
-    if (in.mapping(machine, p, {"max_feed_mm_per_min", "min_feed_mm_per_min", "max_accel_mm_per_s2",
-                                "rapid_feed_mm_per_min", "block_time_min_s"})) {
-      MachineLimits& m = spec.machine;
-      m.max_feed_mm_per_min = in.number(machine, p, "max_feed_mm_per_min", false, m.max_feed_mm_per_min, "mm/min");
-      m.min_feed_mm_per_min = in.number(machine, p, "min_feed_mm_per_min", false, m.min_feed_mm_per_min, "mm/min");
-      m.max_accel_mm_per_s2 = in.number(machine, p, "max_accel_mm_per_s2", false, m.max_accel_mm_per_s2, "mm/s²");
-      m.rapid_feed_mm_per_min = in.number(machine, p, "rapid_feed_mm_per_min", false, m.rapid_feed_mm_per_min, "mm/min");
-      m.block_time_min_s = in.number(machine, p, "block_time_min_s", false, m.block_time_min_s, "s");
-    }
-  }
+  const bool cycle_known = read_cycle_name(in, root, spec);
+  read_tool(in, root, spec.tool);
+  read_cutting_conditions(in, root, spec);
+  read_machine(in, root, spec);
   if (const YAML::Node stock = root["stock"]) spec.stock = in.stock(stock, "stock");
+  report_sections_of_other_cycles(in, root, spec.cycle);
+  const bool have_geometry = cycle_known && read_geometry(in, root, spec);
 
-  for (const auto& name : kCycleNames) {
-    if (name == spec.cycle || !root[name]) continue;
-    in.add(name, yaml_line(root[name]),
-           "is a section for cycle " + name + ", but cycle is " + (spec.cycle.empty() ? "not given" : spec.cycle) +
-               ": remove it or change cycle");
-  }
-
-  bool have_geometry = false;
-  if (cycle_known) {
-    const YAML::Node section = root[spec.cycle];
-    if (!section) {
-      in.text(root, "", spec.cycle, true, "the " + spec.cycle + " cycle's parameters");
-    } else {
-      have_geometry = section.IsMap();  // otherwise the reader reports it and the values are placeholders
-      if (spec.cycle == "corner") {
-        spec.geometry = read_corner(in, section);
-      } else if (spec.cycle == "trochoid") {
-        spec.geometry = read_trochoid(in, section);
-      } else if (spec.cycle == "spiral") {
-        spec.geometry = read_spiral(in, section);
-      } else if (spec.cycle == "helical_boring") {
-        spec.geometry = read_helical_boring(in, section);
-      } else {
-        spec.geometry = read_pocket(in, section);
-      }
-    }
-  }
-  std::vector<InputProblem> semantic;
-  if (have_geometry) {
-    semantic = validate(spec);
-  } else {
-    // No geometry to check: still check the tool and the rest.
-    semantic = validate_tool(spec.tool);
-    for (auto& problem : detail::validate_common(spec)) semantic.push_back(std::move(problem));
-  }
-  // Contours (or z fields, or the region list) of the stock that had structural problems hold
-  // placeholders: geometry::validate's findings about them would only repeat those problems.
-  std::vector<std::string> bad_stock_parts;
-  for (const auto& field : in.reported) {
-    if (field.rfind("stock", 0) == 0) bad_stock_parts.push_back(stock_part_of(field));
-  }
-  std::erase_if(semantic, [&](const InputProblem& p) {
-    return std::any_of(bad_stock_parts.begin(), bad_stock_parts.end(),
-                       [&](const std::string& part) { return is_within(p.field, part); });
-  });
-
-  std::vector<InputProblem> problems = std::move(in.problems);
-  for (auto& problem : semantic) {
-    if (in.reported.count(problem.field) != 0) continue;
-    problem.field = with_yaml_line(problem.field, line_for(in.lines, problem.field));
-    problems.push_back(std::move(problem));
-  }
+  std::vector<InputProblem> semantic = validate_read_spec(spec, have_geometry);
+  drop_problems_within(semantic, bad_stock_parts(in.reported));
+  std::vector<InputProblem> problems = structural_then_semantic(in, std::move(semantic));
   if (!problems.empty()) throw InputError(std::move(problems));
   return spec;
 }
@@ -550,14 +529,11 @@ geometry::Stock read_stock_spec(const std::string& yaml_text, const std::string&
   } else {
     in.text(root, "", "stock", true, "the workpiece: {z_bottom_mm, z_top_mm, regions: [{outer: contour, holes: [...]}]}");
   }
-  std::vector<std::string> bad_stock_parts;
-  for (const auto& field : in.reported) {
-    if (field.rfind("stock", 0) == 0) bad_stock_parts.push_back(stock_part_of(field));
-  }
+  const std::vector<std::string> bad_parts = bad_stock_parts(in.reported);
   std::vector<InputProblem> problems = std::move(in.problems);
   if (root["stock"]) {
     for (auto& problem : geometry::validate(stock, "stock")) {
-      const bool repeats = std::any_of(bad_stock_parts.begin(), bad_stock_parts.end(),
+      const bool repeats = std::any_of(bad_parts.begin(), bad_parts.end(),
                                        [&](const std::string& part) { return is_within(problem.field, part); });
       if (repeats || in.reported.count(problem.field) != 0) continue;
       problem.field = with_yaml_line(problem.field, line_for(in.lines, problem.field));

@@ -3,7 +3,10 @@
 #include <cctype>
 #include <cmath>
 #include <cstdlib>
+#include <optional>
 #include <string>
+#include <utility>
+#include <vector>
 
 namespace feedplan::gcode::detail {
 
@@ -51,13 +54,9 @@ std::string stray_character_message(char c) {
   return "character " + quoted + ": not part of any G-code word";
 }
 
-}  // namespace
-
-LexedLine lex_line(std::string_view text, int line, ProblemLog& problems) {
-  LexedLine result;
-  if (!text.empty() && text.back() == '\r') text.remove_suffix(1);
-
-  // Pass 1: drop comments and spaces, upper-case the rest.
+// Pass 1: the line without comments and spaces, upper-cased; nullopt (and a problem) when a comment
+// is not closed, nested or has no '('.
+std::optional<std::string> code_of(std::string_view text, int line, ProblemLog& problems) {
   std::string code;
   for (std::size_t i = 0; i < text.size(); ++i) {
     const char c = text[i];
@@ -68,81 +67,93 @@ LexedLine lex_line(std::string_view text, int line, ProblemLog& problems) {
       if (close == std::string_view::npos) {
         problems.add(line, "comment: '(' at column " + std::to_string(i + 1) +
                                " is not closed; a comment must end with ')' on the same line");
-        result.ok = false;
-        return result;
+        return std::nullopt;
       }
       if (nested < close) {
         problems.add(line, "comment: '(' at column " + std::to_string(nested + 1) +
                                " inside a comment; comments cannot be nested");
-        result.ok = false;
-        return result;
+        return std::nullopt;
       }
       i = close;
       continue;
     }
     if (c == ')') {
       problems.add(line, "comment: ')' at column " + std::to_string(i + 1) + " has no matching '('");
-      result.ok = false;
-      return result;
+      return std::nullopt;
     }
     if (is_space(c)) continue;
     code += static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
   }
+  return code;
+}
 
-  if (code == "%") {
+// Pass 2: the word starting at code[i] (after the `words` before it); advances `i` past it. Nullopt
+// (and a problem) when there is no letter, no number or a bad one, or an O word out of place.
+std::optional<Word> next_word(const std::string& code, std::size_t& i, const std::vector<Word>& words, int line,
+                              ProblemLog& problems) {
+  const char letter = code[i];
+  if (letter < 'A' || letter > 'Z') {
+    problems.add(line, stray_character_message(letter));
+    return std::nullopt;
+  }
+  std::size_t end = i + 1;
+  while (end < code.size() && is_number_char(code[end])) ++end;
+  const std::string number = code.substr(i + 1, end - i - 1);
+  const std::string word = code.substr(i, end - i);
+  if (letter == 'O' && number.empty()) {
+    problems.add(line, "word O: not supported (named O words are subroutines and control flow, which the reader "
+                       "does not run; an O word may only number the program, like O1000)");
+    return std::nullopt;
+  }
+  if (number.empty()) {
+    std::string found;
+    for (std::size_t k = end; k < code.size() && k < end + 12 && !is_number_char(code[k]); ++k) found += code[k];
+    problems.add(line, "word " + std::string(1, letter) + ": needs a number after the letter" +
+                           (found.empty() ? std::string() : ", found \"" + found + "\""));
+    return std::nullopt;
+  }
+  if (!is_plain_decimal(number)) {
+    problems.add(line, "word " + word + ": \"" + number +
+                           "\" is not a number (an optional sign, digits and at most one decimal point)");
+    return std::nullopt;
+  }
+  const double value = std::strtod(number.c_str(), nullptr);
+  if (!std::isfinite(value)) {
+    problems.add(line, "word " + std::string(1, letter) + ": the number is out of range");
+    return std::nullopt;
+  }
+  const bool only_line_number_before = words.empty() || (words.size() == 1 && words[0].letter == 'N');
+  if (letter == 'O' && (end < code.size() || !only_line_number_before)) {
+    problems.add(line, "word " + word + ": not supported here (an O word may only number the program, "
+                           "alone on its line; O-word subroutines and control flow are not supported)");
+    return std::nullopt;
+  }
+  i = end;
+  return Word{letter, value, word};
+}
+
+}  // namespace
+
+LexedLine lex_line(std::string_view text, int line, ProblemLog& problems) {
+  LexedLine result;
+  if (!text.empty() && text.back() == '\r') text.remove_suffix(1);
+  const std::optional<std::string> code = code_of(text, line, problems);
+  if (!code) {
+    result.ok = false;
+    return result;
+  }
+  if (*code == "%") {
     result.percent = true;
     return result;
   }
-
-  // Pass 2: words.
   std::size_t i = 0;
-  while (i < code.size()) {
-    const char letter = code[i];
-    if (letter < 'A' || letter > 'Z') {
-      problems.add(line, stray_character_message(letter));
+  while (i < code->size()) {
+    std::optional<Word> word = next_word(*code, i, result.words, line, problems);
+    if (!word) {
       result.ok = false;
       return result;
     }
-    std::size_t end = i + 1;
-    while (end < code.size() && is_number_char(code[end])) ++end;
-    const std::string number = code.substr(i + 1, end - i - 1);
-    const std::string word = code.substr(i, end - i);
-    if (letter == 'O' && number.empty()) {
-      problems.add(line, "word O: not supported (named O words are subroutines and control flow, which the reader "
-                         "does not run; an O word may only number the program, like O1000)");
-      result.ok = false;
-      return result;
-    }
-    if (number.empty()) {
-      std::string found;
-      for (std::size_t k = end; k < code.size() && k < end + 12 && !is_number_char(code[k]); ++k) found += code[k];
-      problems.add(line, "word " + std::string(1, letter) + ": needs a number after the letter" +
-                             (found.empty() ? std::string() : ", found \"" + found + "\""));
-      result.ok = false;
-      return result;
-    }
-    if (!is_plain_decimal(number)) {
-      problems.add(line, "word " + word + ": \"" + number +
-                             "\" is not a number (an optional sign, digits and at most one decimal point)");
-      result.ok = false;
-      return result;
-    }
-    const double value = std::strtod(number.c_str(), nullptr);
-    if (!std::isfinite(value)) {
-      problems.add(line, "word " + std::string(1, letter) + ": the number is out of range");
-      result.ok = false;
-      return result;
-    }
-    const bool only_line_number_before =
-        result.words.empty() || (result.words.size() == 1 && result.words[0].letter == 'N');
-    if (letter == 'O' && (end < code.size() || !only_line_number_before)) {
-      problems.add(line, "word " + word + ": not supported here (an O word may only number the program, "
-                             "alone on its line; O-word subroutines and control flow are not supported)");
-      result.ok = false;
-      return result;
-    }
-    result.words.push_back({letter, value, word});
-    i = end;
+    result.words.push_back(std::move(*word));
   }
   return result;
 }

@@ -115,6 +115,73 @@ const char* motion_name(MoveKind kind) {
   return "?";
 }
 
+// Move `i` must start where move i - 1 ends: G-code gives end points only.
+void check_continuity(const std::vector<Move>& moves, std::size_t i, const std::string& field, Problems& problems) {
+  const Move& m = moves[i];
+  if (i == 0 || !finite_point(m.start) || !finite_point(moves[i - 1].end)) return;
+  const Point3& previous = moves[i - 1].end;
+  const double gap = std::hypot(std::hypot(m.start.x_mm - previous.x_mm, m.start.y_mm - previous.y_mm),
+                                m.start.z_mm - previous.z_mm);
+  if (gap > kContinuityMm) {
+    problems.add(field + ".start", "is " + number(gap) + " mm from the end of move " + std::to_string(i - 1) +
+                                       ": G-code gives end points only, so each move must start where the "
+                                       "previous one ends (within 1 µm)");
+  }
+}
+
+// An arc's centre and sweep must be finite, its end on its circle and where the sweep leads.
+void check_arc(const Move& m, const std::string& field, Problems& problems) {
+  const std::array<std::pair<const char*, double>, 2> centre = {{{"x_mm", m.center.x_mm}, {"y_mm", m.center.y_mm}}};
+  bool centre_ok = true;
+  for (const auto& [name, value] : centre) {
+    if (!std::isfinite(value) || std::abs(value) > kCoordinateLimitMm) {
+      problems.add(field + ".center." + name, "= " + number(value) + ": must be finite and within ±99999 mm");
+      centre_ok = false;
+    }
+  }
+  if (!(m.sweep_rad > 0.0) || !std::isfinite(m.sweep_rad)) {
+    problems.add(field + ".sweep_rad", "= " + number(m.sweep_rad) + ": an arc's sweep must be finite and > 0");
+    centre_ok = false;
+  }
+  if (!centre_ok || !finite_point(m.start) || !finite_point(m.end)) return;
+  const double r0 = geometry::arc_radius_mm(m);
+  const double r1 = std::hypot(m.end.x_mm - m.center.x_mm, m.end.y_mm - m.center.y_mm);
+  if (!(r0 > kContinuityMm)) {
+    problems.add(field + ".center", "is the start point: an arc needs a radius > 1 µm");
+  } else if (std::abs(r0 - r1) > kContinuityMm) {
+    problems.add(field + ".end", "is " + number(std::abs(r0 - r1)) + " mm off the arc's circle (radius " +
+                                     number(r0) + " mm at the start, " + number(r1) + " mm at the end)");
+  } else {
+    const Point3 reached = geometry::point_at(m, 1.0);
+    const double miss = std::hypot(reached.x_mm - m.end.x_mm, reached.y_mm - m.end.y_mm);
+    if (miss > 10 * kContinuityMm) {
+      problems.add(field + ".sweep_rad", "= " + number(m.sweep_rad) + ": the arc ends " + number(miss) +
+                                             " mm from its end point");
+    }
+  }
+}
+
+// Block `i` (of a move of `kind`): feed, spindle speed and direction, dwell.
+void check_block(const BlockCommand& b, MoveKind kind, std::size_t i, Problems& problems) {
+  const std::string block_field = "program.blocks[" + std::to_string(i) + "]";
+  if (kind != MoveKind::kRapid && (!std::isfinite(b.feed_mm_per_min) || !(b.feed_mm_per_min >= kMinimumFeedMmPerMin))) {
+    problems.add(block_field + ".feed_mm_per_min",
+                 "= " + number(b.feed_mm_per_min) + ": a feed move (" + motion_name(kind) +
+                     ") needs a finite F ≥ 0.05 mm/min (F is written with 1 decimal)");
+  }
+  if (!std::isfinite(b.spindle_rpm) || b.spindle_rpm < 0.0 || b.spindle_rpm > 999999.0) {
+    problems.add(block_field + ".spindle_rpm", "= " + number(b.spindle_rpm) + ": must be finite, in [0, 999999]");
+  }
+  if (b.spindle != SpindleDirection::kOff && b.spindle != SpindleDirection::kClockwise &&
+      b.spindle != SpindleDirection::kCounterClockwise) {
+    problems.add(block_field + ".spindle", "= " + std::to_string(static_cast<int>(b.spindle)) +
+                                               ": not a SpindleDirection");
+  }
+  if (!std::isfinite(b.dwell_before_s) || b.dwell_before_s < 0.0) {
+    problems.add(block_field + ".dwell_before_s", "= " + number(b.dwell_before_s) + ": must be finite and ≥ 0 s");
+  }
+}
+
 // Everything write_gcode needs from the program (the header lists it).
 void check_program(const geometry::Program& program, Problems& problems) {
   const auto& moves = program.path.moves;
@@ -132,67 +199,9 @@ void check_program(const geometry::Program& program, Problems& problems) {
     }
     check_point(m.start, field + ".start", problems);
     check_point(m.end, field + ".end", problems);
-    if (i > 0 && finite_point(m.start) && finite_point(moves[i - 1].end)) {
-      const Point3& previous = moves[i - 1].end;
-      const double gap = std::hypot(std::hypot(m.start.x_mm - previous.x_mm, m.start.y_mm - previous.y_mm),
-                                    m.start.z_mm - previous.z_mm);
-      if (gap > kContinuityMm) {
-        problems.add(field + ".start", "is " + number(gap) + " mm from the end of move " + std::to_string(i - 1) +
-                                           ": G-code gives end points only, so each move must start where the "
-                                           "previous one ends (within 1 µm)");
-      }
-    }
-    if (m.kind == MoveKind::kArc) {
-      const std::array<std::pair<const char*, double>, 2> centre = {{{"x_mm", m.center.x_mm}, {"y_mm", m.center.y_mm}}};
-      bool centre_ok = true;
-      for (const auto& [name, value] : centre) {
-        if (!std::isfinite(value) || std::abs(value) > kCoordinateLimitMm) {
-          problems.add(field + ".center." + name, "= " + number(value) + ": must be finite and within ±99999 mm");
-          centre_ok = false;
-        }
-      }
-      if (!(m.sweep_rad > 0.0) || !std::isfinite(m.sweep_rad)) {
-        problems.add(field + ".sweep_rad", "= " + number(m.sweep_rad) + ": an arc's sweep must be finite and > 0");
-        centre_ok = false;
-      }
-      if (centre_ok && finite_point(m.start) && finite_point(m.end)) {
-        const double r0 = geometry::arc_radius_mm(m);
-        const double r1 = std::hypot(m.end.x_mm - m.center.x_mm, m.end.y_mm - m.center.y_mm);
-        if (!(r0 > kContinuityMm)) {
-          problems.add(field + ".center", "is the start point: an arc needs a radius > 1 µm");
-        } else if (std::abs(r0 - r1) > kContinuityMm) {
-          problems.add(field + ".end", "is " + number(std::abs(r0 - r1)) + " mm off the arc's circle (radius " +
-                                           number(r0) + " mm at the start, " + number(r1) + " mm at the end)");
-        } else {
-          const Point3 reached = geometry::point_at(m, 1.0);
-          const double miss = std::hypot(reached.x_mm - m.end.x_mm, reached.y_mm - m.end.y_mm);
-          if (miss > 10 * kContinuityMm) {
-            problems.add(field + ".sweep_rad", "= " + number(m.sweep_rad) + ": the arc ends " + number(miss) +
-                                                   " mm from its end point");
-          }
-        }
-      }
-    }
-    if (i >= blocks.size()) continue;
-    const BlockCommand& b = blocks[i];
-    const std::string block_field = "program.blocks[" + std::to_string(i) + "]";
-    if (m.kind != MoveKind::kRapid &&
-        (!std::isfinite(b.feed_mm_per_min) || !(b.feed_mm_per_min >= kMinimumFeedMmPerMin))) {
-      problems.add(block_field + ".feed_mm_per_min",
-                   "= " + number(b.feed_mm_per_min) + ": a feed move (" + motion_name(m.kind) +
-                       ") needs a finite F ≥ 0.05 mm/min (F is written with 1 decimal)");
-    }
-    if (!std::isfinite(b.spindle_rpm) || b.spindle_rpm < 0.0 || b.spindle_rpm > 999999.0) {
-      problems.add(block_field + ".spindle_rpm", "= " + number(b.spindle_rpm) + ": must be finite, in [0, 999999]");
-    }
-    if (b.spindle != SpindleDirection::kOff && b.spindle != SpindleDirection::kClockwise &&
-        b.spindle != SpindleDirection::kCounterClockwise) {
-      problems.add(block_field + ".spindle", "= " + std::to_string(static_cast<int>(b.spindle)) +
-                                                 ": not a SpindleDirection");
-    }
-    if (!std::isfinite(b.dwell_before_s) || b.dwell_before_s < 0.0) {
-      problems.add(block_field + ".dwell_before_s", "= " + number(b.dwell_before_s) + ": must be finite and ≥ 0 s");
-    }
+    check_continuity(moves, i, field, problems);
+    if (m.kind == MoveKind::kArc) check_arc(m, field, problems);
+    if (i < blocks.size()) check_block(blocks[i], m.kind, i, problems);
   }
   if (!std::isfinite(program.dwell_at_end_s) || program.dwell_at_end_s < 0.0) {
     problems.add("program.dwell_at_end_s", "= " + number(program.dwell_at_end_s) + ": must be finite and ≥ 0 s");

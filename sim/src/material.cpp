@@ -15,6 +15,7 @@
 
 #include "feedplan/core/did_you_mean.hpp"
 #include "feedplan/core/number_text.hpp"
+#include "feedplan/core/yaml_fields.hpp"
 #include "feedplan/core/yaml_text.hpp"
 
 namespace feedplan::sim {
@@ -69,70 +70,23 @@ std::string join(const std::vector<std::string>& items, const std::string& separ
 
 std::string child(const std::string& path, const std::string& key) { return path.empty() ? key : path + "." + key; }
 
-// Collects structural and value problems while walking the YAML tree.
-class Reader {
+// Collects structural and value problems while walking the YAML tree. The field rules are core's
+// YamlFieldReader.
+class Reader : public YamlFieldReader<YAML::Node> {
  public:
-  std::vector<InputProblem> problems;
-
-  void add(const std::string& field, int line, const std::string& message) {
-    problems.push_back({with_yaml_line(field, line), message});
-  }
+  Reader() : YamlFieldReader(YamlSectionWording::kPath) {}
 
   // Checks that `node` (the value of `path`) is a mapping with known keys only.
   bool mapping(const YAML::Node& node, const std::string& path, const std::vector<std::string>& allowed,
                const std::string& what) {
-    if (!node.IsMap()) {
-      type_problem(path, node, "must be a mapping — " + what + " with fields " + join(allowed, ", "));
-      return false;
-    }
-    // Suggest among the fields not given yet: "kte_n_per_mm2" is one edit from both ktc_n_per_mm2
-    // and kte_n_per_mm, but only the missing one is meant.
-    std::vector<std::string> unused;
-    for (const auto& name : allowed) {
-      if (!node[name]) unused.push_back(name);
-    }
-    for (const auto& item : node) {
-      const std::string key = item.first.IsScalar() ? item.first.Scalar() : yaml_value_text(item.first);
-      if (std::find(allowed.begin(), allowed.end(), key) != allowed.end()) continue;
-      std::string message = "is not a known field; expected one of " + join(allowed, ", ");
-      std::string best = closest_name(key, unused, LetterCase::kIgnored);
-      if (best.empty()) best = closest_name(key, allowed, LetterCase::kIgnored);
-      if (!best.empty()) message += " (did you mean " + best + "?)";
-      add(child(path, key), yaml_line(item.first), message);
-    }
-    return true;
+    return check_mapping(node, path, allowed, "must be a mapping — " + what + " with fields " + join(allowed, ", "));
   }
 
   // A number at map[key]; nullopt (and a problem) when missing or not a number. ".nan" and ".inf" are
   // numbers here: the range checks report them with the allowed range.
   std::optional<double> number(const YAML::Node& map, const std::string& path, const std::string& key,
                                const std::string& meaning) {
-    const YAML::Node node = map[key];
-    if (!node) {
-      missing(map, path, key, meaning);
-      return std::nullopt;
-    }
-    double value = 0;
-    if (!node.IsScalar() || node.Tag() == "!" || !YAML::convert<double>::decode(node, value)) {
-      type_problem(child(path, key), node, "must be a number — " + meaning);
-      return std::nullopt;
-    }
-    return value;
-  }
-
-  // Text at map[key]; empty when missing (a problem only when required) or not text.
-  std::string text(const YAML::Node& map, const std::string& path, const std::string& key, bool required,
-                   const std::string& meaning) {
-    const YAML::Node node = map[key];
-    if (!node) {
-      if (required) missing(map, path, key, meaning);
-      return {};
-    }
-    if (!node.IsScalar()) {
-      type_problem(child(path, key), node, "must be text — " + meaning);
-      return {};
-    }
-    return node.Scalar();
+    return YamlFieldReader::number(map, path, key, true, meaning);
   }
 
   // Appends `<field> = <value>: must be ≥ 0 N/mm² — ...` unless the value is finite and in range.
@@ -144,17 +98,6 @@ class Reader {
         "= " + shortest_number_text(value) + ": must be " + (std::isfinite(value) ? "" : "a finite number ") + range +
             " — " + why);
   }
-
-  void missing(const YAML::Node& map, const std::string& path, const std::string& key, const std::string& meaning) {
-    const std::string where = path.empty() ? "" : " from " + path + " (line " + std::to_string(yaml_line(map)) + ")";
-    problems.push_back({child(path, key), "is missing" + where + ": required — " + meaning});
-  }
-
-  void type_problem(const std::string& field, const YAML::Node& node, const std::string& expected) {
-    const std::string value = node.IsNull() ? "has no value" : "= " + yaml_value_text(node);
-    add(field, yaml_line(node), value + ": " + expected);
-  }
-
 };
 
 // Where a name or alias was first used, to report duplicates.
@@ -163,121 +106,170 @@ struct NameUse {
   std::string material;
 };
 
-Material read_material(Reader& in, const YAML::Node& node, const std::string& path) {
-  Material m;
-  if (!in.mapping(node, path, kMaterialFields, "one material")) return m;
-  m.name = trim(in.text(node, path, "name", true, "the material's canonical name, e.g. S50C"));
-  if (node["name"] && node["name"].IsScalar() && m.name.empty()) {
+// The material's canonical name, trimmed; "" (with a problem) when missing, not text or empty.
+std::string read_name(Reader& in, const YAML::Node& node, const std::string& path) {
+  const std::string name = trim(in.text(node, path, "name", true, "the material's canonical name, e.g. S50C"));
+  if (node["name"] && node["name"].IsScalar() && name.empty()) {
     in.add(child(path, "name"), yaml_line(node["name"]), "= \"\": must not be empty — the material's canonical name");
   }
-  const std::string who = m.name.empty() ? path : m.name;
+  return name;
+}
 
-  if (const YAML::Node aliases = node["aliases"]) {
-    const std::string field = child(path, "aliases");
-    if (!aliases.IsSequence()) {
-      in.type_problem(field, aliases, "must be a list of names, e.g. [\"1045\", C45]");
-    } else {
-      for (std::size_t i = 0; i < aliases.size(); ++i) {
-        const std::string item_field = field + "[" + std::to_string(i) + "]";
-        if (!aliases[i].IsScalar()) {
-          in.type_problem(item_field, aliases[i], "must be a name (text)");
-          continue;
-        }
-        const std::string alias = trim(aliases[i].Scalar());
-        if (alias.empty()) {
-          in.add(item_field, yaml_line(aliases[i]), "= \"\": must not be empty — an alias of " + who);
-          continue;
-        }
-        m.aliases.push_back(alias);
-      }
-    }
+// The optional list of aliases, each trimmed; items that are not names or empty are problems.
+std::vector<std::string> read_aliases(Reader& in, const YAML::Node& node, const std::string& path,
+                                      const std::string& who) {
+  std::vector<std::string> result;
+  const YAML::Node aliases = node["aliases"];
+  if (!aliases) return result;
+  const std::string field = child(path, "aliases");
+  if (!aliases.IsSequence()) {
+    in.type_problem(field, aliases, "must be a list of names, e.g. [\"1045\", C45]");
+    return result;
   }
-  m.description = in.text(node, path, "description", false, "what the material is");
-  m.source = trim(in.text(node, path, "source", true,
-                          "where the coefficients come from (a book, a vendor table, a cutting test, or "
-                          "\"estimate\")"));
-  if (node["source"] && node["source"].IsScalar() && m.source.empty()) {
+  for (std::size_t i = 0; i < aliases.size(); ++i) {
+    const std::string item_field = field + "[" + std::to_string(i) + "]";
+    if (!aliases[i].IsScalar()) {
+      in.type_problem(item_field, aliases[i], "must be a name (text)");
+      continue;
+    }
+    const std::string alias = trim(aliases[i].Scalar());
+    if (alias.empty()) {
+      in.add(item_field, yaml_line(aliases[i]), "= \"\": must not be empty — an alias of " + who);
+      continue;
+    }
+    result.push_back(alias);
+  }
+  return result;
+}
+
+// Where the coefficients come from, trimmed; required and not empty.
+std::string read_source(Reader& in, const YAML::Node& node, const std::string& path, const std::string& who) {
+  const std::string source = trim(in.text(node, path, "source", true,
+                                          "where the coefficients come from (a book, a vendor table, a cutting test, "
+                                          "or \"estimate\")"));
+  if (node["source"] && node["source"].IsScalar() && source.empty()) {
     in.add(child(path, "source"), yaml_line(node["source"]),
            "= \"\": must say where the coefficients of " + who + " come from (write \"estimate\" if nothing stands "
            "behind them)");
   }
+  return source;
+}
 
+// The six cutting coefficients, each required and in range; a bad one is NaN.
+void read_coefficients(Reader& in, const YAML::Node& node, const std::string& path, const std::string& who,
+                       CuttingCoefficients& c) {
   const std::string coefficients_path = child(path, "coefficients");
-  if (const YAML::Node coefficients = node["coefficients"]) {
-    std::vector<std::string> keys;
-    for (const auto& f : kCoefficientFields) keys.emplace_back(f.key);
-    if (in.mapping(coefficients, coefficients_path, keys, "the mechanistic cutting coefficients")) {
-      for (const auto& f : kCoefficientFields) {
-        const std::string meaning = std::string(f.meaning) + " in " + f.unit;
-        const std::optional<double> value = in.number(coefficients, coefficients_path, f.key, meaning);
-        m.coefficients.*(f.member) = value.value_or(kNaN);
-        if (value) {
-          in.check_range(child(coefficients_path, f.key), yaml_line(coefficients[f.key]), *value, 0.0,
-                         !f.must_be_positive, f.unit, std::string(f.meaning) + " of " + who);
-        }
-      }
-    }
-  } else {
+  const YAML::Node coefficients = node["coefficients"];
+  if (!coefficients) {
     in.missing(node, path, "coefficients",
                "the cutting coefficients {ktc_n_per_mm2, krc_n_per_mm2, kac_n_per_mm2, kte_n_per_mm, kre_n_per_mm, "
                "kae_n_per_mm}");
+    return;
   }
-
-  if (const YAML::Node size = node["size_effect"]) {
-    const std::string size_path = child(path, "size_effect");
-    if (in.mapping(size, size_path, kSizeEffectFields, "the size effect k_c ∝ (h / reference_chip_mm)^(−exponent)")) {
-      CuttingCoefficients& c = m.coefficients;
-      const std::optional<double> exponent =
-          in.number(size, size_path, "exponent", "size-effect exponent m_c (DESIGN §6.2: ≈ 0.13 steel, 0 = off)");
-      const std::optional<double> reference =
-          in.number(size, size_path, "reference_chip_mm", "chip thickness in mm at which the K*c values hold");
-      std::optional<double> min_chip;
-      if (size["min_chip_mm"]) {
-        min_chip = in.number(size, size_path, "min_chip_mm",
-                             "smallest chip thickness in mm the size effect is evaluated at");
-      }
-      c.size_exponent = exponent.value_or(kNaN);
-      c.size_reference_chip_mm = reference.value_or(kNaN);
-      if (min_chip) c.size_min_chip_mm = *min_chip;
-      if (exponent && !(std::isfinite(*exponent) && *exponent >= 0.0 && *exponent < 1.0)) {
-        in.add(child(size_path, "exponent"), yaml_line(size["exponent"]),
-               "= " + shortest_number_text(*exponent) + ": must be in [0, 1) — size-effect exponent m_c of " + who +
-                   " (0 turns it off)");
-      }
-      if (reference) {
-        in.check_range(child(size_path, "reference_chip_mm"), yaml_line(size["reference_chip_mm"]), *reference, 0.0,
-                       false, "mm", "reference chip thickness of " + who);
-      }
-      if (min_chip) {
-        const bool reference_ok = reference && std::isfinite(*reference) && *reference > 0.0;
-        const bool ok = std::isfinite(*min_chip) && *min_chip > 0.0 && (!reference_ok || *min_chip <= *reference);
-        if (!ok) {
-          in.add(child(size_path, "min_chip_mm"), yaml_line(size["min_chip_mm"]),
-                 "= " + shortest_number_text(*min_chip) + ": must be in (0, " +
-                     (reference_ok ? shortest_number_text(*reference) : std::string("reference_chip_mm")) +
-                     "] mm — smallest chip thickness the size effect of " + who + " is evaluated at");
-        }
-      }
+  std::vector<std::string> keys;
+  for (const auto& f : kCoefficientFields) keys.emplace_back(f.key);
+  if (!in.mapping(coefficients, coefficients_path, keys, "the mechanistic cutting coefficients")) return;
+  for (const auto& f : kCoefficientFields) {
+    const std::string meaning = std::string(f.meaning) + " in " + f.unit;
+    const std::optional<double> value = in.number(coefficients, coefficients_path, f.key, meaning);
+    c.*(f.member) = value.value_or(kNaN);
+    if (value) {
+      in.check_range(child(coefficients_path, f.key), yaml_line(coefficients[f.key]), *value, 0.0,
+                     !f.must_be_positive, f.unit, std::string(f.meaning) + " of " + who);
     }
   }
+}
 
-  if (const YAML::Node sources = node["sources"]) {
-    const std::string sources_path = child(path, "sources");
-    std::vector<std::string> keys;
-    for (const auto& f : kCoefficientFields) keys.emplace_back(f.key);
-    keys.emplace_back("size_effect");
-    if (in.mapping(sources, sources_path, keys, "where single coefficients come from")) {
-      for (const auto& item : sources) {
-        const std::string key = item.first.IsScalar() ? item.first.Scalar() : yaml_value_text(item.first);
-        if (std::find(keys.begin(), keys.end(), key) == keys.end()) continue;  // reported by mapping()
-        if (!item.second.IsScalar() || trim(item.second.Scalar()).empty()) {
-          in.type_problem(child(sources_path, key), item.second, "must be text saying where " + key + " comes from");
-          continue;
-        }
-        m.coefficient_sources[key] = trim(item.second.Scalar());
-      }
+// The size-effect values as read: nullopt where absent or not a number.
+struct SizeEffectFields {
+  std::optional<double> exponent;
+  std::optional<double> reference_chip_mm;
+  std::optional<double> min_chip_mm;
+};
+
+// Problems with the size-effect values: exponent in [0, 1), reference chip > 0, min chip in
+// (0, reference chip].
+void check_size_effect(Reader& in, const YAML::Node& size, const std::string& size_path, const std::string& who,
+                       const SizeEffectFields& read) {
+  const std::optional<double>& exponent = read.exponent;
+  const std::optional<double>& reference = read.reference_chip_mm;
+  const std::optional<double>& min_chip = read.min_chip_mm;
+  if (exponent && !(std::isfinite(*exponent) && *exponent >= 0.0 && *exponent < 1.0)) {
+    in.add(child(size_path, "exponent"), yaml_line(size["exponent"]),
+           "= " + shortest_number_text(*exponent) + ": must be in [0, 1) — size-effect exponent m_c of " + who +
+               " (0 turns it off)");
+  }
+  if (reference) {
+    in.check_range(child(size_path, "reference_chip_mm"), yaml_line(size["reference_chip_mm"]), *reference, 0.0,
+                   false, "mm", "reference chip thickness of " + who);
+  }
+  if (min_chip) {
+    const bool reference_ok = reference && std::isfinite(*reference) && *reference > 0.0;
+    const bool ok = std::isfinite(*min_chip) && *min_chip > 0.0 && (!reference_ok || *min_chip <= *reference);
+    if (!ok) {
+      in.add(child(size_path, "min_chip_mm"), yaml_line(size["min_chip_mm"]),
+             "= " + shortest_number_text(*min_chip) + ": must be in (0, " +
+                 (reference_ok ? shortest_number_text(*reference) : std::string("reference_chip_mm")) +
+                 "] mm — smallest chip thickness the size effect of " + who + " is evaluated at");
     }
   }
+}
+
+// The optional size effect k_c ∝ (h / reference_chip_mm)^(−exponent) into `c`.
+void read_size_effect(Reader& in, const YAML::Node& node, const std::string& path, const std::string& who,
+                      CuttingCoefficients& c) {
+  const YAML::Node size = node["size_effect"];
+  if (!size) return;
+  const std::string size_path = child(path, "size_effect");
+  if (!in.mapping(size, size_path, kSizeEffectFields, "the size effect k_c ∝ (h / reference_chip_mm)^(−exponent)")) {
+    return;
+  }
+  SizeEffectFields read;
+  read.exponent = in.number(size, size_path, "exponent", "size-effect exponent m_c (DESIGN §6.2: ≈ 0.13 steel, 0 = off)");
+  read.reference_chip_mm =
+      in.number(size, size_path, "reference_chip_mm", "chip thickness in mm at which the K*c values hold");
+  if (size["min_chip_mm"]) {
+    read.min_chip_mm =
+        in.number(size, size_path, "min_chip_mm", "smallest chip thickness in mm the size effect is evaluated at");
+  }
+  c.size_exponent = read.exponent.value_or(kNaN);
+  c.size_reference_chip_mm = read.reference_chip_mm.value_or(kNaN);
+  if (read.min_chip_mm) c.size_min_chip_mm = *read.min_chip_mm;
+  check_size_effect(in, size, size_path, who, read);
+}
+
+// The optional sources of single coefficients (and of the size effect), each non-empty text.
+void read_coefficient_sources(Reader& in, const YAML::Node& node, const std::string& path,
+                              std::map<std::string, std::string>& coefficient_sources) {
+  const YAML::Node sources = node["sources"];
+  if (!sources) return;
+  const std::string sources_path = child(path, "sources");
+  std::vector<std::string> keys;
+  for (const auto& f : kCoefficientFields) keys.emplace_back(f.key);
+  keys.emplace_back("size_effect");
+  if (!in.mapping(sources, sources_path, keys, "where single coefficients come from")) return;
+  for (const auto& item : sources) {
+    const std::string key = yaml_key_text(item.first);
+    if (std::find(keys.begin(), keys.end(), key) == keys.end()) continue;  // reported by mapping()
+    if (!item.second.IsScalar() || trim(item.second.Scalar()).empty()) {
+      in.type_problem(child(sources_path, key), item.second, "must be text saying where " + key + " comes from");
+      continue;
+    }
+    coefficient_sources[key] = trim(item.second.Scalar());
+  }
+}
+
+Material read_material(Reader& in, const YAML::Node& node, const std::string& path) {
+  Material m;
+  if (!in.mapping(node, path, kMaterialFields, "one material")) return m;
+  m.name = read_name(in, node, path);
+  const std::string who = m.name.empty() ? path : m.name;
+  m.aliases = read_aliases(in, node, path, who);
+  m.description = in.text(node, path, "description", false, "what the material is");
+  m.source = read_source(in, node, path, who);
+  read_coefficients(in, node, path, who, m.coefficients);
+  read_size_effect(in, node, path, who, m.coefficients);
+  read_coefficient_sources(in, node, path, m.coefficient_sources);
   return m;
 }
 

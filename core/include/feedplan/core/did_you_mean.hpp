@@ -30,8 +30,8 @@ inline std::size_t edit_distance(std::string_view a, std::string_view b) {
 
 //! Whether closest_name() tells "Pitch" from "pitch".
 enum class LetterCase {
-  kSensitive,  //!< compare as written (YAML keys are case-sensitive)
-  kIgnored,    //!< compare ASCII letters lowercased (material names, log column headers)
+  kSensitive,  //!< compare as written
+  kIgnored,    //!< compare ASCII letters lowercased (YAML keys, material names, log column headers)
 };
 
 //! The candidate closest to `word` by edit_distance(), if it is within 2 edits; on a tie the first
