@@ -7,7 +7,7 @@
 #include <utility>
 #include <vector>
 
-#include "feedplan/core/input_error.hpp"
+#include "feedplan/core/problem_list.hpp"
 
 namespace feedplan::gcode::detail {
 
@@ -18,31 +18,22 @@ inline std::string format_number(double value) {
   return text;
 }
 
-//! Problems of one program, field "<source> line N:" so that what() reads `part.ngc line 7: word Q5: …`.
+//! Problems of one program, field "<source> line N:" so that what() reads `part.ngc line 7: word Q5: …`;
+//! collected by core's ProblemList, capped at `max_problems` (then "more problems follow …").
 class ProblemLog {
  public:
   ProblemLog(std::string source_name, int max_problems)
-      : source_name_(std::move(source_name)), max_problems_(max_problems < 1 ? 1 : max_problems) {}
+      : source_name_(std::move(source_name)),
+        problems_(ProblemList::capped(max_problems < 1 ? 1 : static_cast<std::size_t>(max_problems),
+                                      ProblemCap::kStopAfter)) {}
 
   //! Records `message` for 1-based `line`. Past the cap, records one closing problem and then nothing.
-  void add(int line, std::string message) {
-    if (full()) return;
-    if (static_cast<int>(problems_.size()) == max_problems_) {
-      problems_.push_back({field(line), "more problems follow; stopped after " + std::to_string(max_problems_)});
-      return;
-    }
-    problems_.push_back({field(line), std::move(message)});
-  }
-
+  void add(int line, std::string message) { problems_.add(field(line), std::move(message)); }
   //! True once the cap is reached: the reader may stop reading.
-  bool full() const { return static_cast<int>(problems_.size()) > max_problems_; }
-
+  bool full() const { return problems_.full(); }
   bool empty() const { return problems_.empty(); }
-
   //! Throws the collected problems as one InputError (only when there are any).
-  void throw_if_any() const {
-    if (!problems_.empty()) throw InputError(problems_);
-  }
+  void throw_if_any() { problems_.throw_if_any(); }
 
  private:
   std::string field(int line) const {
@@ -51,8 +42,7 @@ class ProblemLog {
   }
 
   std::string source_name_;
-  int max_problems_;
-  std::vector<InputProblem> problems_;
+  ProblemList problems_;
 };
 
 }  // namespace feedplan::gcode::detail

@@ -16,6 +16,7 @@
 #include "feedplan/core/angle.hpp"
 #include "feedplan/core/atomic_file.hpp"
 #include "feedplan/core/number_text.hpp"
+#include "feedplan/core/problem_list.hpp"
 #include "feedplan/geometry/tool_path.hpp"
 
 namespace feedplan::gcode {
@@ -50,28 +51,6 @@ constexpr int kMaxArcHalvings = 10;
 
 std::string number(double value) { return shortest_number_text(value); }
 
-// Problems with the options and the program, capped like the reader's.
-class Problems {
- public:
-  void add(std::string field, std::string message) {
-    if (problems_.size() > static_cast<std::size_t>(kMaxProblems)) return;
-    if (problems_.size() == static_cast<std::size_t>(kMaxProblems)) {
-      problems_.push_back({"program", "more problems follow; stopped after " + std::to_string(kMaxProblems)});
-      return;
-    }
-    problems_.push_back({std::move(field), std::move(message)});
-  }
-  void add_all(const std::vector<InputProblem>& problems) {
-    for (const auto& p : problems) add(p.field, p.message);
-  }
-  void throw_if_any() const {
-    if (!problems_.empty()) throw InputError(problems_);
-  }
-
- private:
-  std::vector<InputProblem> problems_;
-};
-
 bool is_valid_key_character(char c) {
   return std::isalnum(static_cast<unsigned char>(c)) || c == ' ' || c == '_' || c == '.' || c == '/' || c == '-';
 }
@@ -92,7 +71,7 @@ std::string quoted(const std::string& text) {
   return result + "\"";
 }
 
-void check_point(const Point3& p, const std::string& field, Problems& problems) {
+void check_point(const Point3& p, const std::string& field, ProblemList& problems) {
   const std::array<std::pair<const char*, double>, 3> axes = {{{"x_mm", p.x_mm}, {"y_mm", p.y_mm}, {"z_mm", p.z_mm}}};
   for (const auto& [name, value] : axes) {
     if (!std::isfinite(value)) {
@@ -116,7 +95,7 @@ const char* motion_name(MoveKind kind) {
 }
 
 // Move `i` must start where move i - 1 ends: G-code gives end points only.
-void check_continuity(const std::vector<Move>& moves, std::size_t i, const std::string& field, Problems& problems) {
+void check_continuity(const std::vector<Move>& moves, std::size_t i, const std::string& field, ProblemList& problems) {
   const Move& m = moves[i];
   if (i == 0 || !finite_point(m.start) || !finite_point(moves[i - 1].end)) return;
   const Point3& previous = moves[i - 1].end;
@@ -130,7 +109,7 @@ void check_continuity(const std::vector<Move>& moves, std::size_t i, const std::
 }
 
 // An arc's centre and sweep must be finite, its end on its circle and where the sweep leads.
-void check_arc(const Move& m, const std::string& field, Problems& problems) {
+void check_arc(const Move& m, const std::string& field, ProblemList& problems) {
   const std::array<std::pair<const char*, double>, 2> centre = {{{"x_mm", m.center.x_mm}, {"y_mm", m.center.y_mm}}};
   bool centre_ok = true;
   for (const auto& [name, value] : centre) {
@@ -162,7 +141,7 @@ void check_arc(const Move& m, const std::string& field, Problems& problems) {
 }
 
 // Block `i` (of a move of `kind`): feed, spindle speed and direction, dwell.
-void check_block(const BlockCommand& b, MoveKind kind, std::size_t i, Problems& problems) {
+void check_block(const BlockCommand& b, MoveKind kind, std::size_t i, ProblemList& problems) {
   const std::string block_field = "program.blocks[" + std::to_string(i) + "]";
   if (kind != MoveKind::kRapid && (!std::isfinite(b.feed_mm_per_min) || !(b.feed_mm_per_min >= kMinimumFeedMmPerMin))) {
     problems.add(block_field + ".feed_mm_per_min",
@@ -183,7 +162,7 @@ void check_block(const BlockCommand& b, MoveKind kind, std::size_t i, Problems& 
 }
 
 // Everything write_gcode needs from the program (the header lists it).
-void check_program(const geometry::Program& program, Problems& problems) {
+void check_program(const geometry::Program& program, ProblemList& problems) {
   const auto& moves = program.path.moves;
   const auto& blocks = program.blocks;
   if (blocks.size() != moves.size()) {
@@ -593,7 +572,7 @@ std::vector<InputProblem> validate(const WriterOptions& options) {
 }
 
 std::string write_gcode(const geometry::Program& program, const WriterOptions& options) {
-  Problems problems;
+  ProblemList problems = ProblemList::capped(kMaxProblems, ProblemCap::kStopAfter, "program");
   problems.add_all(validate(options));
   check_program(program, problems);
   problems.throw_if_any();
