@@ -4,6 +4,7 @@
 #include <string>
 
 #include "feedplan/core/angle.hpp"
+#include "feedplan/core/number_text.hpp"
 #include "path_builder.hpp"
 #include "problems.hpp"
 
@@ -121,7 +122,7 @@ std::vector<InputProblem> validate(const CornerSpec& spec, const geometry::Tool&
               "the interior angle of an internal corner between two walls");
   if (tool_ok) {
     ok &= check(problems, "corner.corner_radius_mm", spec.corner_radius_mm, above(r),
-                "a corner radius of at most the tool radius " + format_number(r) + " cannot be cut with this tool");
+                "a corner radius of at most the tool radius " + six_digit_number_text(r) + " cannot be cut with this tool");
     ok &= check(problems, "corner.radial_depth_mm", spec.radial_depth_mm, {0, false, d, true},
                 "the radial depth of cut is at most the tool diameter");
   } else {
@@ -133,7 +134,7 @@ std::vector<InputProblem> validate(const CornerSpec& spec, const geometry::Tool&
   if (spec.lead_mm) {
     if (tool_ok) {
       ok &= check(problems, "corner.lead_mm", *spec.lead_mm, above(r),
-                  "the tool (radius " + format_number(r) + ") must plunge clear of the stock");
+                  "the tool (radius " + six_digit_number_text(r) + ") must plunge clear of the stock");
     } else {
       ok &= check(problems, "corner.lead_mm", *spec.lead_mm, above(0));
     }
@@ -143,9 +144,9 @@ std::vector<InputProblem> validate(const CornerSpec& spec, const geometry::Tool&
     const auto stock_problems = geometry::validate(implied_stock(spec, tool, axial_depth_mm, {}), "stock");
     if (!stock_problems.empty()) {
       problems.push_back({"corner.wall_length_mm",
-                          "= " + format_number(spec.wall_length_mm) + ": too short for corner_angle_deg = " +
-                              format_number(spec.corner_angle_deg) + " and radial_depth_mm = " +
-                              format_number(spec.radial_depth_mm) +
+                          "= " + six_digit_number_text(spec.wall_length_mm) + ": too short for corner_angle_deg = " +
+                              six_digit_number_text(spec.corner_angle_deg) + " and radial_depth_mm = " +
+                              six_digit_number_text(spec.radial_depth_mm) +
                               " — the implied stock block is not a simple polygon; lengthen the walls (" +
                               stock_problems.front().message + ")"});
     }
@@ -187,7 +188,7 @@ Cycle generate_corner(const CornerSpec& spec, const geometry::Tool& tool, double
   }
   if (spec.corner_radius_mm - r - spec.radial_depth_mm <= 0.0) {
     cycle.notes.push_back("the earlier pass turns the corner sharply (corner_radius_mm − tool radius − radial_depth_mm "
-                          "= " + detail::format_number(spec.corner_radius_mm - r - spec.radial_depth_mm) +
+                          "= " + six_digit_number_text(spec.corner_radius_mm - r - spec.radial_depth_mm) +
                           " mm ≤ 0), so the surface before this pass is not concentric with the finished corner");
   }
   return cycle;

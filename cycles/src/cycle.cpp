@@ -3,6 +3,7 @@
 #include <cmath>
 #include <type_traits>
 
+#include "feedplan/core/number_text.hpp"
 #include "feedplan/cycles/corner.hpp"
 #include "feedplan/cycles/helical_boring.hpp"
 #include "feedplan/cycles/pocket.hpp"
@@ -46,14 +47,14 @@ std::vector<InputProblem> validate_common(const CycleSpec& spec) {
   check(problems, "spindle_rpm", spec.spindle_rpm, at_least(0), "spindle speed in rev/min (0: not given)");
   check(problems, "target_force_n", spec.target_force_n, at_least(0), "the cutting force to hold in N (0: not given)");
   check(problems, "clearance_z_mm", spec.clearance_z_mm, at_least(kFeedPlaneAboveTopMm),
-        "rapids stop " + format_number(kFeedPlaneAboveTopMm) + " mm above the stock before feeding down");
+        "rapids stop " + six_digit_number_text(kFeedPlaneAboveTopMm) + " mm above the stock before feeding down");
   const MachineLimits& m = spec.machine;
   const bool max_ok = check(problems, "machine.max_feed_mm_per_min", m.max_feed_mm_per_min, above(0));
   if (check(problems, "machine.min_feed_mm_per_min", m.min_feed_mm_per_min, above(0)) && max_ok &&
       !(m.min_feed_mm_per_min < m.max_feed_mm_per_min)) {
-    problems.push_back({"machine.min_feed_mm_per_min", "= " + format_number(m.min_feed_mm_per_min) +
+    problems.push_back({"machine.min_feed_mm_per_min", "= " + six_digit_number_text(m.min_feed_mm_per_min) +
                                                            ": must be < max_feed_mm_per_min = " +
-                                                           format_number(m.max_feed_mm_per_min)});
+                                                           six_digit_number_text(m.max_feed_mm_per_min)});
   }
   check(problems, "machine.max_accel_mm_per_s2", m.max_accel_mm_per_s2, above(0));
   check(problems, "machine.rapid_feed_mm_per_min", m.rapid_feed_mm_per_min, above(0));
@@ -85,7 +86,7 @@ std::vector<InputProblem> validate(const CycleSpec& spec) {
                                                     " parameters the spec holds"});
   }
   if ((name == "helical_boring" || name == "pocket") && spec.axial_depth_mm != 0.0) {
-    problems.push_back({"axial_depth_mm", "= " + format_number(spec.axial_depth_mm) + ": not used by a " + name +
+    problems.push_back({"axial_depth_mm", "= " + six_digit_number_text(spec.axial_depth_mm) + ": not used by a " + name +
                                               " cycle — remove it and give " + name + ".depth_mm"});
   }
   for (auto& problem : validate_common(spec)) problems.push_back(std::move(problem));

@@ -5,6 +5,7 @@
 #include <string>
 
 #include "feedplan/core/angle.hpp"
+#include "feedplan/core/number_text.hpp"
 #include "path_builder.hpp"
 #include "problems.hpp"
 
@@ -24,7 +25,7 @@ std::vector<InputProblem> validate(const HelicalBoringSpec& spec, const geometry
       const bool too_large = std::isfinite(spec.hole_diameter_mm) && spec.hole_diameter_mm > 2.0 * d;
       check(problems, "helical_boring.hole_diameter_mm", spec.hole_diameter_mm, range,
             too_large ? "a hole larger than twice the tool diameter leaves an uncut core in the middle; bore " +
-                            format_number(2.0 * d) + " mm and expand it with a spiral cycle"
+                            six_digit_number_text(2.0 * d) + " mm and expand it with a spiral cycle"
                       : "the hole must be larger than the tool");
     }
     check(problems, "helical_boring.pitch_mm", spec.pitch_mm, open_range(0, d),
@@ -80,8 +81,8 @@ Cycle generate_helical_boring(const HelicalBoringSpec& spec, const geometry::Too
   }
   const double last_turn = spec.depth_mm / p - (turns - 1);
   if (last_turn < 1.0 - 1e-9) {
-    cycle.notes.push_back("the last helix turn is partial (" + detail::format_number(last_turn) +
-                          " turn) so the helix ends exactly at depth " + detail::format_number(spec.depth_mm) +
+    cycle.notes.push_back("the last helix turn is partial (" + six_digit_number_text(last_turn) +
+                          " turn) so the helix ends exactly at depth " + six_digit_number_text(spec.depth_mm) +
                           " mm");
   }
   return cycle;

@@ -6,6 +6,7 @@
 #include <tuple>
 
 #include "feedplan/core/angle.hpp"
+#include "feedplan/core/number_text.hpp"
 #include "feedplan/cycles/helical_boring.hpp"
 #include "feedplan/cycles/spiral.hpp"
 #include "feedplan/cycles/trochoid.hpp"
@@ -122,12 +123,12 @@ std::vector<InputProblem> validate(const PocketSpec& spec, const geometry::Tool&
     // The pocket is too narrow for the tool: the width check below says so; the corner radius can
     // only be checked against the tool here.
     check(problems, "pocket.corner_radius_mm", spec.corner_radius_mm, above(r),
-          "the tool cannot cut a corner radius of at most its radius " + format_number(r));
+          "the tool cannot cut a corner radius of at most its radius " + six_digit_number_text(r));
   } else if (tool_ok && sizes_ok) {
     const double s = short_side_of(spec);
     corner_ok = check(problems, "pocket.corner_radius_mm", spec.corner_radius_mm, {r, false, 0.5 * s, true},
-                      "more than the tool radius " + format_number(r) + " (the tool cannot cut a smaller corner) and " +
-                          "at most half the short side " + format_number(s));
+                      "more than the tool radius " + six_digit_number_text(r) + " (the tool cannot cut a smaller corner) and " +
+                          "at most half the short side " + six_digit_number_text(s));
   } else {
     check(problems, "pocket.corner_radius_mm", spec.corner_radius_mm, above(0));
   }
@@ -136,19 +137,19 @@ std::vector<InputProblem> validate(const PocketSpec& spec, const geometry::Tool&
     const double s = short_side_of(spec);
     const double s_min = d + 2.0 * a + kBoreRoomPerDiameter * d;
     if (s < s_min) {
-      problems.push_back({short_field(spec), "= " + format_number(s) + ": must be ≥ " + format_number(s_min) +
-                                                 " — the tool (" + format_number(d) + " mm), the finishing allowance " +
-                                                 "on both walls (2 × " + format_number(a) + " mm) and room for the " +
-                                                 "centre bore (" + format_number(kBoreRoomPerDiameter * d) +
+      problems.push_back({short_field(spec), "= " + six_digit_number_text(s) + ": must be ≥ " + six_digit_number_text(s_min) +
+                                                 " — the tool (" + six_digit_number_text(d) + " mm), the finishing allowance " +
+                                                 "on both walls (2 × " + six_digit_number_text(a) + " mm) and room for the " +
+                                                 "centre bore (" + six_digit_number_text(kBoreRoomPerDiameter * d) +
                                                  " mm) must fit across the pocket"});
     } else if (corner_ok) {
       const double s_max = max_short_side(r, a, spec.corner_radius_mm);
       if (s > s_max) {
         problems.push_back(
             {short_field(spec),
-             "= " + format_number(s) + ": must be ≤ " + format_number(s_max) + " for a " + format_number(d) +
-                 " mm tool with corner_radius_mm = " + format_number(spec.corner_radius_mm) +
-                 " and finish_allowance_mm = " + format_number(a) +
+             "= " + six_digit_number_text(s) + ": must be ≤ " + six_digit_number_text(s_max) + " for a " + six_digit_number_text(d) +
+                 " mm tool with corner_radius_mm = " + six_digit_number_text(spec.corner_radius_mm) +
+                 " and finish_allowance_mm = " + six_digit_number_text(a) +
                  " — this pocket cycle cuts one slot along the pocket and one wall pass, which cannot reach material "
                  "more than 2 tool radii from the walls in the corners of a wider pocket; use a larger tool or "
                  "split the pocket"});
@@ -160,7 +161,6 @@ std::vector<InputProblem> validate(const PocketSpec& spec, const geometry::Tool&
 
 namespace {
 
-using detail::format_number;
 
 // Appends a sub-cycle's path and notes, both under `prefix`.
 void append_sub_cycle(Cycle& cycle, const Cycle& sub, const std::string& prefix) {
@@ -175,8 +175,8 @@ void bore_centre(const PocketSpec& spec, const PocketPlan& p, const geometry::To
       generate_helical_boring({spec.center, p.hole_diameter, p.helix_pitch, spec.depth_mm, spec.direction}, tool, z);
   append_sub_cycle(cycle, boring, "boring: ");
   if (p.clamped_hole) {
-    cycle.notes.push_back("boring: hole diameter " + format_number(p.hole_diameter) + " mm instead of " +
-                          format_number(kBorePerDiameter * p.d) + " mm to fit the pocket; no spiral");
+    cycle.notes.push_back("boring: hole diameter " + six_digit_number_text(p.hole_diameter) + " mm instead of " +
+                          six_digit_number_text(kBorePerDiameter * p.d) + " mm to fit the pocket; no spiral");
   }
 }
 
@@ -200,8 +200,8 @@ void cut_slots(const PocketSpec& spec, const PocketPlan& p, const geometry::Tool
     append_sub_cycle(cycle, slot, prefix);
   }
   if (p.reduced_trochoid_pitch) {
-    cycle.notes.push_back("slots: trochoid pitch reduced to " + format_number(p.trochoid_pitch) +
-                          " mm, half the loop radius " + format_number(p.loop_radius) + " mm");
+    cycle.notes.push_back("slots: trochoid pitch reduced to " + six_digit_number_text(p.trochoid_pitch) +
+                          " mm, half the loop radius " + six_digit_number_text(p.loop_radius) + " mm");
   }
 }
 
@@ -295,8 +295,8 @@ void finish_walls(const PocketSpec& spec, const PocketPlan& p, const ZLevels& z,
   const double s2 = 0.5 * p.short_side;
   const double thickest = std::sqrt(2.0) * (s2 - spec.corner_radius_mm) + spec.corner_radius_mm - p.rough_radius;
   if (thickest > p.allowance + 1e-6) {
-    cycle.notes.push_back("walls: the roughing leaves up to " + format_number(thickest) +
-                          " mm on the walls at the corners (" + format_number(p.allowance) +
+    cycle.notes.push_back("walls: the roughing leaves up to " + six_digit_number_text(thickest) +
+                          " mm on the walls at the corners (" + six_digit_number_text(p.allowance) +
                           " mm on the long walls); the wall pass takes it with a larger engagement");
   }
 }

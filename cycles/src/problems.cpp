@@ -6,18 +6,12 @@
 
 namespace feedplan::cycles::detail {
 
-std::string format_number(double value) {
-  // Unlike six_digit_number_text, a NaN with its sign bit set (0.0 / 0.0 on x86) is "nan" too.
-  if (std::isnan(value)) return "nan";
-  return six_digit_number_text(value);
-}
-
 std::string format_point(const geometry::Point2& point) {
   // Appended piecewise: GCC 12 warns falsely (-Wrestrict) on "literal" + std::string&&.
   std::string text = "[";
-  text += format_number(point.x_mm);
+  text += six_digit_number_text(point.x_mm);
   text += ", ";
-  text += format_number(point.y_mm);
+  text += six_digit_number_text(point.y_mm);
   text += "]";
   return text;
 }
@@ -33,11 +27,11 @@ std::string Range::text() const {
   const bool has_low = !std::isinf(low);
   const bool has_high = !std::isinf(high);
   if (has_low && has_high) {
-    return std::string(low_closed ? "[" : "(") + format_number(low) + ", " + format_number(high) +
+    return std::string(low_closed ? "[" : "(") + six_digit_number_text(low) + ", " + six_digit_number_text(high) +
            (high_closed ? "]" : ")");
   }
-  if (has_low) return std::string(low_closed ? "≥ " : "> ") + format_number(low);
-  if (has_high) return std::string(high_closed ? "≤ " : "< ") + format_number(high);
+  if (has_low) return std::string(low_closed ? "≥ " : "> ") + six_digit_number_text(low);
+  if (has_high) return std::string(high_closed ? "≤ " : "< ") + six_digit_number_text(high);
   return "any finite number";
 }
 
@@ -45,7 +39,7 @@ bool check(std::vector<InputProblem>& problems, const std::string& field, double
            const std::string& why) {
   if (range.contains(value)) return true;
   const bool bounded = !std::isinf(range.low) || !std::isinf(range.high);
-  std::string message = "= " + format_number(value) + ": must be ";
+  std::string message = "= " + six_digit_number_text(value) + ": must be ";
   if (!std::isfinite(value)) {
     message += "a finite number";
     if (bounded) message += (!std::isinf(range.low) && !std::isinf(range.high) ? " in " : " ") + range.text();
@@ -59,7 +53,7 @@ bool check(std::vector<InputProblem>& problems, const std::string& field, double
 
 bool check_finite(std::vector<InputProblem>& problems, const std::string& field, double value) {
   if (std::isfinite(value)) return true;
-  problems.push_back({field, "= " + format_number(value) + ": must be a finite number"});
+  problems.push_back({field, "= " + six_digit_number_text(value) + ": must be a finite number"});
   return false;
 }
 

@@ -11,9 +11,6 @@
 
 namespace feedplan::cycles::detail {
 
-//! Shortest readable form of a number: up to 6 significant digits ("1.5", "0.954545", "nan", "inf").
-std::string format_number(double value);
-
 //! "[x, y]".
 std::string format_point(const geometry::Point2& point);
 

@@ -5,6 +5,7 @@
 #include <string>
 
 #include "feedplan/core/angle.hpp"
+#include "feedplan/core/number_text.hpp"
 #include "path_builder.hpp"
 #include "problems.hpp"
 
@@ -23,13 +24,13 @@ std::vector<InputProblem> validate(const SpiralSpec& spec, const geometry::Tool&
   bool initial_ok = false;
   if (tool_ok) {
     initial_ok = check(problems, "spiral.initial_radius_mm", spec.initial_radius_mm, above(r),
-                       "the tool (radius " + format_number(r) + ") does not fit in the bore");
+                       "the tool (radius " + six_digit_number_text(r) + ") does not fit in the bore");
   } else {
     initial_ok = check(problems, "spiral.initial_radius_mm", spec.initial_radius_mm, above(0));
   }
   if (initial_ok) {
     check(problems, "spiral.final_radius_mm", spec.final_radius_mm, above(spec.initial_radius_mm),
-          "the spiral expands the bore beyond initial_radius_mm = " + format_number(spec.initial_radius_mm));
+          "the spiral expands the bore beyond initial_radius_mm = " + six_digit_number_text(spec.initial_radius_mm));
   } else {
     check(problems, "spiral.final_radius_mm", spec.final_radius_mm, above(0));
   }
@@ -86,8 +87,8 @@ Cycle generate_spiral(const SpiralSpec& spec, const geometry::Tool& tool, double
     cycle.stock = detail::mirrored(cycle.stock, o, {1.0, 0.0});
   }
   if (pitch < spec.pitch_mm - 1e-12) {
-    cycle.notes.push_back("spiral pitch reduced from " + detail::format_number(spec.pitch_mm) + " to " +
-                          detail::format_number(pitch) + " mm to end on the final radius (" + std::to_string(n) +
+    cycle.notes.push_back("spiral pitch reduced from " + six_digit_number_text(spec.pitch_mm) + " to " +
+                          six_digit_number_text(pitch) + " mm to end on the final radius (" + std::to_string(n) +
                           " turns)");
   }
   return cycle;

@@ -4,6 +4,7 @@
 #include <string>
 
 #include "feedplan/core/angle.hpp"
+#include "feedplan/core/number_text.hpp"
 #include "path_builder.hpp"
 #include "problems.hpp"
 
@@ -45,8 +46,8 @@ std::vector<InputProblem> validate(const TrochoidSpec& spec, const geometry::Too
             "the radius of the tool-centre circles") &&
       pitch_ok && !(spec.loop_radius_mm > spec.pitch_mm)) {
     problems.push_back({"trochoid.loop_radius_mm",
-                        "= " + format_number(spec.loop_radius_mm) + ": must be > pitch_mm = " +
-                            format_number(spec.pitch_mm) +
+                        "= " + six_digit_number_text(spec.loop_radius_mm) + ": must be > pitch_mm = " +
+                            six_digit_number_text(spec.pitch_mm) +
                             " — with smaller loops the step between loops cuts into solid material"});
   }
   return problems;
@@ -99,8 +100,8 @@ Cycle generate_trochoid(const TrochoidSpec& spec, const geometry::Tool& tool, do
     cycle.stock = detail::mirrored(cycle.stock, spec.start, u);
   }
   if (pitch < spec.pitch_mm - 1e-12) {
-    cycle.notes.push_back("trochoid pitch reduced from " + detail::format_number(spec.pitch_mm) + " to " +
-                          detail::format_number(pitch) + " mm so that " + std::to_string(n) +
+    cycle.notes.push_back("trochoid pitch reduced from " + six_digit_number_text(spec.pitch_mm) + " to " +
+                          six_digit_number_text(pitch) + " mm so that " + std::to_string(n) +
                           " equal steps end on the last loop centre");
   }
   return cycle;

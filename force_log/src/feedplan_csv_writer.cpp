@@ -8,6 +8,7 @@
 #include <string_view>
 
 #include "feedplan/core/atomic_file.hpp"
+#include "feedplan/core/number_text.hpp"
 #include "feedplan/force_log/force_log.hpp"
 #include "log_columns.hpp"
 
@@ -19,11 +20,8 @@ namespace {
 
 // Fixed-point text with `decimals` digits after '.', locale-independent; "-0.000" becomes "0.000".
 void append_fixed(std::string& out, double value, int decimals) {
-  std::array<char, 64> buffer{};
-  const auto result =
-      std::to_chars(buffer.data(), buffer.data() + buffer.size(), value, std::chars_format::fixed, decimals);
-  std::string_view text(buffer.data(), static_cast<std::size_t>(result.ptr - buffer.data()));
-  if (text.front() == '-' && text.find_first_not_of("-0.") == std::string_view::npos) text.remove_prefix(1);
+  std::string text = fixed_number_text(value, decimals);
+  if (text.front() == '-' && text.find_first_not_of("-0.") == std::string::npos) text.erase(0, 1);
   out += text;
 }
 

@@ -132,16 +132,6 @@ std::vector<RevolutionPeak> revolution_peaks(const std::vector<double>& t_s, con
   return peaks_from_angles(t_s, fx_n, fy_n, angle_turns, time_at);
 }
 
-namespace {
-
-void append_fixed(std::string& out, double value, int decimals) {
-  std::array<char, 64> buffer{};
-  const auto result = std::to_chars(buffer.data(), buffer.data() + buffer.size(), value, std::chars_format::fixed, decimals);
-  out.append(buffer.data(), result.ptr);
-}
-
-}  // namespace
-
 std::string format_revolution_peaks(const std::vector<RevolutionPeak>& peaks) {
   std::string out = "revolution,t_start_s,t_end_s,t_peak_s,peak_xy_n,mean_xy_n\n";
   for (const auto& peak : peaks) {
@@ -149,7 +139,7 @@ std::string format_revolution_peaks(const std::vector<RevolutionPeak>& peaks) {
     for (const auto& [value, decimals] : {std::pair{peak.t_start_s, 6}, std::pair{peak.t_end_s, 6}, std::pair{peak.t_peak_s, 6},
                                           std::pair{peak.peak_xy_n, 3}, std::pair{peak.mean_xy_n, 3}}) {
       out += ',';
-      append_fixed(out, value, decimals);
+      append_fixed_number_text(out, value, decimals);
     }
     out += '\n';
   }

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "feedplan/core/angle.hpp"
+#include "feedplan/core/number_text.hpp"
 #include "problem_log.hpp"
 
 namespace feedplan::gcode::detail {
@@ -42,10 +43,10 @@ ArcCircle arc_from_center(const Point2& start, const Point2& end, const Point2& 
   }
   const double difference = std::abs(start_radius - end_radius);
   if (difference > tolerance_mm) {
-    arc.problem = "end point is " + format_number(difference) + " mm off the circle: radius " +
-                  format_number(start_radius) + " mm at the start, " + format_number(end_radius) +
-                  " mm at the end (centre X" + format_number(center.x_mm) + " Y" + format_number(center.y_mm) +
-                  " mm; allowed difference " + format_number(tolerance_mm) +
+    arc.problem = "end point is " + six_digit_number_text(difference) + " mm off the circle: radius " +
+                  six_digit_number_text(start_radius) + " mm at the start, " + six_digit_number_text(end_radius) +
+                  " mm at the end (centre X" + six_digit_number_text(center.x_mm) + " Y" + six_digit_number_text(center.y_mm) +
+                  " mm; allowed difference " + six_digit_number_text(tolerance_mm) +
                   " mm, ReaderOptions::arc_radius_tolerance_mm)";
     return arc;
   }
@@ -73,9 +74,9 @@ ArcCircle arc_from_radius(const Point2& start, const Point2& end, double radius_
   const double half_chord = 0.5 * chord;
   const double abs_radius = std::abs(radius_mm);
   if (half_chord - abs_radius > tolerance_mm) {
-    arc.problem = "radius " + format_number(abs_radius) + " mm is shorter than half the chord (" +
-                  format_number(half_chord) + " mm): the end point cannot be reached (allowed shortfall " +
-                  format_number(tolerance_mm) + " mm, ReaderOptions::arc_radius_tolerance_mm)";
+    arc.problem = "radius " + six_digit_number_text(abs_radius) + " mm is shorter than half the chord (" +
+                  six_digit_number_text(half_chord) + " mm): the end point cannot be reached (allowed shortfall " +
+                  six_digit_number_text(tolerance_mm) + " mm, ReaderOptions::arc_radius_tolerance_mm)";
     return arc;
   }
   // LinuxCNC arc_data_r: the centre lies on the bisector, right of the chord for a short clockwise

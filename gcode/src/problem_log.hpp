@@ -11,13 +11,6 @@
 
 namespace feedplan::gcode::detail {
 
-//! Shortest readable form of a length or feed for messages: up to 6 significant digits.
-inline std::string format_number(double value) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.6g", value);
-  return text;
-}
-
 //! Problems of one program, field "<source> line N:" so that what() reads `part.ngc line 7: word Q5: …`;
 //! collected by core's ProblemList, capped at `max_problems` (then "more problems follow …").
 class ProblemLog {

@@ -15,6 +15,7 @@
 #include "arc_geometry.hpp"
 #include "code_catalog.hpp"
 #include "feedplan/core/input_error.hpp"
+#include "feedplan/core/number_text.hpp"
 #include "feedplan/geometry/tool_path.hpp"
 #include "line_lexer.hpp"
 #include "problem_log.hpp"
@@ -114,7 +115,7 @@ class Interpreter {
     if (shifted_arcs_ > 0) {
       note(std::to_string(shifted_arcs_) + (shifted_arcs_ == 1 ? " arc centre was" : " arc centres were") +
            " moved so that start and end lie on one circle (their radii differed within "
-           "ReaderOptions::arc_radius_tolerance_mm); the largest move is " + detail::format_number(largest_shift_mm_) +
+           "ReaderOptions::arc_radius_tolerance_mm); the largest move is " + six_digit_number_text(largest_shift_mm_) +
            " mm, on line " + std::to_string(largest_shift_line_));
     }
   }
@@ -567,7 +568,7 @@ geometry::Program read_program(const std::string& text, const std::string& sourc
   detail::ProblemLog problems(source_name, options.max_problems);
   if (!(options.arc_radius_tolerance_mm >= 0.0) || !std::isfinite(options.arc_radius_tolerance_mm)) {
     throw InputError("ReaderOptions::arc_radius_tolerance_mm",
-                     "= " + detail::format_number(options.arc_radius_tolerance_mm) + ": must be a finite number ≥ 0");
+                     "= " + six_digit_number_text(options.arc_radius_tolerance_mm) + ": must be a finite number ≥ 0");
   }
   Interpreter interpreter(options, problems);
   interpreter.run(text);

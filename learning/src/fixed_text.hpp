@@ -2,17 +2,14 @@
 // Numbers in the learning module's messages at a fixed count of decimals: "12.5 mm", "99.6 %".
 // Internal to learning.
 
-#include <cstdio>
 #include <string>
+
+#include "feedplan/core/number_text.hpp"
 
 namespace feedplan::learning::detail {
 
-//! `value` with `decimals` digits after the point (printf's "%.*f").
-inline std::string fixed(double value, int decimals) {
-  char text[64];
-  std::snprintf(text, sizeof text, "%.*f", decimals, value);
-  return text;
-}
+//! `value` with `decimals` digits after the point.
+inline std::string fixed(double value, int decimals) { return fixed_number_text(value, decimals); }
 
 //! `fraction` in percent: whole percent, one decimal just short of 1 (so 99.6 % does not read as 100 %).
 inline std::string percent(double fraction) {

@@ -17,13 +17,7 @@ namespace feedplan::planner {
 namespace {
 
 std::string num(double value) { return shortest_number_text(value); }
-std::string fixed(double value, int digits) {
-  std::ostringstream out;
-  out.setf(std::ios::fixed);
-  out.precision(digits);
-  out << value;
-  return out.str();
-}
+std::string fixed(double value, int digits) { return fixed_number_text(value, digits); }
 
 bool finite_positive(double value) { return std::isfinite(value) && value > 0.0; }
 

@@ -1,7 +1,8 @@
 #pragma once
-// Numbers as they appear in messages and metadata ("= 0.1: must be > 0"). Two formats, kept apart
-// on purpose because their texts differ and tests pin them: the shortest text that reads back as the
-// same double, and what `std::ostream << value` writes (6 significant digits).
+// Numbers as they appear in messages, metadata, logs and reports ("= 0.1: must be > 0", "12.50 mm").
+// Three formats, kept apart on purpose because their texts differ and tests pin them: the shortest text
+// that reads back as the same double, what `std::ostream << value` writes (6 significant digits), and a
+// fixed count of decimals. All are locale-independent ('.' as the decimal point).
 
 #include <array>
 #include <charconv>
@@ -21,12 +22,29 @@ inline std::string shortest_number_text(double value) {
   return std::string(buffer.data(), result.ptr);
 }
 
-//! `value` exactly as a default `std::ostringstream << value` writes it: up to 6 significant digits
-//! ("0.333333", "1e+06"), infinities "inf" and "-inf", NaN "nan" or, with the sign bit set, "-nan".
+//! `value` as a default `std::ostringstream << value` writes it: up to 6 significant digits
+//! ("0.333333", "1e+06"), infinities "inf" and "-inf"; every NaN is "nan" (whatever its sign bit).
 inline std::string six_digit_number_text(double value) {
+  if (std::isnan(value)) return "nan";
   std::ostringstream out;
   out << value;
   return out.str();
+}
+
+//! `value` with exactly `decimals` (≥ 0) digits after the point, correctly rounded: "12.50", "-0.100",
+//! "3" for 0 decimals. NaN is "nan", infinities "inf" and "-inf".
+inline void append_fixed_number_text(std::string& out, double value, int decimals) {
+  std::array<char, 400> buffer{};  // room for the largest double in full
+  const auto result =
+      std::to_chars(buffer.data(), buffer.data() + buffer.size(), value, std::chars_format::fixed, decimals);
+  out.append(buffer.data(), result.ptr);
+}
+
+//! The text append_fixed_number_text appends.
+inline std::string fixed_number_text(double value, int decimals) {
+  std::string text;
+  append_fixed_number_text(text, value, decimals);
+  return text;
 }
 
 }  // namespace feedplan
