@@ -91,11 +91,9 @@ class PassageHistory {
   std::size_t size_ = 0;
 };
 
-}  // namespace
+// --- validate: one function per part of the request ---------------------------------------------
 
-std::vector<InputProblem> validate(const SimulationRequest& request) {
-  std::vector<InputProblem> problems;
-  const auto& tool = request.tool;
+void check_tool(std::vector<InputProblem>& problems, const geometry::Tool& tool) {
   check_positive(problems, "tool.diameter_mm", tool.diameter_mm, "cutting diameter of the end mill");
   if (tool.flutes < 1 || tool.flutes > 32) {
     problems.push_back({"tool.flutes", "= " + std::to_string(tool.flutes) + ": must be in [1, 32] — number of teeth"});
@@ -104,7 +102,9 @@ std::vector<InputProblem> validate(const SimulationRequest& request) {
     problems.push_back(
         {"tool.helix_deg", "= " + six_digit_number_text(tool.helix_deg) + ": must be in [0, 70) — helix angle"});
   }
-  const auto& k = request.coefficients;
+}
+
+void check_coefficients(std::vector<InputProblem>& problems, const CuttingCoefficients& k) {
   check_positive(problems, "material.ktc_n_per_mm2", k.ktc_n_per_mm2, "tangential cutting coefficient");
   check_non_negative(problems, "material.krc_n_per_mm2", k.krc_n_per_mm2, "radial cutting coefficient");
   check_non_negative(problems, "material.kac_n_per_mm2", k.kac_n_per_mm2, "axial cutting coefficient");
@@ -120,7 +120,9 @@ std::vector<InputProblem> validate(const SimulationRequest& request) {
                    "chip thickness the cutting coefficients hold at");
     check_positive(problems, "material.size_effect.min_chip_mm", k.size_min_chip_mm, "smallest chip evaluated");
   }
-  const auto& o = request.options;
+}
+
+void check_options(std::vector<InputProblem>& problems, const SimulationOptions& o, const geometry::Tool& tool) {
   if (!(std::isfinite(o.angle_step_deg) && o.angle_step_deg > 0.0 && o.angle_step_deg <= 10.0)) {
     problems.push_back({"options.angle_step_deg", "= " + six_digit_number_text(o.angle_step_deg) +
                                                       ": must be in (0, 10] — spindle rotation per step"});
@@ -149,26 +151,15 @@ std::vector<InputProblem> validate(const SimulationRequest& request) {
            "= " + six_digit_number_text(o.runout_mm[j]) + ": must be finite and smaller than the tool radius"});
     }
   }
-  for (auto& p : validate(request.machine)) problems.push_back(std::move(p));
-  for (auto& p : validate(request.sensors)) problems.push_back(std::move(p));
-  for (auto& p : geometry::validate(request.stock, "stock")) problems.push_back(std::move(p));
-  if (request.override_loop.controller) {
-    check_positive(problems, "override.period_s", request.override_loop.period_s, "control period");
-  }
+}
 
-  const auto& program = request.program;
-  if (program.path.moves.empty()) problems.push_back({"program", "has no moves: nothing to simulate"});
-  if (program.blocks.size() != program.path.moves.size()) {
-    problems.push_back({"program", "has " + std::to_string(program.blocks.size()) + " block commands for " +
-                                       std::to_string(program.path.moves.size()) + " moves: expected one per move"});
-    return problems;
-  }
-  for (const auto& defect : geometry::consistency_defects(program.path, 1e-6)) problems.push_back({"program", defect});
+// Every feed move needs a spindle speed (the first five offenders are named).
+void check_spindle_speeds(std::vector<InputProblem>& problems, const geometry::Program& program, double default_rpm) {
   int spindle_problems = 0;
   for (std::size_t i = 0; i < program.path.moves.size(); ++i) {
     const auto& move = program.path.moves[i];
     if (move.kind == geometry::MoveKind::kRapid) continue;
-    const double rpm = spindle_rpm_of(program.blocks[i], o.default_spindle_rpm);
+    const double rpm = spindle_rpm_of(program.blocks[i], default_rpm);
     if (!(rpm > 0.0) && spindle_problems++ < 5) {
       const bool stopped = program.blocks[i].spindle == geometry::SpindleDirection::kOff;
       problems.push_back({line_of(program, i),
@@ -178,6 +169,33 @@ std::vector<InputProblem> validate(const SimulationRequest& request) {
                                                 "default spindle speed (--spindle-rpm)")});
     }
   }
+}
+
+void check_program(std::vector<InputProblem>& problems, const geometry::Program& program, double default_rpm) {
+  if (program.path.moves.empty()) problems.push_back({"program", "has no moves: nothing to simulate"});
+  if (program.blocks.size() != program.path.moves.size()) {
+    problems.push_back({"program", "has " + std::to_string(program.blocks.size()) + " block commands for " +
+                                       std::to_string(program.path.moves.size()) + " moves: expected one per move"});
+    return;
+  }
+  for (const auto& defect : geometry::consistency_defects(program.path, 1e-6)) problems.push_back({"program", defect});
+  check_spindle_speeds(problems, program, default_rpm);
+}
+
+}  // namespace
+
+std::vector<InputProblem> validate(const SimulationRequest& request) {
+  std::vector<InputProblem> problems;
+  check_tool(problems, request.tool);
+  check_coefficients(problems, request.coefficients);
+  check_options(problems, request.options, request.tool);
+  for (auto& p : validate(request.machine)) problems.push_back(std::move(p));
+  for (auto& p : validate(request.sensors)) problems.push_back(std::move(p));
+  for (auto& p : geometry::validate(request.stock, "stock")) problems.push_back(std::move(p));
+  if (request.override_loop.controller) {
+    check_positive(problems, "override.period_s", request.override_loop.period_s, "control period");
+  }
+  check_program(problems, request.program, request.options.default_spindle_rpm);
   return problems;
 }
 
