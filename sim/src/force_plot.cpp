@@ -38,6 +38,7 @@ std::string escape(const std::string& text) {
 using svg::fixed_text;
 using svg::px;
 
+// "x,y" of a data point, px.
 std::string point(const svg::PlotArea& area, double t_s, double f_n) {
   return px(area.to_x(t_s)) + "," + px(area.to_y(f_n));
 }
@@ -114,8 +115,8 @@ void append_axes(std::string& svg, const svg::PlotArea& area, double height_px) 
   svg::append_axes(svg, area, style);
 }
 
-// A polyline of the points of `t` and `f` that min/max decimation keeps.
-void append_polyline(std::string& svg, const svg::PlotArea& area, const std::vector<double>& t,
+// The points `kept` of `t` and `f`, closing a polyline's points attribute.
+void append_points(std::string& svg, const svg::PlotArea& area, const std::vector<double>& t,
                      const std::vector<double>& f, const std::vector<std::size_t>& kept) {
   for (std::size_t k = 0; k < kept.size(); ++k) {
     if (k > 0) svg += ' ';
@@ -132,7 +133,7 @@ bool append_series(std::string& svg, const ForcePlotData& data, const svg::PlotA
     if (kept.empty()) continue;
     any_point = true;
     svg += "<polyline fill=\"none\" stroke=\"" + escape(s.color) + "\" stroke-width=\"1\" points=\"";
-    append_polyline(svg, area, data.t_s, s.values_n, kept);
+    append_points(svg, area, data.t_s, s.values_n, kept);
   }
   return any_point;
 }
@@ -156,7 +157,7 @@ void append_peaks(std::string& svg, const std::vector<force_log::RevolutionPeak>
     f.push_back(p.peak_xy_n);
   }
   svg += "<polyline fill=\"none\" stroke=\"" + color + "\" stroke-width=\"1.5\" points=\"";
-  append_polyline(svg, area, t, f, min_max_decimation(t, f, columns));
+  append_points(svg, area, t, f, min_max_decimation(t, f, columns));
 }
 
 // The target: a dashed line with its value.
