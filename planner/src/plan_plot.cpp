@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <array>
 #include <cassert>
-#include <charconv>
 #include <cmath>
 #include <cstddef>
 #include <limits>
@@ -12,6 +11,7 @@
 
 #include "feedplan/core/atomic_file.hpp"
 #include "feedplan/core/number_text.hpp"
+#include "feedplan/core/svg_axis.hpp"
 
 namespace feedplan::planner {
 namespace {
@@ -36,13 +36,9 @@ constexpr const char* kForceStyle = "stroke=\"#1f77b4\" stroke-width=\"1\"";
 constexpr const char* kTargetStyle = "stroke=\"#2ca02c\" stroke-width=\"1.5\" stroke-dasharray=\"8 4\"";
 constexpr const char* kPeakColor = "#d62728";
 
-// A pixel coordinate with one decimal (0.1 px is below what any screen shows).
-std::string px(double value) {
-  std::array<char, 32> buffer{};
-  const auto end = std::to_chars(buffer.data(), buffer.data() + buffer.size(), value, std::chars_format::fixed, 1).ptr;
-  const std::string_view text(buffer.data(), static_cast<std::size_t>(end - buffer.data()));
-  return text == "-0.0" ? "0.0" : std::string(text);
-}
+using svg::Axis;
+using svg::nice_axis;
+using svg::px;
 
 // Text content and attribute values in XML: the five characters with a meaning there, as entities.
 std::string xml_text(std::string_view text) {
@@ -66,59 +62,8 @@ std::string xml_text(std::string_view text) {
   return out;
 }
 
-// An axis: the range drawn and ticks at whole multiples of a 1-2-5 step (1, 2 or 5 × 10^k) inside it.
-struct Axis {
-  double lo = 0.0;
-  double hi = 1.0;
-  double step = 0.2;
-  int decimals = 1;        // tick labels show the step exactly
-  long long first = 0;     // ticks at n · step for n in [first, last]
-  long long last = 5;
-};
-
-// The smallest 1-2-5 step that covers [lo, hi] in at most `max_intervals` whole steps. With `rounded`, the
-// range widens to whole steps (value axes start and end at a tick); without, it stays [lo, hi] (the path
-// axis: no empty space after the last sample).
-Axis nice_axis(double lo, double hi, int max_intervals, bool rounded) {
-  if (!(hi > lo)) hi = lo + (lo != 0.0 ? std::abs(lo) : 1.0);
-  const int exponent = static_cast<int>(std::floor(std::log10((hi - lo) / max_intervals)));
-  for (int k = exponent;; ++k) {
-    for (const double mantissa : {1.0, 2.0, 5.0}) {
-      const double step = mantissa * std::pow(10.0, k);
-      const auto below = static_cast<long long>(std::floor(lo / step + 1e-9));
-      const auto above = static_cast<long long>(std::ceil(hi / step - 1e-9));
-      if (above - below > max_intervals) continue;
-      Axis axis{lo, hi, step, std::max(0, -k), below, above};
-      if (rounded) {
-        axis.lo = static_cast<double>(below) * step;
-        axis.hi = static_cast<double>(above) * step;
-      } else {
-        axis.first = static_cast<long long>(std::ceil(lo / step - 1e-9));
-        axis.last = static_cast<long long>(std::floor(hi / step + 1e-9));
-      }
-      return axis;
-    }
-  }
-}
-
-std::string tick_label(const Axis& axis, double value) {
-  std::array<char, 48> buffer{};
-  const auto end =
-      std::to_chars(buffer.data(), buffer.data() + buffer.size(), value, std::chars_format::fixed, axis.decimals).ptr;
-  std::string text(buffer.data(), end);
-  if (text.front() == '-' && text.find_first_of("123456789") == std::string::npos) text.erase(0, 1);
-  return text;
-}
-
 // One panel: its rectangle on the page and the data ranges mapped onto it.
-struct Panel {
-  double left_px, right_px, top_px, bottom_px;
-  Axis x, y;
-
-  double to_x(double value) const { return left_px + (value - x.lo) / (x.hi - x.lo) * (right_px - left_px); }
-  double to_y(double value) const { return bottom_px - (value - y.lo) / (y.hi - y.lo) * (bottom_px - top_px); }
-  std::size_t columns() const { return static_cast<std::size_t>(std::max(1.0, std::floor(right_px - left_px))); }
-};
+using Panel = svg::PlotArea;
 
 // Min/max decimation per pixel column, with gaps. The points (x[i], y[i]) with finite values form runs
 // separated by non-finite ones; in each run and pixel column the first, the lowest, the highest and the
@@ -197,40 +142,21 @@ struct LegendEntry {
   std::string style;   // stroke attributes of the line; empty: a marker in kPeakColor
 };
 
+// Grid, ticks, labels and frame of a panel; the x tick labels and title only when `x_labels`.
 void append_panel_frame(std::string& svg, const Panel& panel, const std::string& y_label, bool x_labels,
                         const std::string& x_label) {
-  svg += "<g stroke=\"#dddddd\" stroke-width=\"1\">\n";
-  for (long long n = panel.x.first; n <= panel.x.last; ++n) {
-    const std::string x = px(panel.to_x(static_cast<double>(n) * panel.x.step));
-    svg += "<line x1=\"" + x + "\" y1=\"" + px(panel.top_px) + "\" x2=\"" + x + "\" y2=\"" + px(panel.bottom_px) +
-           "\"/>\n";
-  }
-  for (long long n = panel.y.first; n <= panel.y.last; ++n) {
-    const std::string y = px(panel.to_y(static_cast<double>(n) * panel.y.step));
-    svg += "<line x1=\"" + px(panel.left_px) + "\" y1=\"" + y + "\" x2=\"" + px(panel.right_px) + "\" y2=\"" + y +
-           "\"/>\n";
-  }
-  svg += "</g>\n<g fill=\"#333333\">\n";
-  for (long long n = panel.y.first; n <= panel.y.last; ++n) {
-    const double value = static_cast<double>(n) * panel.y.step;
-    svg += "<text class=\"y-tick\" x=\"" + px(panel.left_px - 6) + "\" y=\"" + px(panel.to_y(value)) +
-           "\" text-anchor=\"end\" dominant-baseline=\"middle\">" + tick_label(panel.y, value) + "</text>\n";
-  }
-  if (x_labels) {
-    for (long long n = panel.x.first; n <= panel.x.last; ++n) {
-      const double value = static_cast<double>(n) * panel.x.step;
-      svg += "<text class=\"x-tick\" x=\"" + px(panel.to_x(value)) + "\" y=\"" + px(panel.bottom_px + 16) +
-             "\" text-anchor=\"middle\">" + tick_label(panel.x, value) + "</text>\n";
-    }
-    svg += "<text x=\"" + px(0.5 * (panel.left_px + panel.right_px)) + "\" y=\"" + px(panel.bottom_px + 40) +
-           "\" text-anchor=\"middle\">" + xml_text(x_label) + "</text>\n";
-  }
-  const std::string middle_y = px(0.5 * (panel.top_px + panel.bottom_px));
-  svg += "<text x=\"24\" y=\"" + middle_y + "\" text-anchor=\"middle\" transform=\"rotate(-90 24 " + middle_y +
-         ")\">" + xml_text(y_label) + "</text>\n</g>\n";
-  svg += "<rect x=\"" + px(panel.left_px) + "\" y=\"" + px(panel.top_px) + "\" width=\"" +
-         px(panel.right_px - panel.left_px) + "\" height=\"" + px(panel.bottom_px - panel.top_px) +
-         "\" fill=\"none\" stroke=\"#333333\"/>\n";
+  svg::AxesStyle style;
+  style.x_ticks.css_class = "x-tick";
+  style.y_ticks.css_class = "y-tick";
+  style.y_ticks.centred_on_tick = true;
+  style.x_labels = x_labels;
+  style.y_ticks_first = true;
+  style.x_title = xml_text(x_label);
+  style.x_title_y_px = panel.bottom_px + 40;
+  style.y_title = xml_text(y_label);
+  style.y_title_x_px = 24;
+  style.titles_in_label_group = true;
+  svg::append_axes(svg, panel, style);
 }
 
 // The legend in the panel's top right corner, on a white box so that lines under it do not hide it.
@@ -258,11 +184,6 @@ void append_legend(std::string& svg, const Panel& panel, const std::vector<Legen
   svg += "</g>\n";
 }
 
-void append_no_data(std::string& svg, const Panel& panel) {
-  svg += "<text x=\"" + px(0.5 * (panel.left_px + panel.right_px)) + "\" y=\"" +
-         px(0.5 * (panel.top_px + panel.bottom_px)) + "\" text-anchor=\"middle\" fill=\"#888888\">no data</text>\n";
-}
-
 // Largest finite value of `values` (−∞ when there is none).
 double largest(const std::vector<double>& values) {
   double high = -std::numeric_limits<double>::infinity();
@@ -272,87 +193,103 @@ double largest(const std::vector<double>& values) {
   return high;
 }
 
-}  // namespace
+// The plan's lines, with NaN on rapids (gaps), and the measured peaks to mark.
+struct PlotSeries {
+  std::vector<double> x;               // per sample: path length or time
+  std::vector<double> engagement_deg;  // per sample
+  std::vector<double> predicted_feed;  // per sample, mm/min
+  std::vector<double> feed_limit;      // per sample, mm/min
+  std::vector<double> force_n;         // per sample, N
+  std::vector<double> step_x;          // the programmed F as a step line
+  std::vector<double> step_feed;
+  std::vector<double> peak_x;          // measured peaks inside the x range, in x order
+  std::vector<double> peak_force;
+  double force_low = 0.0;              // lowest force of samples and peaks, at most 0, N
+};
 
-std::string plan_plot_svg(const PlanResult& result, double target_force_n, const PlanPlotOptions& options) {
-  assert(options.width_px >= 400.0 && options.height_px >= 400.0);
-  assert(std::isfinite(target_force_n));
-  const std::vector<PlannedSample>& samples = result.samples;
+PlotSeries sample_series(const std::vector<PlannedSample>& samples, bool x_is_time) {
   const std::size_t n = samples.size();
-
-  // The series, with NaN on rapids (gaps).
-  std::vector<double> x(n), engagement_deg(n), predicted_feed(n), feed_limit(n), force_n(n);
-  double force_low = 0.0;
+  PlotSeries series;
+  series.x.resize(n);
+  series.engagement_deg.resize(n);
+  series.predicted_feed.resize(n);
+  series.feed_limit.resize(n);
+  series.force_n.resize(n);
   for (std::size_t i = 0; i < n; ++i) {
     const PlannedSample& p = samples[i];
     const bool rapid = p.limit_reason == FeedLimitReason::kRapid;
-    x[i] = options.x_is_time ? p.time_s : p.s_mm;
-    engagement_deg[i] = rapid ? kNaN : p.engagement_rad * kRadToDeg;
-    predicted_feed[i] = rapid ? kNaN : p.feed_mm_per_min;
-    feed_limit[i] = rapid ? kNaN : p.feed_limit_mm_per_min;
-    force_n[i] = rapid ? kNaN : p.predicted_force_n;
-    if (std::isfinite(force_n[i])) force_low = std::min(force_low, force_n[i]);
+    series.x[i] = x_is_time ? p.time_s : p.s_mm;
+    series.engagement_deg[i] = rapid ? kNaN : p.engagement_rad * kRadToDeg;
+    series.predicted_feed[i] = rapid ? kNaN : p.feed_mm_per_min;
+    series.feed_limit[i] = rapid ? kNaN : p.feed_limit_mm_per_min;
+    series.force_n[i] = rapid ? kNaN : p.predicted_force_n;
+    if (std::isfinite(series.force_n[i])) series.force_low = std::min(series.force_low, series.force_n[i]);
   }
-  // The programmed F as a step line: each feed block from its first to its last sample at its F.
-  std::vector<double> step_x, step_feed;
-  step_x.reserve(2 * result.blocks.size() + 1);
-  step_feed.reserve(2 * result.blocks.size() + 1);
-  for (const PlannedBlock& block : result.blocks) {
+  return series;
+}
+
+// The programmed F as a step line: each feed block from its first to its last sample at its F.
+void add_programmed_feed(PlotSeries& series, const std::vector<PlannedBlock>& blocks) {
+  const std::size_t n = series.x.size();
+  series.step_x.reserve(2 * blocks.size() + 1);
+  series.step_feed.reserve(2 * blocks.size() + 1);
+  for (const PlannedBlock& block : blocks) {
     const auto first = static_cast<std::size_t>(block.first_sample);
     const auto last = static_cast<std::size_t>(block.last_sample);
     if (first >= n || last >= n) continue;
     if (block.feed_mm_per_min <= 0.0) {  // a rapid
-      step_x.push_back(x[first]);
-      step_feed.push_back(kNaN);
+      series.step_x.push_back(series.x[first]);
+      series.step_feed.push_back(kNaN);
       continue;
     }
-    step_x.insert(step_x.end(), {x[first], x[last]});
-    step_feed.insert(step_feed.end(), {block.feed_mm_per_min, block.feed_mm_per_min});
+    series.step_x.insert(series.step_x.end(), {series.x[first], series.x[last]});
+    series.step_feed.insert(series.step_feed.end(), {block.feed_mm_per_min, block.feed_mm_per_min});
   }
+}
 
-  // Shared x axis and the page.
-  const bool has_data = n > 0;
-  const double x_first = has_data ? x.front() : 0.0;
-  const double x_last = has_data ? x.back() : 1.0;
-  const Axis x_axis = nice_axis(x_first, x_last, 10, false);
+// Measured peaks inside the x range, in x order.
+void add_measured_peaks(PlotSeries& series, const std::vector<std::pair<double, double>>& measured,
+                        const Axis& x_axis) {
+  std::vector<std::pair<double, double>> peaks;
+  for (const auto& [px_value, f_value] : measured) {
+    if (std::isfinite(px_value) && std::isfinite(f_value) && px_value >= x_axis.lo && px_value <= x_axis.hi) {
+      peaks.emplace_back(px_value, f_value);
+    }
+  }
+  std::sort(peaks.begin(), peaks.end());
+  for (const auto& [px_value, f_value] : peaks) {
+    series.peak_x.push_back(px_value);
+    series.peak_force.push_back(f_value);
+    series.force_low = std::min(series.force_low, f_value);
+  }
+}
+
+// The three panels stacked over the shared x axis, each y axis covering its lines.
+struct Panels {
+  Panel engagement;
+  Panel feed;
+  Panel force;
+};
+
+Panels stacked_panels(const PlotSeries& series, const Axis& x_axis, double target_force_n,
+                      const PlanPlotOptions& options) {
   const double panel_height = (options.height_px - kMarginTopPx - kMarginBottomPx - 2.0 * kPanelGapPx) / 3.0;
   const auto panel_at = [&](int row, const Axis& y_axis) {
     const double top = kMarginTopPx + row * (panel_height + kPanelGapPx);
     return Panel{kMarginLeftPx, options.width_px - kMarginRightPx, top, top + panel_height, x_axis, y_axis};
   };
+  const double engagement_high = std::max(largest(series.engagement_deg), 1.0);
+  const double feed_high = std::max({largest(series.step_feed), largest(series.predicted_feed), 1.0});
+  double force_high = std::max({largest(series.force_n), largest(series.peak_force), target_force_n, 1.0});
+  force_high += 0.06 * (force_high - series.force_low);  // headroom: the highest peak stays off the frame
+  return {panel_at(0, nice_axis(0.0, engagement_high * 1.05, 6, true)),
+          panel_at(1, nice_axis(0.0, feed_high * 1.05, 6, true)),
+          panel_at(2, nice_axis(series.force_low, force_high, 6, true))};
+}
 
-  // Measured peaks inside the x range, in x order.
-  std::vector<double> peak_x, peak_force;
-  if (options.measured_peaks) {
-    std::vector<std::pair<double, double>> peaks;
-    for (const auto& [px_value, f_value] : *options.measured_peaks) {
-      if (std::isfinite(px_value) && std::isfinite(f_value) && px_value >= x_axis.lo && px_value <= x_axis.hi) {
-        peaks.emplace_back(px_value, f_value);
-      }
-    }
-    std::sort(peaks.begin(), peaks.end());
-    for (const auto& [px_value, f_value] : peaks) {
-      peak_x.push_back(px_value);
-      peak_force.push_back(f_value);
-      force_low = std::min(force_low, f_value);
-    }
-  }
-
-  const double engagement_high = std::max(largest(engagement_deg), 1.0);
-  const double feed_high = std::max({largest(step_feed), largest(predicted_feed), 1.0});
-  double force_high = std::max({largest(force_n), largest(peak_force), target_force_n, 1.0});
-  force_high += 0.06 * (force_high - force_low);  // headroom: the highest peak stays off the frame
-  const Panel engagement_panel = panel_at(0, nice_axis(0.0, engagement_high * 1.05, 6, true));
-  const Panel feed_panel = panel_at(1, nice_axis(0.0, feed_high * 1.05, 6, true));
-  const Panel force_panel = panel_at(2, nice_axis(force_low, force_high, 6, true));
-  for (double& limit : feed_limit) limit = std::min(limit, feed_panel.y.hi);  // NaN stays NaN
-
+// The XML declaration, the <svg> element, the title and a white background.
+void append_page(std::string& svg, const PlanPlotOptions& options) {
   const std::string title = options.title.empty() ? "Feed plan" : options.title;
-  const std::string x_label = options.x_is_time ? "time t [s]" : "path length s [mm]";
-  const std::string target_label = "target " + shortest_number_text(target_force_n) + " N";
-
-  std::string svg;
-  svg.reserve(256 * 1024);
   svg += "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n";
   svg += "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" + px(options.width_px) + "\" height=\"" +
          px(options.height_px) + "\" viewBox=\"0 0 " + px(options.width_px) + " " + px(options.height_px) +
@@ -361,55 +298,97 @@ std::string plan_plot_svg(const PlanResult& result, double target_force_n, const
   svg += "<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n";
   svg += "<text x=\"" + px(0.5 * options.width_px) + "\" y=\"30\" text-anchor=\"middle\" font-size=\"16\">" +
          xml_text(title) + "</text>\n";
+}
 
-  // 1. Engagement.
+// Panel 1: the engagement angle.
+void append_engagement_panel(std::string& svg, const Panel& panel, const PlotSeries& series,
+                             const std::string& x_label, bool has_data) {
   svg += "<g id=\"panel-engagement\">\n";
-  append_panel_frame(svg, engagement_panel, "engagement α_en [deg]", false, x_label);
-  append_series(svg, engagement_panel, x, engagement_deg, "engagement", kEngagementStyle);
-  append_legend(svg, engagement_panel, {{"engagement angle", kEngagementStyle}});
-  if (!has_data) append_no_data(svg, engagement_panel);
+  append_panel_frame(svg, panel, "engagement α_en [deg]", false, x_label);
+  append_series(svg, panel, series.x, series.engagement_deg, "engagement", kEngagementStyle);
+  append_legend(svg, panel, {{"engagement angle", kEngagementStyle}});
+  if (!has_data) svg::append_no_data(svg, panel);
   svg += "</g>\n";
+}
 
-  // 2. Feed.
+// Panel 2: the feed — limit, programmed F and predicted feed.
+void append_feed_panel(std::string& svg, const Panel& panel, const PlotSeries& series, const std::string& x_label,
+                       bool has_data) {
   svg += "<g id=\"panel-feed\">\n";
-  append_panel_frame(svg, feed_panel, "feed [mm/min]", false, x_label);
-  append_series(svg, feed_panel, x, feed_limit, "feed-limit", kFeedLimitStyle);
-  append_series(svg, feed_panel, step_x, step_feed, "block-feed", kBlockFeedStyle);
-  append_series(svg, feed_panel, x, predicted_feed, "predicted-feed", kPredictedFeedStyle);
-  append_legend(svg, feed_panel,
+  append_panel_frame(svg, panel, "feed [mm/min]", false, x_label);
+  append_series(svg, panel, series.x, series.feed_limit, "feed-limit", kFeedLimitStyle);
+  append_series(svg, panel, series.step_x, series.step_feed, "block-feed", kBlockFeedStyle);
+  append_series(svg, panel, series.x, series.predicted_feed, "predicted-feed", kPredictedFeedStyle);
+  append_legend(svg, panel,
                 {{"programmed F (blocks)", kBlockFeedStyle},
                  {"predicted feed", kPredictedFeedStyle},
                  {"feed limit", kFeedLimitStyle}});
-  if (!has_data) append_no_data(svg, feed_panel);
+  if (!has_data) svg::append_no_data(svg, panel);
   svg += "</g>\n";
+}
 
-  // 3. Force.
-  svg += "<g id=\"panel-force\">\n";
-  append_panel_frame(svg, force_panel, "force F [N]", true, x_label);
-  append_series(svg, force_panel, x, force_n, "predicted-force", kForceStyle);
-  const std::string target_y = px(force_panel.to_y(target_force_n));
-  svg += "<line class=\"target\" x1=\"" + px(force_panel.left_px) + "\" y1=\"" + target_y + "\" x2=\"" +
-         px(force_panel.right_px) + "\" y2=\"" + target_y + "\" " + kTargetStyle + "/>\n";
-  svg += "<text x=\"" + px(force_panel.left_px + 6) + "\" y=\"" + px(force_panel.to_y(target_force_n) - 5) +
+// The target as a dashed line across the force panel, labelled at its left end.
+void append_target(std::string& svg, const Panel& panel, double target_force_n, const std::string& target_label) {
+  const std::string target_y = px(panel.to_y(target_force_n));
+  svg += "<line class=\"target\" x1=\"" + px(panel.left_px) + "\" y1=\"" + target_y + "\" x2=\"" +
+         px(panel.right_px) + "\" y2=\"" + target_y + "\" " + kTargetStyle + "/>\n";
+  svg += "<text x=\"" + px(panel.left_px + 6) + "\" y=\"" + px(panel.to_y(target_force_n) - 5) +
          "\" fill=\"#2ca02c\">" + xml_text(target_label) + "</text>\n";
+}
+
+// Markers at the decimated peaks: every highest and lowest one per pixel column is drawn.
+void append_measured_peaks(std::string& svg, const Panel& panel, const PlotSeries& series) {
+  svg += "<g class=\"measured-peaks\" fill=\"";
+  svg += kPeakColor;
+  svg += "\">\n";
+  for (const std::vector<std::size_t>& run : decimate(series.peak_x, series.peak_force, panel)) {
+    for (const std::size_t k : run) {
+      svg += "<circle cx=\"" + px(panel.to_x(series.peak_x[k])) + "\" cy=\"" + px(panel.to_y(series.peak_force[k])) +
+             "\" r=\"2.5\"/>\n";
+    }
+  }
+  svg += "</g>\n";
+}
+
+// Panel 3: the predicted force, the target and, when given, the measured peaks.
+void append_force_panel(std::string& svg, const Panel& panel, const PlotSeries& series, double target_force_n,
+                        const PlanPlotOptions& options, const std::string& x_label, bool has_data) {
+  const std::string target_label = "target " + shortest_number_text(target_force_n) + " N";
+  svg += "<g id=\"panel-force\">\n";
+  append_panel_frame(svg, panel, "force F [N]", true, x_label);
+  append_series(svg, panel, series.x, series.force_n, "predicted-force", kForceStyle);
+  append_target(svg, panel, target_force_n, target_label);
   std::vector<LegendEntry> force_legend{{"predicted force", kForceStyle}, {target_label, kTargetStyle}};
   if (options.measured_peaks) {
-    // Markers at the decimated peaks: every highest and lowest one per pixel column is drawn.
-    svg += "<g class=\"measured-peaks\" fill=\"";
-    svg += kPeakColor;
-    svg += "\">\n";
-    for (const std::vector<std::size_t>& run : decimate(peak_x, peak_force, force_panel)) {
-      for (const std::size_t k : run) {
-        svg += "<circle cx=\"" + px(force_panel.to_x(peak_x[k])) + "\" cy=\"" +
-               px(force_panel.to_y(peak_force[k])) + "\" r=\"2.5\"/>\n";
-      }
-    }
-    svg += "</g>\n";
+    append_measured_peaks(svg, panel, series);
     force_legend.push_back({"measured peaks", ""});
   }
-  append_legend(svg, force_panel, force_legend);
-  if (!has_data) append_no_data(svg, force_panel);
-  svg += "</g>\n</svg>\n";
+  append_legend(svg, panel, force_legend);
+  if (!has_data) svg::append_no_data(svg, panel);
+  svg += "</g>\n";
+}
+
+}  // namespace
+
+std::string plan_plot_svg(const PlanResult& result, double target_force_n, const PlanPlotOptions& options) {
+  assert(options.width_px >= 400.0 && options.height_px >= 400.0);
+  assert(std::isfinite(target_force_n));
+  PlotSeries series = sample_series(result.samples, options.x_is_time);
+  add_programmed_feed(series, result.blocks);
+  const bool has_data = !result.samples.empty();
+  const Axis x_axis = nice_axis(has_data ? series.x.front() : 0.0, has_data ? series.x.back() : 1.0, 10, false);
+  if (options.measured_peaks) add_measured_peaks(series, *options.measured_peaks, x_axis);
+  const Panels panels = stacked_panels(series, x_axis, target_force_n, options);
+  for (double& limit : series.feed_limit) limit = std::min(limit, panels.feed.y.hi);  // NaN stays NaN
+  const std::string x_label = options.x_is_time ? "time t [s]" : "path length s [mm]";
+
+  std::string svg;
+  svg.reserve(256 * 1024);
+  append_page(svg, options);
+  append_engagement_panel(svg, panels.engagement, series, x_label, has_data);
+  append_feed_panel(svg, panels.feed, series, x_label, has_data);
+  append_force_panel(svg, panels.force, series, target_force_n, options, x_label, has_data);
+  svg += "</svg>\n";
   return svg;
 }
 

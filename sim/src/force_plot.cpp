@@ -3,11 +3,11 @@
 #include <algorithm>
 #include <array>
 #include <cassert>
-#include <charconv>
 #include <cmath>
 #include <limits>
 
 #include "feedplan/core/atomic_file.hpp"
+#include "feedplan/core/svg_axis.hpp"
 
 namespace feedplan::sim {
 
@@ -19,15 +19,6 @@ constexpr double kMarginRight_px = 30.0;
 constexpr double kMarginTop_px = 50.0;
 constexpr double kMarginBottom_px = 60.0;
 constexpr std::size_t kMaxPeakCircles = 500;
-
-std::string fixed(double value, int decimals) {
-  std::array<char, 64> buffer{};
-  const auto result =
-      std::to_chars(buffer.data(), buffer.data() + buffer.size(), value, std::chars_format::fixed, decimals);
-  std::string text(buffer.data(), result.ptr);
-  if (text.front() == '-' && text.find_first_not_of("-0.") == std::string::npos) text.erase(0, 1);
-  return text;
-}
 
 std::string escape(const std::string& text) {
   std::string out;
@@ -44,28 +35,162 @@ std::string escape(const std::string& text) {
   return out;
 }
 
-// A "nice" tick step (1, 2 or 5 × 10^n) giving about `count` intervals over `span`.
-double tick_step(double span, int count) {
-  const double raw = span / count;
-  const double magnitude = std::pow(10.0, std::floor(std::log10(raw)));
-  const double residual = raw / magnitude;
-  const double nice = residual <= 1.0 ? 1.0 : residual <= 2.0 ? 2.0 : residual <= 5.0 ? 5.0 : 10.0;
-  return nice * magnitude;
+using svg::fixed_text;
+using svg::px;
+
+// "x,y" of a data point, px.
+std::string point(const svg::PlotArea& area, double t_s, double f_n) {
+  return px(area.to_x(t_s)) + "," + px(area.to_y(f_n));
 }
 
-// Decimals that show a tick step exactly (0.05 → 2, 20 → 0).
-int decimals_for(double step) { return std::max(0, static_cast<int>(std::ceil(-std::log10(step) - 1e-9))); }
-
-// Maps data to pixels.
-struct Frame {
-  double t0_s, t1_s, f0_n, f1_n;
-  double left_px, right_px, top_px, bottom_px;
-  double x(double t_s) const { return left_px + (t_s - t0_s) / (t1_s - t0_s) * (right_px - left_px); }
-  double y(double f_n) const { return bottom_px - (f_n - f0_n) / (f1_n - f0_n) * (bottom_px - top_px); }
+// The force range of the data: from 0 (or the smallest value) to the largest value, peak or target.
+struct ForceRange {
+  double min_n = 0.0;
+  double max_n = 0.0;
 };
 
-std::string point(const Frame& frame, double t_s, double f_n) {
-  return fixed(frame.x(t_s), 1) + "," + fixed(frame.y(f_n), 1);
+ForceRange force_range(const ForcePlotData& data) {
+  double f_min = 0.0, f_max = -std::numeric_limits<double>::infinity();
+  for (const auto& s : data.series) {
+    for (const double v : s.values_n) {
+      if (!std::isfinite(v)) continue;
+      f_min = std::min(f_min, v);
+      f_max = std::max(f_max, v);
+    }
+  }
+  for (const auto& p : data.peaks) f_max = std::max(f_max, p.peak_xy_n);
+  if (data.target_force_n) f_max = std::max(f_max, *data.target_force_n);
+  if (!std::isfinite(f_max) || f_max <= f_min) f_max = f_min + 1.0;
+  return {f_min, f_max};
+}
+
+// The force axis: about 6 intervals, whole steps from below the range to above it with headroom.
+svg::Axis force_axis(const ForceRange& range) {
+  const double headroom_n = 0.05 * (range.max_n - range.min_n);  // keeps the highest peak off the frame
+  const double y_step = svg::tick_step(range.max_n + headroom_n - range.min_n, 6);
+  const double f0 = std::floor(range.min_n / y_step) * y_step;
+  const double f1 = std::ceil((range.max_n + headroom_n) / y_step) * y_step;
+  const double top = f1 > f0 ? f1 : f0 + y_step;
+  return {f0, top, y_step, svg::decimals_for(y_step), std::llround(f0 / y_step), std::llround(top / y_step)};
+}
+
+// The time axis: the samples' span (0 to 1 s without samples), about 8 intervals.
+svg::Axis time_axis(const std::vector<double>& t_s) {
+  double t0 = 0.0, t1 = 1.0;
+  if (!t_s.empty()) {
+    t0 = t_s.front();
+    t1 = t_s.back() > t0 ? t_s.back() : t0 + 1.0;
+  }
+  const double x_step = svg::tick_step(t1 - t0, 8);
+  return svg::axis_within(t0, t1, x_step, svg::decimals_for(x_step));
+}
+
+// The plot area inside the margins, with time along x and force along y.
+svg::PlotArea plot_area(const ForcePlotData& data) {
+  return {kMarginLeft_px, data.width_px - kMarginRight_px, kMarginTop_px, data.height_px - kMarginBottom_px,
+          time_axis(data.t_s), force_axis(force_range(data))};
+}
+
+// The XML declaration, the <svg> element, the title and a white background.
+void append_page(std::string& svg, const ForcePlotData& data) {
+  const std::string width = fixed_text(data.width_px, 0);
+  const std::string height = fixed_text(data.height_px, 0);
+  svg += "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n";
+  svg += "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" + width + "\" height=\"" + height +
+         "\" viewBox=\"0 0 " + width + " " + height + "\" font-family=\"sans-serif\" font-size=\"12\">\n";
+  svg += "<title>" + escape(data.title) + "</title>\n";
+  svg += "<rect x=\"0\" y=\"0\" width=\"" + width + "\" height=\"" + height + "\" fill=\"white\"/>\n";
+  svg += "<text x=\"" + px(data.width_px / 2) + "\" y=\"28\" text-anchor=\"middle\" font-size=\"16\">" +
+         escape(data.title) + "</text>\n";
+}
+
+// Grid, ticks, tick labels, the frame and the axis titles.
+void append_axes(std::string& svg, const svg::PlotArea& area, double height_px) {
+  svg::AxesStyle style;
+  style.x_title = "time t [s]";
+  style.x_title_y_px = height_px - 16;
+  style.y_title = "force F [N]";
+  style.y_title_x_px = 22;
+  style.y_title_centre_with_comma = true;
+  svg::append_axes(svg, area, style);
+}
+
+// The points `kept` of `t` and `f`, closing a polyline's points attribute.
+void append_points(std::string& svg, const svg::PlotArea& area, const std::vector<double>& t,
+                     const std::vector<double>& f, const std::vector<std::size_t>& kept) {
+  for (std::size_t k = 0; k < kept.size(); ++k) {
+    if (k > 0) svg += ' ';
+    svg += point(area, t[kept[k]], f[kept[k]]);
+  }
+  svg += "\"/>\n";
+}
+
+// One polyline per series with points. Returns whether any series had one.
+bool append_series(std::string& svg, const ForcePlotData& data, const svg::PlotArea& area, std::size_t columns) {
+  bool any_point = false;
+  for (const auto& s : data.series) {
+    const std::vector<std::size_t> kept = min_max_decimation(data.t_s, s.values_n, columns);
+    if (kept.empty()) continue;
+    any_point = true;
+    svg += "<polyline fill=\"none\" stroke=\"" + escape(s.color) + "\" stroke-width=\"1\" points=\"";
+    append_points(svg, area, data.t_s, s.values_n, kept);
+  }
+  return any_point;
+}
+
+// Per-revolution peaks: circles, or a decimated line when there are too many.
+void append_peaks(std::string& svg, const std::vector<force_log::RevolutionPeak>& peaks, const svg::PlotArea& area,
+                  std::size_t columns) {
+  if (peaks.empty()) return;
+  const std::string color = "#d62728";
+  if (peaks.size() <= kMaxPeakCircles) {
+    svg += "<g fill=\"" + color + "\">\n";
+    for (const auto& p : peaks) {
+      svg += "<circle cx=\"" + px(area.to_x(p.t_peak_s)) + "\" cy=\"" + px(area.to_y(p.peak_xy_n)) + "\" r=\"3\"/>\n";
+    }
+    svg += "</g>\n";
+    return;
+  }
+  std::vector<double> t, f;
+  for (const auto& p : peaks) {
+    t.push_back(p.t_peak_s);
+    f.push_back(p.peak_xy_n);
+  }
+  svg += "<polyline fill=\"none\" stroke=\"" + color + "\" stroke-width=\"1.5\" points=\"";
+  append_points(svg, area, t, f, min_max_decimation(t, f, columns));
+}
+
+// The target: a dashed line with its value.
+void append_target(std::string& svg, const svg::PlotArea& area, double target_force_n) {
+  const double y = area.to_y(target_force_n);
+  svg += "<line x1=\"" + px(area.left_px) + "\" y1=\"" + px(y) + "\" x2=\"" + px(area.right_px) + "\" y2=\"" + px(y) +
+         "\" stroke=\"#2ca02c\" stroke-width=\"1.5\" stroke-dasharray=\"6 4\"/>\n";
+  svg += "<text x=\"" + px(area.right_px - 4) + "\" y=\"" + px(y - 5) +
+         "\" text-anchor=\"end\" fill=\"#2ca02c\">target " + escape(fixed_text(target_force_n, 0)) + " N</text>\n";
+}
+
+// Legend, on a white box so that lines under it do not hide it.
+void append_legend(std::string& svg, const ForcePlotData& data, const svg::PlotArea& area) {
+  std::size_t legend_width_chars = 0;
+  for (const auto& s : data.series) legend_width_chars = std::max(legend_width_chars, s.label.size());
+  if (!data.peaks.empty()) legend_width_chars = std::max<std::size_t>(legend_width_chars, 19);
+  const std::size_t entries = data.series.size() + (data.peaks.empty() ? 0 : 1);
+  if (entries > 0) {
+    svg += "<rect x=\"" + px(area.left_px + 4) + "\" y=\"" + px(area.top_px + 4) + "\" width=\"" +
+           px(44.0 + 7.0 * static_cast<double>(legend_width_chars)) + "\" height=\"" +
+           px(16.0 * static_cast<double>(entries) + 6.0) +
+           "\" fill=\"white\" fill-opacity=\"0.85\" stroke=\"#cccccc\"/>\n";
+  }
+  double legend_y = area.top_px + 20;
+  auto legend_entry = [&](const std::string& color, const std::string& label) {
+    svg += "<line x1=\"" + px(area.left_px + 10) + "\" y1=\"" + px(legend_y - 4) + "\" x2=\"" +
+           px(area.left_px + 34) + "\" y2=\"" + px(legend_y - 4) + "\" stroke=\"" + escape(color) +
+           "\" stroke-width=\"2\"/>\n";
+    svg += "<text x=\"" + px(area.left_px + 40) + "\" y=\"" + px(legend_y) + "\">" + escape(label) + "</text>\n";
+    legend_y += 16;
+  };
+  for (const auto& s : data.series) legend_entry(s.color, s.label);
+  if (!data.peaks.empty()) legend_entry("#d62728", "peak per revolution");
 }
 
 }  // namespace
@@ -122,163 +247,17 @@ std::string force_plot_svg(const ForcePlotData& data) {
   assert(data.max_points_per_series >= 4);
   assert(std::all_of(data.series.begin(), data.series.end(),
                      [&](const ForcePlotSeries& s) { return s.values_n.size() == data.t_s.size(); }));
-
-  // Data ranges.
-  double f_min = 0.0, f_max = -std::numeric_limits<double>::infinity();
-  for (const auto& s : data.series) {
-    for (const double v : s.values_n) {
-      if (!std::isfinite(v)) continue;
-      f_min = std::min(f_min, v);
-      f_max = std::max(f_max, v);
-    }
-  }
-  for (const auto& p : data.peaks) f_max = std::max(f_max, p.peak_xy_n);
-  if (data.target_force_n) f_max = std::max(f_max, *data.target_force_n);
-  if (!std::isfinite(f_max) || f_max <= f_min) f_max = f_min + 1.0;
-  const double headroom_n = 0.05 * (f_max - f_min);  // keeps the highest peak off the frame
-  const double y_step = tick_step(f_max + headroom_n - f_min, 6);
-  const double f0 = std::floor(f_min / y_step) * y_step;
-  const double f1 = std::ceil((f_max + headroom_n) / y_step) * y_step;
-  double t0 = 0.0, t1 = 1.0;
-  if (!data.t_s.empty()) {
-    t0 = data.t_s.front();
-    t1 = data.t_s.back() > t0 ? data.t_s.back() : t0 + 1.0;
-  }
-  const Frame frame{t0,
-                    t1,
-                    f0,
-                    f1 > f0 ? f1 : f0 + y_step,
-                    kMarginLeft_px,
-                    data.width_px - kMarginRight_px,
-                    kMarginTop_px,
-                    data.height_px - kMarginBottom_px};
+  const svg::PlotArea area = plot_area(data);
+  const std::size_t columns = std::max<std::size_t>(1, std::min(data.max_points_per_series / 4, area.columns()));
 
   std::string svg;
-  svg += "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n";
-  svg += "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" + fixed(data.width_px, 0) + "\" height=\"" +
-         fixed(data.height_px, 0) + "\" viewBox=\"0 0 " + fixed(data.width_px, 0) + " " + fixed(data.height_px, 0) +
-         "\" font-family=\"sans-serif\" font-size=\"12\">\n";
-  svg += "<title>" + escape(data.title) + "</title>\n";
-  svg += "<rect x=\"0\" y=\"0\" width=\"" + fixed(data.width_px, 0) + "\" height=\"" + fixed(data.height_px, 0) +
-         "\" fill=\"white\"/>\n";
-  svg += "<text x=\"" + fixed(data.width_px / 2, 1) + "\" y=\"28\" text-anchor=\"middle\" font-size=\"16\">" +
-         escape(data.title) + "</text>\n";
-
-  // Grid, ticks and tick labels.
-  svg += "<g stroke=\"#dddddd\" stroke-width=\"1\">\n";
-  const double x_step = tick_step(t1 - t0, 8);
-  std::string labels;
-  // Ticks at whole multiples of the step, counted in integers so that no error accumulates.
-  const auto first_x_tick = static_cast<long long>(std::ceil(t0 / x_step - 1e-9));
-  const auto last_x_tick = static_cast<long long>(std::floor(t1 / x_step + 1e-9));
-  for (long long n = first_x_tick; n <= last_x_tick; ++n) {
-    const double t = static_cast<double>(n) * x_step;
-    const double x = frame.x(t);
-    svg += "<line x1=\"" + fixed(x, 1) + "\" y1=\"" + fixed(frame.top_px, 1) + "\" x2=\"" + fixed(x, 1) + "\" y2=\"" +
-           fixed(frame.bottom_px, 1) + "\"/>\n";
-    labels += "<text x=\"" + fixed(x, 1) + "\" y=\"" + fixed(frame.bottom_px + 16, 1) + "\" text-anchor=\"middle\">" +
-              fixed(t, decimals_for(x_step)) + "</text>\n";
-  }
-  const auto first_y_tick = static_cast<long long>(std::llround(frame.f0_n / y_step));
-  const auto last_y_tick = static_cast<long long>(std::llround(frame.f1_n / y_step));
-  for (long long n = first_y_tick; n <= last_y_tick; ++n) {
-    const double f = static_cast<double>(n) * y_step;
-    const double y = frame.y(f);
-    svg += "<line x1=\"" + fixed(frame.left_px, 1) + "\" y1=\"" + fixed(y, 1) + "\" x2=\"" + fixed(frame.right_px, 1) +
-           "\" y2=\"" + fixed(y, 1) + "\"/>\n";
-    labels += "<text x=\"" + fixed(frame.left_px - 6, 1) + "\" y=\"" + fixed(y + 4, 1) + "\" text-anchor=\"end\">" +
-              fixed(f, decimals_for(y_step)) + "</text>\n";
-  }
-  svg += "</g>\n<g fill=\"#333333\">\n" + labels + "</g>\n";
-
-  // Axes and their labels.
-  svg += "<rect x=\"" + fixed(frame.left_px, 1) + "\" y=\"" + fixed(frame.top_px, 1) + "\" width=\"" +
-         fixed(frame.right_px - frame.left_px, 1) + "\" height=\"" + fixed(frame.bottom_px - frame.top_px, 1) +
-         "\" fill=\"none\" stroke=\"#333333\"/>\n";
-  svg += "<text x=\"" + fixed((frame.left_px + frame.right_px) / 2, 1) + "\" y=\"" + fixed(data.height_px - 16, 1) +
-         "\" text-anchor=\"middle\">time t [s]</text>\n";
-  const std::string y_label_at = fixed(22, 1) + "," + fixed((frame.top_px + frame.bottom_px) / 2, 1);
-  svg += "<text x=\"22\" y=\"" + fixed((frame.top_px + frame.bottom_px) / 2, 1) +
-         "\" text-anchor=\"middle\" transform=\"rotate(-90 " + y_label_at + ")\">force F [N]</text>\n";
-
-  // Series.
-  const std::size_t plot_columns = static_cast<std::size_t>(std::max(1.0, std::floor(frame.right_px - frame.left_px)));
-  const std::size_t columns = std::max<std::size_t>(1, std::min(data.max_points_per_series / 4, plot_columns));
-  bool any_point = false;
-  for (const auto& s : data.series) {
-    const std::vector<std::size_t> kept = min_max_decimation(data.t_s, s.values_n, columns);
-    if (kept.empty()) continue;
-    any_point = true;
-    svg += "<polyline fill=\"none\" stroke=\"" + escape(s.color) + "\" stroke-width=\"1\" points=\"";
-    for (std::size_t k = 0; k < kept.size(); ++k) {
-      if (k > 0) svg += ' ';
-      svg += point(frame, data.t_s[kept[k]], s.values_n[kept[k]]);
-    }
-    svg += "\"/>\n";
-  }
-
-  // Per-revolution peaks.
-  if (!data.peaks.empty()) {
-    const std::string color = "#d62728";
-    if (data.peaks.size() <= kMaxPeakCircles) {
-      svg += "<g fill=\"" + color + "\">\n";
-      for (const auto& p : data.peaks) {
-        svg += "<circle cx=\"" + fixed(frame.x(p.t_peak_s), 1) + "\" cy=\"" + fixed(frame.y(p.peak_xy_n), 1) +
-               "\" r=\"3\"/>\n";
-      }
-      svg += "</g>\n";
-    } else {
-      std::vector<double> t, f;
-      for (const auto& p : data.peaks) {
-        t.push_back(p.t_peak_s);
-        f.push_back(p.peak_xy_n);
-      }
-      svg += "<polyline fill=\"none\" stroke=\"" + color + "\" stroke-width=\"1.5\" points=\"";
-      const std::vector<std::size_t> kept = min_max_decimation(t, f, columns);
-      for (std::size_t k = 0; k < kept.size(); ++k) {
-        if (k > 0) svg += ' ';
-        svg += point(frame, t[kept[k]], f[kept[k]]);
-      }
-      svg += "\"/>\n";
-    }
-  }
-
-  // Target.
-  if (data.target_force_n) {
-    const double y = frame.y(*data.target_force_n);
-    svg += "<line x1=\"" + fixed(frame.left_px, 1) + "\" y1=\"" + fixed(y, 1) + "\" x2=\"" + fixed(frame.right_px, 1) +
-           "\" y2=\"" + fixed(y, 1) + "\" stroke=\"#2ca02c\" stroke-width=\"1.5\" stroke-dasharray=\"6 4\"/>\n";
-    svg += "<text x=\"" + fixed(frame.right_px - 4, 1) + "\" y=\"" + fixed(y - 5, 1) +
-           "\" text-anchor=\"end\" fill=\"#2ca02c\">target " + escape(fixed(*data.target_force_n, 0)) + " N</text>\n";
-  }
-
-  // Legend, on a white box so that lines under it do not hide it.
-  std::size_t legend_width_chars = 0;
-  for (const auto& s : data.series) legend_width_chars = std::max(legend_width_chars, s.label.size());
-  if (!data.peaks.empty()) legend_width_chars = std::max<std::size_t>(legend_width_chars, 19);
-  const std::size_t entries = data.series.size() + (data.peaks.empty() ? 0 : 1);
-  if (entries > 0) {
-    svg += "<rect x=\"" + fixed(frame.left_px + 4, 1) + "\" y=\"" + fixed(frame.top_px + 4, 1) + "\" width=\"" +
-           fixed(44.0 + 7.0 * static_cast<double>(legend_width_chars), 1) + "\" height=\"" +
-           fixed(16.0 * static_cast<double>(entries) + 6.0, 1) +
-           "\" fill=\"white\" fill-opacity=\"0.85\" stroke=\"#cccccc\"/>\n";
-  }
-  double legend_y = frame.top_px + 20;
-  auto legend_entry = [&](const std::string& color, const std::string& label) {
-    svg += "<line x1=\"" + fixed(frame.left_px + 10, 1) + "\" y1=\"" + fixed(legend_y - 4, 1) + "\" x2=\"" +
-           fixed(frame.left_px + 34, 1) + "\" y2=\"" + fixed(legend_y - 4, 1) + "\" stroke=\"" + escape(color) +
-           "\" stroke-width=\"2\"/>\n";
-    svg += "<text x=\"" + fixed(frame.left_px + 40, 1) + "\" y=\"" + fixed(legend_y, 1) + "\">" + escape(label) +
-           "</text>\n";
-    legend_y += 16;
-  };
-  for (const auto& s : data.series) legend_entry(s.color, s.label);
-  if (!data.peaks.empty()) legend_entry("#d62728", "peak per revolution");
-
-  if (!any_point && data.peaks.empty()) {
-    svg += "<text x=\"" + fixed((frame.left_px + frame.right_px) / 2, 1) + "\" y=\"" +
-           fixed((frame.top_px + frame.bottom_px) / 2, 1) + "\" text-anchor=\"middle\" fill=\"#888888\">no data</text>\n";
-  }
+  append_page(svg, data);
+  append_axes(svg, area, data.height_px);
+  const bool any_point = append_series(svg, data, area, columns);
+  append_peaks(svg, data.peaks, area, columns);
+  if (data.target_force_n) append_target(svg, area, *data.target_force_n);
+  append_legend(svg, data, area);
+  if (!any_point && data.peaks.empty()) svg::append_no_data(svg, area);
   svg += "</svg>\n";
   return svg;
 }

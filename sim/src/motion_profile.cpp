@@ -87,6 +87,154 @@ void check_program(const geometry::Program& program, const MotionLimits& limits)
   if (!problems.empty()) throw InputError(std::move(problems));
 }
 
+// Steps 1–2: the speed cap of one move (its F, the machine's maximum feed, the centripetal limit on
+// arcs, or the rapid rate), mm/s.
+double speed_cap_mm_per_s(const Move& move, const geometry::BlockCommand& block, const MotionLimits& limits) {
+  const double accel = limits.max_accel_mm_per_s2;
+  double cap_mm_per_s = limits.rapid_feed_mm_per_min / 60.0;
+  if (!is_rapid(move)) {
+    cap_mm_per_s = std::min(block.feed_mm_per_min, limits.max_feed_mm_per_min) / 60.0;
+    if (move.kind == MoveKind::kArc && limits.limit_centripetal) {
+      cap_mm_per_s = std::min(cap_mm_per_s, std::sqrt(accel * geometry::arc_radius_mm(move)));
+    }
+  }
+  return cap_mm_per_s;
+}
+
+// Steps 1–2 for every move: where it starts, its length and its cap, into `timings` (one per move).
+// Returns the total path length, mm.
+double measure_moves(const geometry::Program& program, const MotionLimits& limits, std::vector<MoveTiming>& timings) {
+  double s_mm = 0.0;
+  for (std::size_t i = 0; i < program.path.moves.size(); ++i) {
+    const Move& move = program.path.moves[i];
+    MoveTiming& timing = timings[i];
+    timing.start_s_mm = s_mm;
+    timing.length_mm = geometry::length_mm(move);
+    s_mm += timing.length_mm;
+    timing.cap_mm_per_s = speed_cap_mm_per_s(move, program.blocks[i], limits);
+  }
+  return s_mm;
+}
+
+// The moves that take time ("real" moves), in order: those at least kMinMoveLengthMm long.
+std::vector<std::size_t> moves_taking_time(const std::vector<MoveTiming>& timings) {
+  std::vector<std::size_t> real;
+  for (std::size_t i = 0; i < timings.size(); ++i) {
+    if (timings[i].length_mm >= kMinMoveLengthMm) real.push_back(i);
+  }
+  return real;
+}
+
+// Step 3: point caps at the junctions, as v² (mm²/s²). Junction j lies before real move j (j = 0 is
+// the start, j = m the end, both at rest).
+std::vector<double> junction_speeds_squared(const geometry::Program& program, const MotionLimits& limits,
+                                            const std::vector<MoveTiming>& timings,
+                                            const std::vector<std::size_t>& real) {
+  const std::vector<Move>& moves = program.path.moves;
+  const std::size_t m = real.size();
+  std::vector<double> u(m + 1, 0.0);  // v² at the junctions, mm²/s²
+  for (std::size_t j = 1; j < m; ++j) {
+    const std::size_t p = real[j - 1];
+    const std::size_t q = real[j];
+    bool stop = is_rapid(moves[p]) != is_rapid(moves[q]);
+    for (std::size_t k = p + 1; k <= q; ++k) stop = stop || program.blocks[k].dwell_before_s > 0.0;
+    if (stop) continue;
+    const double cap = std::min(timings[p].cap_mm_per_s, timings[q].cap_mm_per_s);
+    const Vec3 t1 = unit_tangent(moves[p], 1.0, timings[p].length_mm);
+    const Vec3 t2 = unit_tangent(moves[q], 0.0, timings[q].length_mm);
+    u[j] = std::min(cap * cap, junction_speed_squared(t1, t2, limits.max_accel_mm_per_s2, limits.junction_deviation_mm));
+  }
+  return u;
+}
+
+// Step 4. Look-ahead: forward then backward pass on u = v² at the junctions (DESIGN.md §5.5).
+void look_ahead(std::vector<double>& u, const std::vector<MoveTiming>& timings, const std::vector<std::size_t>& real,
+                double accel) {
+  const std::size_t m = real.size();
+  for (std::size_t j = 1; j <= m; ++j) {
+    u[j] = std::min(u[j], u[j - 1] + 2.0 * accel * timings[real[j - 1]].length_mm);
+  }
+  for (std::size_t j = m; j-- > 0;) {
+    u[j] = std::min(u[j], u[j + 1] + 2.0 * accel * timings[real[j]].length_mm);
+  }
+}
+
+// Steps 5–6 as they are laid out in time: the phases so far, the time they end and the time spent
+// in each kind of phase.
+struct PhaseSchedule {
+  std::vector<MotionSegment> segments;
+  double t_s = 0.0;
+  double time_in_cut_s = 0.0;
+  double time_in_air_s = 0.0;
+  double time_dwelling_s = 0.0;
+
+  // Step 6: a dwell at rest for exactly `dwell_s` (none when it is not positive).
+  void add_dwell(std::size_t move_index, double at_s_mm, double dwell_s) {
+    if (dwell_s <= 0.0) return;
+    segments.push_back({t_s, at_s_mm, 0.0, 0.0, dwell_s, move_index, true});
+    t_s += dwell_s;
+    time_dwelling_s += dwell_s;
+  }
+};
+
+// Step 5: the phases of move `i` (accelerate, cruise, decelerate) between entry speed² `u0` and exit
+// speed² `u1`; fills in its timing.
+void add_move_phases(PhaseSchedule& schedule, const Move& move, std::size_t i, MoveTiming& timing, double u0,
+                     double u1, double accel) {
+  auto& segments = schedule.segments;
+  double& t_s = schedule.t_s;
+  const double length = timing.length_mm;
+  const double cap = timing.cap_mm_per_s;
+  // Greatest profile v² = min(u0 + 2as, cap², u1 + 2a(L − s)); the passes guarantee |u1 − u0| ≤ 2aL.
+  const double u_triangle = 0.5 * (u0 + u1) + accel * length;  // peak when the cap is not reached
+  const bool reaches_cap = cap * cap <= u_triangle;
+  const double u_peak = reaches_cap ? cap * cap : std::max({u_triangle, u0, u1});
+  const double v0 = std::sqrt(u0);
+  const double v1 = std::sqrt(u1);
+  const double v_peak = std::sqrt(u_peak);
+  const double s_accel = (u_peak - u0) / (2.0 * accel);
+  const double s_decel = (u_peak - u1) / (2.0 * accel);
+  const double s_cruise = reaches_cap ? std::max(0.0, length - s_accel - s_decel) : 0.0;
+  const double t_accel = (v_peak - v0) / accel;
+  const double t_cruise = s_cruise / v_peak;
+  const double t_decel = (v_peak - v1) / accel;
+  timing.entry_speed_mm_per_s = v0;
+  timing.exit_speed_mm_per_s = v1;
+  const double time_before = t_s;
+  const double s0 = timing.start_s_mm;
+  if (t_accel > 0.0) segments.push_back({t_s, s0, v0, accel, t_accel, i, false});
+  t_s += t_accel;
+  if (t_cruise > 0.0) segments.push_back({t_s, s0 + s_accel, v_peak, 0.0, t_cruise, i, false});
+  t_s += t_cruise;
+  if (t_decel > 0.0) segments.push_back({t_s, s0 + s_accel + s_cruise, v_peak, -accel, t_decel, i, false});
+  t_s += t_decel;
+  timing.end_time_s = t_s;
+  const bool cutting = move.cutting && !is_rapid(move);
+  (cutting ? schedule.time_in_cut_s : schedule.time_in_air_s) += t_s - time_before;
+}
+
+// Steps 5–6 for every move in order: the dwell before it, then its phases; a move that takes no time
+// passes through its junction at that junction's speed. The dwell at the program's end is not added.
+PhaseSchedule schedule_phases(const geometry::Program& program, std::vector<MoveTiming>& timings,
+                              const std::vector<std::size_t>& real, const std::vector<double>& u, double accel) {
+  PhaseSchedule schedule;
+  const std::size_t m = real.size();
+  std::size_t j = 0;  // next junction
+  for (std::size_t i = 0; i < timings.size(); ++i) {
+    MoveTiming& timing = timings[i];
+    schedule.add_dwell(i, timing.start_s_mm, program.blocks[i].dwell_before_s);
+    timing.start_time_s = schedule.t_s;
+    if (j == m || real[j] != i) {  // takes no time: passes through junction j
+      timing.entry_speed_mm_per_s = timing.exit_speed_mm_per_s = std::sqrt(u[j]);
+      timing.end_time_s = schedule.t_s;
+      continue;
+    }
+    add_move_phases(schedule, program.path.moves[i], i, timing, u[j], u[j + 1], accel);
+    ++j;
+  }
+  return schedule;
+}
+
 }  // namespace
 
 std::vector<InputProblem> validate(const MotionLimits& limits) {
@@ -105,112 +253,22 @@ std::vector<InputProblem> validate(const MotionLimits& limits) {
 MotionProfile plan_motion(const geometry::Program& program, const MotionLimits& limits) {
   assert(program.blocks.size() == program.path.moves.size());
   check_program(program, limits);
-
-  const std::vector<Move>& moves = program.path.moves;
-  const std::size_t n = moves.size();
   const double accel = limits.max_accel_mm_per_s2;
 
   MotionProfile profile;
-  profile.path_moves_ = moves;
-  profile.timings_.resize(n);
-
-  // 1–2. Lengths and per-move caps; the moves that take time ("real" moves), in order.
-  std::vector<std::size_t> real;
-  double s_mm = 0.0;
-  for (std::size_t i = 0; i < n; ++i) {
-    const Move& move = moves[i];
-    MoveTiming& timing = profile.timings_[i];
-    timing.start_s_mm = s_mm;
-    timing.length_mm = geometry::length_mm(move);
-    s_mm += timing.length_mm;
-    double cap_mm_per_s = limits.rapid_feed_mm_per_min / 60.0;
-    if (!is_rapid(move)) {
-      cap_mm_per_s = std::min(program.blocks[i].feed_mm_per_min, limits.max_feed_mm_per_min) / 60.0;
-      if (move.kind == MoveKind::kArc && limits.limit_centripetal) {
-        cap_mm_per_s = std::min(cap_mm_per_s, std::sqrt(accel * geometry::arc_radius_mm(move)));
-      }
-    }
-    timing.cap_mm_per_s = cap_mm_per_s;
-    if (timing.length_mm >= kMinMoveLengthMm) real.push_back(i);
-  }
-  profile.length_mm_ = s_mm;
-
-  // 3. Point caps at the junctions: junction j lies before real move j (j = 0 is the start, j = m the end).
-  const std::size_t m = real.size();
-  std::vector<double> u(m + 1, 0.0);  // v² at the junctions, mm²/s²
-  for (std::size_t j = 1; j < m; ++j) {
-    const std::size_t p = real[j - 1];
-    const std::size_t q = real[j];
-    bool stop = is_rapid(moves[p]) != is_rapid(moves[q]);
-    for (std::size_t k = p + 1; k <= q; ++k) stop = stop || program.blocks[k].dwell_before_s > 0.0;
-    if (stop) continue;
-    const double cap = std::min(profile.timings_[p].cap_mm_per_s, profile.timings_[q].cap_mm_per_s);
-    const Vec3 t1 = unit_tangent(moves[p], 1.0, profile.timings_[p].length_mm);
-    const Vec3 t2 = unit_tangent(moves[q], 0.0, profile.timings_[q].length_mm);
-    u[j] = std::min(cap * cap, junction_speed_squared(t1, t2, accel, limits.junction_deviation_mm));
-  }
-
-  // 4. Look-ahead: forward then backward pass on u = v² (DESIGN.md §5.5).
-  for (std::size_t j = 1; j <= m; ++j) {
-    u[j] = std::min(u[j], u[j - 1] + 2.0 * accel * profile.timings_[real[j - 1]].length_mm);
-  }
-  for (std::size_t j = m; j-- > 0;) {
-    u[j] = std::min(u[j], u[j + 1] + 2.0 * accel * profile.timings_[real[j]].length_mm);
-  }
-
-  // 5–6. Phases of each move, dwells in between.
-  auto& segments = profile.segments_;
-  double t_s = 0.0;
-  auto add_dwell = [&](std::size_t move_index, double at_s_mm, double dwell_s) {
-    if (dwell_s <= 0.0) return;
-    segments.push_back({t_s, at_s_mm, 0.0, 0.0, dwell_s, move_index, true});
-    t_s += dwell_s;
-    profile.time_dwelling_s_ += dwell_s;
-  };
-  std::size_t j = 0;  // next junction
-  for (std::size_t i = 0; i < n; ++i) {
-    MoveTiming& timing = profile.timings_[i];
-    add_dwell(i, timing.start_s_mm, program.blocks[i].dwell_before_s);
-    timing.start_time_s = t_s;
-    if (j == m || real[j] != i) {  // takes no time: passes through junction j
-      timing.entry_speed_mm_per_s = timing.exit_speed_mm_per_s = std::sqrt(u[j]);
-      timing.end_time_s = t_s;
-      continue;
-    }
-    const double u0 = u[j];
-    const double u1 = u[j + 1];
-    ++j;
-    const double length = timing.length_mm;
-    const double cap = timing.cap_mm_per_s;
-    // Greatest profile v² = min(u0 + 2as, cap², u1 + 2a(L − s)); the passes guarantee |u1 − u0| ≤ 2aL.
-    const double u_triangle = 0.5 * (u0 + u1) + accel * length;  // peak when the cap is not reached
-    const bool reaches_cap = cap * cap <= u_triangle;
-    const double u_peak = reaches_cap ? cap * cap : std::max({u_triangle, u0, u1});
-    const double v0 = std::sqrt(u0);
-    const double v1 = std::sqrt(u1);
-    const double v_peak = std::sqrt(u_peak);
-    const double s_accel = (u_peak - u0) / (2.0 * accel);
-    const double s_decel = (u_peak - u1) / (2.0 * accel);
-    const double s_cruise = reaches_cap ? std::max(0.0, length - s_accel - s_decel) : 0.0;
-    const double t_accel = (v_peak - v0) / accel;
-    const double t_cruise = s_cruise / v_peak;
-    const double t_decel = (v_peak - v1) / accel;
-    timing.entry_speed_mm_per_s = v0;
-    timing.exit_speed_mm_per_s = v1;
-    const double time_before = t_s;
-    const double s0 = timing.start_s_mm;
-    if (t_accel > 0.0) segments.push_back({t_s, s0, v0, accel, t_accel, i, false});
-    t_s += t_accel;
-    if (t_cruise > 0.0) segments.push_back({t_s, s0 + s_accel, v_peak, 0.0, t_cruise, i, false});
-    t_s += t_cruise;
-    if (t_decel > 0.0) segments.push_back({t_s, s0 + s_accel + s_cruise, v_peak, -accel, t_decel, i, false});
-    t_s += t_decel;
-    timing.end_time_s = t_s;
-    const bool cutting = moves[i].cutting && !is_rapid(moves[i]);
-    (cutting ? profile.time_in_cut_s_ : profile.time_in_air_s_) += t_s - time_before;
-  }
-  add_dwell(n - 1, profile.length_mm_, program.dwell_at_end_s);
-  profile.duration_s_ = t_s;
+  profile.path_moves_ = program.path.moves;
+  profile.timings_.resize(program.path.moves.size());
+  profile.length_mm_ = measure_moves(program, limits, profile.timings_);
+  const std::vector<std::size_t> real = moves_taking_time(profile.timings_);
+  std::vector<double> u = junction_speeds_squared(program, limits, profile.timings_, real);
+  look_ahead(u, profile.timings_, real, accel);
+  PhaseSchedule schedule = schedule_phases(program, profile.timings_, real, u, accel);
+  schedule.add_dwell(program.path.moves.size() - 1, profile.length_mm_, program.dwell_at_end_s);
+  profile.segments_ = std::move(schedule.segments);
+  profile.time_in_cut_s_ = schedule.time_in_cut_s;
+  profile.time_in_air_s_ = schedule.time_in_air_s;
+  profile.time_dwelling_s_ = schedule.time_dwelling_s;
+  profile.duration_s_ = schedule.t_s;
   return profile;
 }
 
