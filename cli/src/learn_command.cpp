@@ -40,6 +40,241 @@ void print_errors(const char* what, const learning::PredictionErrors& e) {
               e.median_abs_percent, e.p95_abs_percent, e.max_abs_percent, e.mean_percent);
 }
 
+// The plan the parts were cut with, their logs and the database to learn into.
+struct LearnInputs {
+  planner::PlanReport report;            // the plan report
+  cycles::CycleSpec spec;                // the cycle spec it came from
+  std::vector<learning::NamedLog> logs;  // the logs, with forces (from currents when calibrated)
+  std::string db_path;                   // --db, else the report's, else $FEEDPLAN_DB, else the sample
+};
+
+// The model version planned with, and the one learned from it.
+struct ModelVersions {
+  model_db::ModelRecord before;  // the plan's model
+  model_db::ModelRecord after;   // the learned version, as stored
+};
+
+// The plan again, as it was cut.
+struct RemadePlan {
+  planner::PlanGeometry geometry;  // path and engagement
+  planner::PlanResult plan;        // the plan
+};
+
+// The plan with the learned model.
+struct Replanned {
+  planner::PlanSettings settings;      // the report's, with the learned model and path correction
+  learning::PathLearning along_path;   // the learning along this path, for the next part
+  planner::PlanResult plan;            // the new plan
+  std::string program_text;            // its G-code
+};
+
+std::vector<learning::NamedLog> read_logs(const LearnOptions& o) {
+  std::vector<learning::NamedLog> logs;
+  std::optional<learning::CurrentCalibration> calibration;
+  if (!o.calibration_path.empty()) calibration = load_current_calibration(o.calibration_path);
+  for (const std::string& path : o.log_paths) {
+    force_log::ForceLog log = force_log::load_force_log(path);
+    if (!log.has_forces) {
+      if (!log.has_currents || !calibration) {
+        throw InputError(path, log.has_currents ? "has servo currents but no forces: give --calibration (feedplan calibrate-currents)"
+                                                : "has no force columns");
+      }
+      // Currents see the mean force (≈ 62 Hz), not the tooth peaks: what is learned is then the model of that.
+      log = learning::forces_from_currents(log, *calibration);
+    }
+    logs.push_back({fs::path(path).filename().string(), std::move(log)});
+  }
+  return logs;
+}
+
+// Inputs, all read and checked before anything is written.
+LearnInputs read_learn_inputs(const LearnOptions& o) {
+  LearnInputs in;
+  in.report = planner::read_plan_report(o.plan_path);
+  in.spec = cycles::load_cycle_spec(resolve_spec(in.report.context.spec_path, o.plan_path));
+  in.logs = read_logs(o);
+  in.db_path = !o.db_path.empty() ? o.db_path
+               : !in.report.context.database_path.empty() ? in.report.context.database_path
+                                                          : database_path("");
+  return in;
+}
+
+model_db::ModelRecord planned_model(const model_db::Store& store, const LearnInputs& in) {
+  const auto before = store.model_by_id(in.report.context.model_id);
+  if (!before) {
+    throw InputError("model.id", "= " + std::to_string(in.report.context.model_id) + ": the plan's model is not in " + in.db_path);
+  }
+  return *before;
+}
+
+// The plan again (deterministic from the spec and the report's settings); it must be the one cut.
+RemadePlan remake_plan(const LearnInputs& in) {
+  const planner::PlanReport& report = in.report;
+  const cycles::Cycle cycle = cycles::generate(in.spec);
+  RemadePlan remade;
+  remade.geometry = planner::analyse(cycle.path, cycle.stock, in.spec.tool, report.settings.options.ds_mm);
+  remade.plan = planner::plan(remade.geometry, report.settings);
+  if (remade.plan.blocks.size() != report.blocks.size()) {
+    throw InputError("blocks", "the plan re-made from " + report.context.spec_path + " has " +
+                                   std::to_string(remade.plan.blocks.size()) + " blocks, the report " +
+                                   std::to_string(report.blocks.size()) + ": the spec changed since the plan was made");
+  }
+  return remade;
+}
+
+// Learn: RLS and the batch refit over every earlier step of this tool and material and these logs.
+// Throws InputError naming the logs that are not of this program or whose units look wrong.
+learning::ModelUpdate learn_from_logs(const LearnOptions& o, const LearnInputs& in, const model_db::Store& store,
+                                      const model_db::ModelRecord& before, const planner::PlanResult& plan) {
+  std::optional<model::Covariance> prior_covariance;
+  if (before.fit.covariance[0] > 0.0) prior_covariance = before.fit.covariance;
+  // Every earlier learning step of this tool and material (stored with its samples): the refit spans them all.
+  std::vector<learning::LearningSample> earlier;
+  for (const model_db::LearnedSample& stored : store.learned_samples(before.tool_name, before.material_name)) {
+    earlier.push_back({stored.chip_mm, stored.contact_length_mm, stored.force_n, stored.weight, stored.s_mm});
+  }
+  const learning::ModelUpdate update =
+      learning::update_model(plan, in.report.settings, in.spec.tool.flutes, in.logs, earlier, prior_covariance);
+  std::vector<InputProblem> problems;
+  for (std::size_t i = 0; i < update.logs.size(); ++i) {
+    const auto status = update.logs[i].alignment.status;
+    if (status == learning::AlignmentStatus::kNotThisProgram || status == learning::AlignmentStatus::kUnitsLookWrong) {
+      problems.push_back({o.log_paths[i], learning::to_string(status) + ": " + update.logs[i].alignment.message});
+    }
+  }
+  if (!problems.empty()) throw InputError(std::move(problems));
+  return update;
+}
+
+// Learning along this path too (learning/path_correction.hpp), carried in the report to the next part.
+learning::PathLearning learn_along_this_path(const planner::PlanReport& report, const planner::PlanResult& plan,
+                                             const learning::ModelUpdate& update) {
+  std::vector<learning::MeasuredRevolutions> measured;
+  for (const auto& log : update.logs) measured.push_back(log.revolutions);
+  learning::PathLearning previous;
+  previous.correction = report.settings.force_correction;
+  previous.place_correction = report.context.path_place_correction;
+  for (const auto& m : report.context.path_measurements) previous.measurement.push_back({m[0], m[1], m[2], m[3]});
+  return learning::learn_along_path(plan, update.model, measured, report.settings.target_force_n, previous);
+}
+
+// Re-plan with the learned model and the correction along the path; the program's G-code.
+Replanned replan(const LearnInputs& in, const RemadePlan& remade, const learning::ModelUpdate& update) {
+  const planner::PlanReport& report = in.report;
+  Replanned next;
+  next.settings = report.settings;
+  next.settings.model = update.model;
+  next.along_path = learn_along_this_path(report, remade.plan, update);
+  next.settings.force_correction = next.along_path.correction;
+  next.plan = planner::plan(remade.geometry, next.settings);
+  gcode::WriterOptions writer;
+  writer.dialect = gcode::dialect_from_string(report.context.dialect).value_or(gcode::Dialect::kLinuxCnc);
+  writer.program_name = in.spec.cycle + " " + in.spec.tool.name;
+  next.program_text = gcode::write_gcode(next.plan.program, writer);
+  return next;
+}
+
+// Store the learned version with its learning entry and samples (one transaction); returns it as stored.
+model_db::ModelRecord store_learned_model(const LearnOptions& o, const LearnInputs& in, model_db::Store& store,
+                                          const model_db::ModelRecord& before, const learning::ModelUpdate& update) {
+  model_db::ModelRecord learned;
+  learned.tool_name = before.tool_name;
+  learned.material_name = before.material_name;
+  learned.model = update.model;
+  learned.fit.n = update.batch.n;
+  learned.fit.rmse_n = update.batch.rms_error_after_n;
+  learned.fit.covariance = update.covariance;
+  learned.fit.standard_errors = update.batch.standard_error_n;
+  learned.source = model_db::ModelSource::kLearned;
+  learned.note = o.note.empty() ? "learned from " + std::to_string(in.logs.size()) + " log(s) of " + in.spec.cycle : o.note;
+  model_db::LearningEntry entry;
+  entry.model_id_before = before.id;
+  entry.part_name = fs::path(o.plan_path).filename().string();
+  entry.n_samples = static_cast<int>(update.samples.size());
+  entry.error_before_n = update.before.rms_n;
+  entry.error_after_n = update.after_batch.rms_n;
+  entry.note = learned.note;
+  std::vector<model_db::LearnedSample> learned_samples;
+  for (const learning::LearningSample& sample : update.samples) {
+    learned_samples.push_back({sample.chip_mm, sample.contact_length_mm, sample.force_n, sample.weight, sample.s_mm});
+  }
+  return store.add_learned_model(learned, entry, learned_samples).first;
+}
+
+// The report's context for the new plan: the stored version, the program, the learning along the path.
+planner::PlanReportContext next_context(const LearnOptions& o, const LearnInputs& in, const model_db::ModelRecord& stored,
+                                        const learning::PathLearning& along_path) {
+  planner::PlanReportContext context = in.report.context;
+  context.model_id = stored.id;
+  context.model_version = stored.version;
+  context.program_path = o.program_path;
+  context.database_path = in.db_path;
+  context.path_place_correction = along_path.place_correction;
+  context.path_measurements.clear();
+  for (const auto& m : along_path.measurement) {
+    context.path_measurements.push_back({m.chip_mm, m.contact_length_mm, m.force_n, m.window_mm});
+  }
+  return context;
+}
+
+// The program, --report and --plot (with the measured peaks). Returns the first error, or empty.
+std::string write_learn_outputs(const LearnOptions& o, const LearnInputs& in, const model_db::ModelRecord& stored,
+                                const learning::ModelUpdate& update, const Replanned& next) {
+  if (auto error = write_file_atomically(o.program_path, next.program_text); !error.empty()) return error;
+  const planner::PlanReportContext context = next_context(o, in, stored, next.along_path);
+  if (!o.report_path.empty()) {
+    if (auto error = planner::write_plan_report(o.report_path, next.plan, next.settings, context); !error.empty()) {
+      return error;
+    }
+  }
+  if (!o.plot_path.empty()) {
+    planner::PlanPlotOptions plot;
+    plot.title = in.spec.cycle + " re-planned with model v" + std::to_string(stored.version) + " (markers: measured peaks)";
+    std::vector<std::pair<double, double>> peaks;
+    for (const auto& log : update.logs) {
+      for (const auto& r : log.revolutions.revolutions) peaks.emplace_back(0.5 * (r.s_start_mm + r.s_end_mm), r.peak_n);
+    }
+    plot.measured_peaks = peaks;
+    if (auto error = planner::write_plan_plot(o.plot_path, next.plan, next.settings.target_force_n, plot); !error.empty()) {
+      return error;
+    }
+  }
+  return "";
+}
+
+void print_learn_json(const LearnInputs& in, const ModelVersions& models, const learning::ModelUpdate& update,
+                      const Replanned& next) {
+  nlohmann::json out;
+  out["model_before"] = {{"id", models.before.id}, {"version", models.before.version}};
+  out["model_after"] = {{"id", models.after.id}, {"version", models.after.version}};
+  out["samples"] = update.samples.size();
+  out["gain"] = update.gain;
+  const auto errors = [](const learning::PredictionErrors& e) {
+    return nlohmann::json{{"rms_n", e.rms_n}, {"median_abs_percent", e.median_abs_percent},
+                          {"p95_abs_percent", e.p95_abs_percent}, {"max_abs_percent", e.max_abs_percent},
+                          {"mean_percent", e.mean_percent}};
+  };
+  out["before"] = errors(update.before);
+  out["after_rls"] = errors(update.after_rls);
+  out["after_batch"] = errors(update.after_batch);
+  out["cycle_time_s"] = {{"before", in.report.summary.cycle_time_s}, {"after", next.plan.summary.cycle_time_s}};
+  std::cout << out.dump(2) << "\n";
+}
+
+void print_learn_text(const LearnOptions& o, const LearnInputs& in, const ModelVersions& models,
+                      const learning::ModelUpdate& update, const Replanned& next) {
+  const model_db::ModelRecord& stored = models.after;
+  std::printf("learned from %zu log(s): %zu per-revolution samples; model %s in %s v%d → v%d (id %lld)\n", in.logs.size(),
+              update.samples.size(), stored.tool_name.c_str(), stored.material_name.c_str(), models.before.version,
+              stored.version, static_cast<long long>(stored.id));
+  std::printf("per-revolution measured vs predicted:\n");
+  print_errors("model planned with", update.before);
+  print_errors("after RLS (seed 003 Eq. 5)", update.after_rls);
+  print_errors("after robust batch refit", update.after_batch);
+  std::printf("re-planned: cycle time %.2f s (was %.2f s), %zu blocks; wrote %s\n", next.plan.summary.cycle_time_s,
+              in.report.summary.cycle_time_s, next.plan.blocks.size(), o.program_path.c_str());
+}
+
 }  // namespace
 
 void add_learn_command(CLI::App& app, LearnOptions& options) {
@@ -60,172 +295,28 @@ void add_learn_command(CLI::App& app, LearnOptions& options) {
 }
 
 int run_learn_command(const LearnOptions& o) {
-  // 1. Inputs, all read and checked before anything is written.
-  const planner::PlanReport report = planner::read_plan_report(o.plan_path);
-  const cycles::CycleSpec spec = cycles::load_cycle_spec(resolve_spec(report.context.spec_path, o.plan_path));
-  std::vector<learning::NamedLog> logs;
-  std::optional<learning::CurrentCalibration> calibration;
-  if (!o.calibration_path.empty()) calibration = load_current_calibration(o.calibration_path);
-  for (const std::string& path : o.log_paths) {
-    force_log::ForceLog log = force_log::load_force_log(path);
-    if (!log.has_forces) {
-      if (!log.has_currents || !calibration) {
-        throw InputError(path, log.has_currents ? "has servo currents but no forces: give --calibration (feedplan calibrate-currents)"
-                                                : "has no force columns");
-      }
-      // Currents see the mean force (≈ 62 Hz), not the tooth peaks: what is learned is then the model of that.
-      log = learning::forces_from_currents(log, *calibration);
-    }
-    logs.push_back({fs::path(path).filename().string(), std::move(log)});
-  }
-  const std::string db_path = !o.db_path.empty() ? o.db_path
-                              : !report.context.database_path.empty() ? report.context.database_path
-                                                                      : database_path("");
-  model_db::Store store = model_db::Store::open(db_path, model_db::OpenMode::kExisting);
-  const auto before = store.model_by_id(report.context.model_id);
-  if (!before) {
-    throw InputError("model.id", "= " + std::to_string(report.context.model_id) + ": the plan's model is not in " + db_path);
-  }
-
-  // 2. The plan again (deterministic from the spec and the report's settings); it must be the one cut.
-  const cycles::Cycle cycle = cycles::generate(spec);
-  const planner::PlanGeometry geometry =
-      planner::analyse(cycle.path, cycle.stock, spec.tool, report.settings.options.ds_mm);
-  const planner::PlanResult plan = planner::plan(geometry, report.settings);
-  if (plan.blocks.size() != report.blocks.size()) {
-    throw InputError("blocks", "the plan re-made from " + report.context.spec_path + " has " +
-                                   std::to_string(plan.blocks.size()) + " blocks, the report " +
-                                   std::to_string(report.blocks.size()) + ": the spec changed since the plan was made");
-  }
-
-  // 3. Learn.
-  std::optional<model::Covariance> prior_covariance;
-  if (before->fit.covariance(0, 0) > 0.0) prior_covariance = before->fit.covariance;
-  // Every earlier learning step of this tool and material (stored with its samples): the refit spans them all.
-  std::vector<learning::LearningSample> earlier;
-  for (const model_db::LearnedSample& stored : store.learned_samples(before->tool_name, before->material_name)) {
-    earlier.push_back({stored.chip_mm, stored.contact_length_mm, stored.force_n, stored.weight, stored.s_mm});
-  }
-  const learning::ModelUpdate update =
-      learning::update_model(plan, report.settings, spec.tool.flutes, logs, earlier, prior_covariance);
-  std::vector<InputProblem> problems;
-  for (std::size_t i = 0; i < update.logs.size(); ++i) {
-    const auto status = update.logs[i].alignment.status;
-    if (status == learning::AlignmentStatus::kNotThisProgram || status == learning::AlignmentStatus::kUnitsLookWrong) {
-      problems.push_back({o.log_paths[i], learning::to_string(status) + ": " + update.logs[i].alignment.message});
-    }
-  }
-  if (!problems.empty()) throw InputError(std::move(problems));
+  const LearnInputs in = read_learn_inputs(o);
+  model_db::Store store = model_db::Store::open(in.db_path, model_db::OpenMode::kExisting);
+  ModelVersions models;
+  models.before = planned_model(store, in);
+  const RemadePlan remade = remake_plan(in);
+  const learning::ModelUpdate update = learn_from_logs(o, in, store, models.before, remade.plan);
   for (const std::string& message : update.messages) std::cerr << "feedplan: " << message << "\n";
   if (update.status != learning::ModelUpdateStatus::kOk) {
     std::cerr << "feedplan: failed: nothing to learn from; the database is unchanged\n";
     return 1;
   }
-
-  // 4. Re-plan with the learned model before storing anything, so that a plan problem stores nothing.
-  planner::PlanSettings next_settings = report.settings;
-  next_settings.model = update.model;
-  learning::PathLearning along_path;
-  {
-    // Learning along this path too (learning/path_correction.hpp), carried in the report to the next part.
-    std::vector<learning::MeasuredRevolutions> measured;
-    for (const auto& log : update.logs) measured.push_back(log.revolutions);
-    learning::PathLearning previous;
-    previous.correction = report.settings.force_correction;
-    previous.place_correction = report.context.path_place_correction;
-    for (const auto& m : report.context.path_measurements) previous.measurement.push_back({m[0], m[1], m[2], m[3]});
-    along_path = learning::learn_along_path(plan, update.model, measured, report.settings.target_force_n, previous);
-    next_settings.force_correction = along_path.correction;
-  }
-  const planner::PlanResult next = planner::plan(geometry, next_settings);
-  gcode::WriterOptions writer;
-  writer.dialect = gcode::dialect_from_string(report.context.dialect).value_or(gcode::Dialect::kLinuxCnc);
-  writer.program_name = spec.cycle + " " + spec.tool.name;
-  const std::string text = gcode::write_gcode(next.program, writer);
-
-  // 5. Store (one transaction), then write the files.
-  model_db::ModelRecord learned;
-  learned.tool_name = before->tool_name;
-  learned.material_name = before->material_name;
-  learned.model = update.model;
-  learned.fit.n = update.batch.n;
-  learned.fit.rmse_n = update.batch.rms_error_after_n;
-  learned.fit.covariance = update.covariance;
-  learned.fit.standard_errors = update.batch.standard_error_n;
-  learned.source = model_db::ModelSource::kLearned;
-  learned.note = o.note.empty() ? "learned from " + std::to_string(logs.size()) + " log(s) of " + spec.cycle : o.note;
-  model_db::LearningEntry entry;
-  entry.model_id_before = before->id;
-  entry.part_name = fs::path(o.plan_path).filename().string();
-  entry.n_samples = static_cast<int>(update.samples.size());
-  entry.error_before_n = update.before.rms_n;
-  entry.error_after_n = update.after_batch.rms_n;
-  entry.note = learned.note;
-  std::vector<model_db::LearnedSample> learned_samples;
-  for (const learning::LearningSample& sample : update.samples) {
-    learned_samples.push_back({sample.chip_mm, sample.contact_length_mm, sample.force_n, sample.weight, sample.s_mm});
-  }
-  const auto [stored, stored_entry] = store.add_learned_model(learned, entry, learned_samples);
-  if (auto error = write_file_atomically(o.program_path, text); !error.empty()) {
+  // Re-plan with the learned model before storing anything, so that a plan problem stores nothing.
+  const Replanned next = replan(in, remade, update);
+  models.after = store_learned_model(o, in, store, models.before, update);
+  if (auto error = write_learn_outputs(o, in, models.after, update, next); !error.empty()) {
     std::cerr << "feedplan: failed: " << error << "\n";
     return 1;
   }
-  planner::PlanReportContext context = report.context;
-  context.model_id = stored.id;
-  context.model_version = stored.version;
-  context.program_path = o.program_path;
-  context.database_path = db_path;
-  context.path_place_correction = along_path.place_correction;
-  context.path_measurements.clear();
-  for (const auto& m : along_path.measurement) {
-    context.path_measurements.push_back({m.chip_mm, m.contact_length_mm, m.force_n, m.window_mm});
-  }
-  if (!o.report_path.empty()) {
-    if (auto error = planner::write_plan_report(o.report_path, next, next_settings, context); !error.empty()) {
-      std::cerr << "feedplan: failed: " << error << "\n";
-      return 1;
-    }
-  }
-  if (!o.plot_path.empty()) {
-    planner::PlanPlotOptions plot;
-    plot.title = spec.cycle + " re-planned with model v" + std::to_string(stored.version) + " (markers: measured peaks)";
-    std::vector<std::pair<double, double>> peaks;
-    for (const auto& log : update.logs) {
-      for (const auto& r : log.revolutions.revolutions) peaks.emplace_back(0.5 * (r.s_start_mm + r.s_end_mm), r.peak_n);
-    }
-    plot.measured_peaks = peaks;
-    if (auto error = planner::write_plan_plot(o.plot_path, next, next_settings.target_force_n, plot); !error.empty()) {
-      std::cerr << "feedplan: failed: " << error << "\n";
-      return 1;
-    }
-  }
-
   if (o.json) {
-    nlohmann::json out;
-    out["model_before"] = {{"id", before->id}, {"version", before->version}};
-    out["model_after"] = {{"id", stored.id}, {"version", stored.version}};
-    out["samples"] = update.samples.size();
-    out["gain"] = update.gain;
-    const auto errors = [](const learning::PredictionErrors& e) {
-      return nlohmann::json{{"rms_n", e.rms_n}, {"median_abs_percent", e.median_abs_percent},
-                            {"p95_abs_percent", e.p95_abs_percent}, {"max_abs_percent", e.max_abs_percent},
-                            {"mean_percent", e.mean_percent}};
-    };
-    out["before"] = errors(update.before);
-    out["after_rls"] = errors(update.after_rls);
-    out["after_batch"] = errors(update.after_batch);
-    out["cycle_time_s"] = {{"before", report.summary.cycle_time_s}, {"after", next.summary.cycle_time_s}};
-    std::cout << out.dump(2) << "\n";
+    print_learn_json(in, models, update, next);
   } else {
-    std::printf("learned from %zu log(s): %zu per-revolution samples; model %s in %s v%d → v%d (id %lld)\n", logs.size(),
-                update.samples.size(), stored.tool_name.c_str(), stored.material_name.c_str(), before->version,
-                stored.version, static_cast<long long>(stored.id));
-    std::printf("per-revolution measured vs predicted:\n");
-    print_errors("model planned with", update.before);
-    print_errors("after RLS (seed 003 Eq. 5)", update.after_rls);
-    print_errors("after robust batch refit", update.after_batch);
-    std::printf("re-planned: cycle time %.2f s (was %.2f s), %zu blocks; wrote %s\n", next.summary.cycle_time_s,
-                report.summary.cycle_time_s, next.blocks.size(), o.program_path.c_str());
+    print_learn_text(o, in, models, update, next);
   }
   return 0;
 }

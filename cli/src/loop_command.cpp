@@ -60,10 +60,16 @@ std::string revolutions_csv(const trial::LoopResult& result, double target_force
   return text;
 }
 
-}  // namespace
+// The spec and the target, every flag checked.
+struct LoopInputs {
+  cycles::CycleSpec spec;       // the cycle spec
+  double target_force_n = 0.0;  // --target-force, else the spec's, N
+};
 
-int run_loop_command(const LoopOptions& o) {
-  const cycles::CycleSpec spec = cycles::load_cycle_spec(o.spec_path);
+LoopInputs read_loop_inputs(const LoopOptions& o) {
+  LoopInputs in;
+  in.spec = cycles::load_cycle_spec(o.spec_path);
+  const cycles::CycleSpec& spec = in.spec;
   std::vector<InputProblem> problems;
   if (!(o.cycles >= 1 && o.cycles <= 100)) problems.push_back({"--cycles", "= " + std::to_string(o.cycles) + ": must be in [1, 100]"});
   if (!(std::isfinite(o.machine_scale) && o.machine_scale > 0.1 && o.machine_scale < 10.0)) {
@@ -75,26 +81,28 @@ int run_loop_command(const LoopOptions& o) {
   if (!(std::isfinite(o.sigmas) && o.sigmas >= 0.0 && o.sigmas <= 10.0)) {
     problems.push_back({"--sigmas", "= " + shortest_number_text(o.sigmas) + ": must be in [0, 10]"});
   }
-  const double target_force_n = o.target_force_n != 0.0 ? o.target_force_n : spec.target_force_n;
-  if (!(std::isfinite(target_force_n) && target_force_n > 0.0)) {
+  in.target_force_n = o.target_force_n != 0.0 ? o.target_force_n : spec.target_force_n;
+  if (!(std::isfinite(in.target_force_n) && in.target_force_n > 0.0)) {
     problems.push_back({o.target_force_n != 0.0 ? "--target-force" : "target_force_n",
-                        "= " + shortest_number_text(target_force_n) + ": a target force > 0 N is required"});
+                        "= " + shortest_number_text(in.target_force_n) + ": a target force > 0 N is required"});
   }
   if (!(spec.spindle_rpm > 0.0)) problems.push_back({"spindle_rpm", "is required (rev/min > 0)"});
   check_output_path("--revolutions", o.revolutions_path, problems);
   if (!problems.empty()) throw InputError(std::move(problems));
+  return in;
+}
 
-  const model_db::Store store = model_db::Store::open(database_path(o.db_path), model_db::OpenMode::kReadOnly);
-  const std::optional<ChosenModel> chosen = choose_model(store, spec, o.model_id);
-  if (!chosen) return 1;
+// The plan side (engagement, model, target, machine) and the virtual machine (the material's cutting
+// coefficients × --machine-scale).
+trial::LoopRequest loop_request(const LoopOptions& o, const LoopInputs& in, const ChosenModel& chosen) {
+  const cycles::CycleSpec& spec = in.spec;
   const sim::MaterialLibrary materials =
       sim::load_materials(o.materials_path.empty() ? bundled_materials_path() : o.materials_path);
-
   const cycles::Cycle cycle = cycles::generate(spec);
   trial::LoopRequest request;
   request.geometry = planner::analyse(cycle.path, cycle.stock, spec.tool);
-  request.settings.model = chosen->record.model;
-  request.settings.target_force_n = target_force_n;
+  request.settings.model = chosen.record.model;
+  request.settings.target_force_n = in.target_force_n;
   request.settings.spindle_rpm = spec.spindle_rpm;
   request.settings.machine = spec.machine;
   request.machine.tool = spec.tool;
@@ -105,61 +113,63 @@ int run_loop_command(const LoopOptions& o) {
   request.cycles = o.cycles;
   request.first_cut_uncertainty = o.cautious;
   request.sigmas = o.sigmas;
-  request.start_fit_covariance = chosen->record.fit.covariance;
+  request.start_fit_covariance = chosen.record.fit.covariance;
+  return request;
+}
+
+// Runs the loop with a progress bar on a terminal.
+trial::LoopResult run_loop_with_progress(trial::LoopRequest request, int cycles) {
   const bool terminal = ::isatty(STDERR_FILENO) != 0;
   const auto show_progress = [&](int done) {
     if (!terminal) return;
     constexpr int kWidth = 30;
-    const int filled = kWidth * done / o.cycles;
+    const int filled = kWidth * done / cycles;
     std::fprintf(stderr, "\r[%.*s%.*s] %d/%d cycles planned, cut on the virtual machine and learned", filled,
-                 "##############################", kWidth - filled, "..............................", done, o.cycles);
+                 "##############################", kWidth - filled, "..............................", done, cycles);
     std::fflush(stderr);
   };
   show_progress(0);
   request.on_cycle_done = show_progress;
   const trial::LoopResult result = trial::run_learning_loop(request);
   if (terminal) std::fprintf(stderr, "\n");
-  if (!o.revolutions_path.empty()) {
-    if (const std::string error = write_file_atomically(o.revolutions_path, revolutions_csv(result, target_force_n));
-        !error.empty()) {
-      throw InputError("--revolutions", "= '" + o.revolutions_path + "': " + error);
-    }
-  }
+  return result;
+}
 
-  if (o.json) {
-    nlohmann::json out;
-    out["spec"] = o.spec_path;
-    out["target_force_n"] = target_force_n;
-    out["machine_scale"] = o.machine_scale;
-    out["cautious"] = o.cautious;
-    out["start_model"] = {{"id", chosen->record.id}, {"version", chosen->record.version}};
-    out["cycles"] = nlohmann::json::array();
-    for (const auto& c : result.cycles) {
-      out["cycles"].push_back({{"cycle", c.cycle},
-                               {"plan_status", planner::to_string(c.plan_status)},
-                               {"planned_cycle_time_s", c.planned_cycle_time_s},
-                               {"simulated_cycle_time_s", c.simulated_cycle_time_s},
-                               {"steady", c.comparison.steady},
-                               {"steady_max_abs_error_percent", c.comparison.steady_max_abs_error_percent},
-                               {"steady_rms_error_percent", c.comparison.steady_rms_error_percent},
-                               {"held", c.comparison.held},
-                               {"held_max_abs_error_percent", c.comparison.max_abs_error_percent},
-                               {"held_rms_error_percent", c.comparison.rms_error_percent},
-                               {"max_overshoot_percent", c.comparison.max_overshoot_percent},
-                               {"model_rms_error_before_percent", c.model_errors_before.rms_percent},
-                               {"model_rms_error_after_percent", c.model_errors_after.rms_percent},
-                               {"learned", learning::to_string(c.update_status)},
-                               {"messages", c.messages}});
-    }
-    std::cout << out.dump(2) << "\n";
-    return 0;
+void print_loop_json(const LoopOptions& o, const LoopInputs& in, const ChosenModel& chosen, const trial::LoopResult& result) {
+  nlohmann::json out;
+  out["spec"] = o.spec_path;
+  out["target_force_n"] = in.target_force_n;
+  out["machine_scale"] = o.machine_scale;
+  out["cautious"] = o.cautious;
+  out["start_model"] = {{"id", chosen.record.id}, {"version", chosen.record.version}};
+  out["cycles"] = nlohmann::json::array();
+  for (const auto& c : result.cycles) {
+    out["cycles"].push_back({{"cycle", c.cycle},
+                             {"plan_status", planner::to_string(c.plan_status)},
+                             {"planned_cycle_time_s", c.planned_cycle_time_s},
+                             {"simulated_cycle_time_s", c.simulated_cycle_time_s},
+                             {"steady", c.comparison.steady},
+                             {"steady_max_abs_error_percent", c.comparison.steady_max_abs_error_percent},
+                             {"steady_rms_error_percent", c.comparison.steady_rms_error_percent},
+                             {"held", c.comparison.held},
+                             {"held_max_abs_error_percent", c.comparison.max_abs_error_percent},
+                             {"held_rms_error_percent", c.comparison.rms_error_percent},
+                             {"max_overshoot_percent", c.comparison.max_overshoot_percent},
+                             {"model_rms_error_before_percent", c.model_errors_before.rms_percent},
+                             {"model_rms_error_after_percent", c.model_errors_after.rms_percent},
+                             {"learned", learning::to_string(c.update_status)},
+                             {"messages", c.messages}});
   }
+  std::cout << out.dump(2) << "\n";
+}
+
+void print_loop_text(const LoopOptions& o, const LoopInputs& in, const ChosenModel& chosen, const trial::LoopResult& result) {
   std::printf("%s: %s, target %s N, virtual machine forces × %s of the material's, start model id %lld v%d%s\n",
-              o.spec_path.c_str(), spec.cycle.c_str(), shortest_number_text(target_force_n).c_str(),
-              shortest_number_text(o.machine_scale).c_str(), static_cast<long long>(chosen->record.id),
-              chosen->record.version, o.cautious > 0 ? (", cautious first cut (r " + shortest_number_text(o.cautious) +
-                                                        ", z " + shortest_number_text(o.sigmas) + ")").c_str()
-                                                     : "");
+              o.spec_path.c_str(), in.spec.cycle.c_str(), shortest_number_text(in.target_force_n).c_str(),
+              shortest_number_text(o.machine_scale).c_str(), static_cast<long long>(chosen.record.id),
+              chosen.record.version, o.cautious > 0 ? (", cautious first cut (r " + shortest_number_text(o.cautious) +
+                                                       ", z " + shortest_number_text(o.sigmas) + ")").c_str()
+                                                    : "");
   std::printf("%5s %9s %9s | %8s %7s %7s | %8s %7s %7s | %9s | %15s\n", "cycle", "plan_s", "vm_s", "steady", "max%",
               "rms%", "held", "max%", "rms%", "overshoot", "model p95% b→a");
   for (const auto& c : result.cycles) {
@@ -168,6 +178,27 @@ int run_loop_command(const LoopOptions& o) {
                 c.comparison.steady_max_abs_error_percent, c.comparison.steady_rms_error_percent, c.comparison.held,
                 c.comparison.max_abs_error_percent, c.comparison.rms_error_percent, c.comparison.max_overshoot_percent,
                 c.model_errors_before.p95_abs_percent, c.model_errors_after.p95_abs_percent);
+  }
+}
+
+}  // namespace
+
+int run_loop_command(const LoopOptions& o) {
+  const LoopInputs in = read_loop_inputs(o);
+  const model_db::Store store = model_db::Store::open(database_path(o.db_path), model_db::OpenMode::kReadOnly);
+  const std::optional<ChosenModel> chosen = choose_model(store, in.spec, o.model_id);
+  if (!chosen) return 1;
+  const trial::LoopResult result = run_loop_with_progress(loop_request(o, in, *chosen), o.cycles);
+  if (!o.revolutions_path.empty()) {
+    if (const std::string error = write_file_atomically(o.revolutions_path, revolutions_csv(result, in.target_force_n));
+        !error.empty()) {
+      throw InputError("--revolutions", "= '" + o.revolutions_path + "': " + error);
+    }
+  }
+  if (o.json) {
+    print_loop_json(o, in, *chosen, result);
+  } else {
+    print_loop_text(o, in, *chosen, result);
   }
   return 0;
 }

@@ -23,6 +23,7 @@
 #include "feedplan/gcode/writer.hpp"
 #include "feedplan/model_db/closest_model.hpp"
 #include "feedplan/model_db/store.hpp"
+#include "feedplan/planner/constant_feed.hpp"
 #include "feedplan/planner/feed_plan.hpp"
 #include "feedplan/planner/plan_plot.hpp"
 #include "feedplan/planner/plan_report.hpp"
@@ -34,6 +35,345 @@ namespace fs = std::filesystem;
 namespace mdb = model_db;
 
 constexpr int kExitFailed = 1;
+
+// What the user asked for, every flag checked.
+struct PlanInputs {
+  cycles::CycleSpec spec;                             // the cycle spec
+  planner::PlanMode mode = planner::PlanMode::kSafe;  // --mode
+  double target_force_n = 0.0;                        // --target-force, else the spec's, N
+  gcode::WriterOptions writer;                        // --dialect and the format flags (no header yet)
+};
+
+// The model to plan with and the database it came from.
+struct PlanModel {
+  std::string db_path;  // --db, else $FEEDPLAN_DB, else the sample database
+  ChosenModel chosen;   // the model and why
+};
+
+// The cycle, its plan and how long engagement and planning took.
+struct PlannedCycle {
+  cycles::Cycle cycle;              // path and stock
+  planner::PlanSettings settings;   // what the plan was asked to do
+  planner::PlanResult result;       // the plan
+  double analyse_s = 0.0;           // wall time of the engagement analysis, s
+  double plan_s = 0.0;              // wall time of the planning, s
+};
+
+// Which program is written: the plan's when the target can be met everywhere, or the constant-feed one.
+struct ProgramChoice {
+  bool planned = false;   // the plan's program
+  bool constant = false;  // --constant-feed: the constant-feed program instead
+  bool any() const { return planned || constant; }
+};
+
+// What the outputs step did.
+struct PlanOutputs {
+  ProgramChoice program;                  // which program was written
+  std::optional<trial::PlanCheck> check;  // --simulate: the program run on the virtual machine
+  std::vector<std::string> written;       // the files written, in order
+};
+
+planner::PlanMode plan_mode(const std::string& mode, std::vector<InputProblem>& problems) {
+  if (mode == "regulate") return planner::PlanMode::kRegulate;
+  if (mode != "safe") problems.push_back({"--mode", "= '" + mode + "': expected safe or regulate"});
+  return planner::PlanMode::kSafe;
+}
+
+// The format flags as writer options; their problems named after the flags.
+gcode::WriterOptions writer_options(const PlanCommandOptions& o, const std::optional<gcode::Dialect>& dialect,
+                                    std::vector<InputProblem>& problems) {
+  gcode::WriterOptions writer;
+  if (dialect) writer.dialect = *dialect;
+  writer.decimals = o.decimals;
+  writer.line_numbers = o.line_numbers;
+  writer.coolant = o.coolant;
+  writer.tool_number = o.tool_number;
+  writer.program_number = o.program_number;
+  for (InputProblem problem : gcode::validate(writer)) {
+    std::replace(problem.field.begin(), problem.field.end(), '_', '-');  // decimals, tool-number: the flags
+    problem.field = "--" + problem.field;
+    problems.push_back(problem);
+  }
+  return writer;
+}
+
+void check_constant_feed(const PlanCommandOptions& o, const cycles::CycleSpec& spec, std::vector<InputProblem>& problems) {
+  if (o.constant_feed_mm_per_min != 0.0 &&
+      !(o.constant_feed_mm_per_min >= spec.machine.min_feed_mm_per_min &&
+        o.constant_feed_mm_per_min <= spec.machine.max_feed_mm_per_min)) {
+    problems.push_back({"--constant-feed", "= " + shortest_number_text(o.constant_feed_mm_per_min) +
+                                               ": must lie in the machine's feed range [" +
+                                               shortest_number_text(spec.machine.min_feed_mm_per_min) + ", " +
+                                               shortest_number_text(spec.machine.max_feed_mm_per_min) + "] mm/min"});
+  }
+}
+
+// Everything the user gave, checked before anything is read from the database or written.
+PlanInputs read_plan_inputs(const PlanCommandOptions& o) {
+  PlanInputs in;
+  in.spec = cycles::load_cycle_spec(o.spec_path);
+  const cycles::CycleSpec& spec = in.spec;
+  std::vector<InputProblem> problems;
+  const auto dialect = gcode::dialect_from_string(o.dialect);
+  if (!dialect) problems.push_back({"--dialect", "= '" + o.dialect + "': expected linuxcnc, fanuc or haas"});
+  in.mode = plan_mode(o.mode, problems);
+  in.target_force_n = o.target_force_n != 0.0 ? o.target_force_n : spec.target_force_n;
+  if (!(std::isfinite(in.target_force_n) && in.target_force_n > 0.0)) {
+    problems.push_back({o.target_force_n != 0.0 ? "--target-force" : "target_force_n",
+                        "= " + shortest_number_text(in.target_force_n) +
+                            ": a target force > 0 N is required (in the spec or with --target-force)"});
+  }
+  if (!(spec.spindle_rpm > 0.0)) problems.push_back({"spindle_rpm", "is required to plan feeds (rev/min > 0)"});
+  if (!(o.ds_mm >= 0.001 && o.ds_mm <= spec.tool.radius_mm())) {
+    problems.push_back({"--ds", "= " + shortest_number_text(o.ds_mm) + ": must be in [0.001, tool radius " +
+                                    shortest_number_text(spec.tool.radius_mm()) + "] mm"});
+  }
+  in.writer = writer_options(o, dialect, problems);
+  check_constant_feed(o, spec, problems);
+  check_output_path("-o", o.program_path, problems);
+  check_output_path("--report", o.report_path, problems);
+  check_output_path("--csv", o.csv_path, problems);
+  check_output_path("--plot", o.plot_path, problems);
+  if (!problems.empty()) throw InputError(std::move(problems));
+  return in;
+}
+
+// The model from the database: --model-id, else the closest; nothing (after saying why) when none qualifies.
+std::optional<PlanModel> choose_plan_model(const PlanCommandOptions& o, const cycles::CycleSpec& spec) {
+  const std::string db_path = database_path(o.db_path);
+  const mdb::Store store = mdb::Store::open(db_path, mdb::OpenMode::kReadOnly);
+  std::optional<ChosenModel> chosen = choose_model(store, spec, o.model_id);
+  if (!chosen) return std::nullopt;
+  return PlanModel{db_path, std::move(*chosen)};
+}
+
+planner::PlanSettings plan_settings(const PlanCommandOptions& o, const PlanInputs& in, const ChosenModel& chosen) {
+  planner::PlanSettings settings;
+  settings.model = chosen.record.model;
+  settings.target_force_n = in.target_force_n;
+  settings.spindle_rpm = in.spec.spindle_rpm;
+  settings.machine = in.spec.machine;
+  settings.options.mode = in.mode;
+  settings.options.air_feed_mm_per_min = o.air_feed_mm_per_min;
+  settings.options.merge_tolerance = o.merge_tolerance;
+  settings.options.feed_resolution_mm_per_min = o.feed_resolution_mm_per_min;
+  settings.options.jerk_limit_mm_per_s3 = o.jerk_limit_mm_per_s3;
+  settings.options.ds_mm = o.ds_mm;
+  return settings;
+}
+
+// Path, engagement, plan.
+PlannedCycle plan_cycle(const PlanCommandOptions& o, const PlanInputs& in, const ChosenModel& chosen) {
+  PlannedCycle planned;
+  const auto started = std::chrono::steady_clock::now();
+  planned.cycle = cycles::generate(in.spec);
+  const planner::PlanGeometry geometry =
+      planner::analyse(planned.cycle.path, planned.cycle.stock, in.spec.tool, o.ds_mm);  // = options.ds_mm
+  const auto analysed = std::chrono::steady_clock::now();
+  planned.settings = plan_settings(o, in, chosen);
+  planned.result = planner::plan(geometry, planned.settings);
+  const auto finished = std::chrono::steady_clock::now();
+  planned.analyse_s = std::chrono::duration<double>(analysed - started).count();
+  planned.plan_s = std::chrono::duration<double>(finished - analysed).count();
+  return planned;
+}
+
+// The program only when the target can be met everywhere, or the constant-feed one when asked for.
+ProgramChoice choose_program(const PlanCommandOptions& o, const planner::PlanResult& result) {
+  ProgramChoice choice;
+  choice.planned = result.status != planner::PlanStatus::kTargetNotMet && o.constant_feed_mm_per_min == 0.0;
+  choice.constant = o.constant_feed_mm_per_min > 0.0;
+  return choice;
+}
+
+// The writer options with the program's name and header comments.
+gcode::WriterOptions program_writer(const PlanCommandOptions& o, const PlanInputs& in, const ChosenModel& chosen,
+                                    const ProgramChoice& program, const planner::PlanResult& result) {
+  const cycles::CycleSpec& spec = in.spec;
+  const mdb::ModelRecord& record = chosen.record;
+  gcode::WriterOptions writer = in.writer;
+  writer.program_name = spec.cycle + " " + spec.tool.name;
+  writer.header_comments = {
+      {"cycle", spec.cycle + " from " + fs::path(o.spec_path).filename().string()},
+      {"tool", spec.tool.name + " D" + shortest_number_text(spec.tool.diameter_mm) + " Z" + std::to_string(spec.tool.flutes)},
+      {"material", spec.material}};
+  if (program.constant) {
+    writer.header_comments.push_back({"constant feed mm/min", shortest_number_text(o.constant_feed_mm_per_min)});
+  } else {
+    writer.header_comments.push_back(
+        {"model", "id " + std::to_string(record.id) + " v" + std::to_string(record.version) + " " + record.tool_name +
+                      " in " + record.material_name + " (" + chosen.match + ")"});
+    writer.header_comments.push_back({"target force N", shortest_number_text(in.target_force_n)});
+    writer.header_comments.push_back(
+        {"planned cycle time s", shortest_number_text(std::round(result.summary.cycle_time_s * 100.0) / 100.0)});
+  }
+  writer.header_comments.push_back({"feedplan", FEEDPLAN_VERSION});
+  writer.retract_z_mm = std::nullopt;
+  return writer;
+}
+
+// The G-code of the program chosen; empty when none is written.
+std::string program_text(const PlanCommandOptions& o, const PlanInputs& in, const PlannedCycle& planned,
+                         const ProgramChoice& program, const gcode::WriterOptions& writer) {
+  if (!program.any()) return "";
+  if (program.constant) {
+    // --constant-feed: the cycle's own moves, one F on every feed move (what the baseline is).
+    return gcode::write_gcode(
+        planner::constant_feed_program(planned.cycle.path, o.constant_feed_mm_per_min, in.spec.spindle_rpm), writer);
+  }
+  return gcode::write_gcode(planned.result.program, writer);
+}
+
+planner::PlanReportContext report_context(const PlanCommandOptions& o, const PlanInputs& in, const PlanModel& model,
+                                          const ProgramChoice& program, const gcode::WriterOptions& writer) {
+  const mdb::ModelRecord& record = model.chosen.record;
+  planner::PlanReportContext context;
+  context.spec_path = o.spec_path;
+  context.cycle = in.spec.cycle;
+  context.tool = in.spec.tool;
+  context.material = in.spec.material;
+  context.model_id = record.id;
+  context.model_version = record.version;
+  context.model_tool = record.tool_name;
+  context.model_material = record.material_name;
+  context.model_match = model.chosen.explanation;
+  context.database_path = model.db_path;
+  context.program_path = program.any() ? o.program_path : "";
+  context.dialect = gcode::to_string(writer.dialect);
+  return context;
+}
+
+// The plot's title, with the virtual machine's per-revolution peaks as markers when there are some.
+planner::PlanPlotOptions plot_options(const PlanInputs& in, const std::optional<trial::PlanCheck>& check) {
+  const cycles::CycleSpec& spec = in.spec;
+  planner::PlanPlotOptions plot;
+  plot.title = spec.cycle + " — " + spec.tool.name + " in " + spec.material + ", target " +
+               shortest_number_text(in.target_force_n) + " N";
+  if (check) {
+    std::vector<std::pair<double, double>> peaks;
+    for (const auto& r : check->comparison.revolutions) {
+      if (r.in_cut) peaks.emplace_back(0.5 * (r.revolution.s_start_mm + r.revolution.s_end_mm), r.revolution.peak_n);
+    }
+    plot.measured_peaks = peaks;
+    plot.title += " (markers: virtual machine, per-revolution peaks)";
+  }
+  return plot;
+}
+
+// --report, --csv, --plot; the first error, or empty.
+std::string write_plan_files(const PlanCommandOptions& o, const PlanInputs& in, const PlannedCycle& planned,
+                             const planner::PlanReportContext& context, PlanOutputs& out) {
+  const planner::PlanResult& result = planned.result;
+  if (!o.report_path.empty()) {
+    if (auto error = planner::write_plan_report(o.report_path, result, planned.settings, context); !error.empty()) return error;
+    out.written.push_back(o.report_path);
+  }
+  if (!o.csv_path.empty()) {
+    if (auto error = planner::write_plan_samples_csv(o.csv_path, result); !error.empty()) return error;
+    out.written.push_back(o.csv_path);
+  }
+  if (!o.plot_path.empty()) {
+    const planner::PlanPlotOptions plot = plot_options(in, out.check);
+    if (auto error = planner::write_plan_plot(o.plot_path, result, in.target_force_n, plot); !error.empty()) return error;
+    out.written.push_back(o.plot_path);
+  }
+  return "";
+}
+
+// Outputs: the program (only when the target can be met everywhere, or the constant-feed one), its run on
+// the virtual machine, the report, CSV and plot. Returns the first error, or empty.
+std::string write_plan_outputs(const PlanCommandOptions& o, const PlanInputs& in, const PlanModel& model,
+                               const PlannedCycle& planned, PlanOutputs& out) {
+  out.program = choose_program(o, planned.result);
+  const gcode::WriterOptions writer = program_writer(o, in, model.chosen, out.program, planned.result);
+  const std::string text = program_text(o, in, planned, out.program, writer);
+  if (out.program.any()) {
+    if (auto error = write_file_atomically(o.program_path, text); !error.empty()) return error;
+    out.written.push_back(o.program_path);
+  }
+  if (o.simulate && out.program.any()) {
+    out.check = trial::check_on_virtual_machine(text, in.spec, planned.cycle, planned.result, in.target_force_n,
+                                                o.materials_path.empty() ? bundled_materials_path() : o.materials_path);
+  }
+  return write_plan_files(o, in, planned, report_context(o, in, model, out.program, writer), out);
+}
+
+void print_plan_json(const PlanCommandOptions& o, const PlanInputs& in, const PlanModel& model,
+                     const PlannedCycle& planned, const PlanOutputs& outputs) {
+  const planner::PlanResult& result = planned.result;
+  const planner::PlanSummary& s = result.summary;
+  const mdb::ModelRecord& record = model.chosen.record;
+  const std::optional<trial::PlanCheck>& check = outputs.check;
+  nlohmann::json out;
+  out["status"] = planner::to_string(result.status);
+  out["messages"] = result.messages;
+  out["spec"] = o.spec_path;
+  out["model"] = {{"id", record.id}, {"version", record.version}, {"tool", record.tool_name},
+                  {"material", record.material_name}, {"match", model.chosen.match}, {"explanation", model.chosen.explanation}};
+  out["target_force_n"] = in.target_force_n;
+  out["blocks"] = result.blocks.size();
+  out["samples"] = result.samples.size();
+  out["feed_min_mm_per_min"] = s.min_feed_mm_per_min;
+  out["feed_max_mm_per_min"] = s.max_feed_mm_per_min;
+  out["cycle_time_s"] = s.cycle_time_s;
+  out["cutting_time_s"] = s.cutting_time_s;
+  out["max_predicted_force_n"] = s.max_predicted_force_n;
+  out["baseline"] = {{"feed_mm_per_min", s.baseline.feed_mm_per_min}, {"cycle_time_s", s.baseline.cycle_time_s},
+                     {"peak_force_n", s.baseline.peak_force_n}};
+  out["time_saved_percent"] = s.time_saved_percent;
+  out["engagement_time_s"] = planned.analyse_s;
+  out["plan_time_s"] = planned.plan_s;
+  out["written"] = outputs.written;
+  if (check) {
+    const auto& c = check->comparison;
+    out["virtual_machine"] = {{"cycle_time_s", check->cycle_time_s},
+                              {"max_peak_n", check->max_peak_n},
+                              {"revolutions", c.revolutions.size()},
+                              {"in_cut", c.in_cut},
+                              {"held", c.held},
+                              {"steady", c.steady},
+                              {"steady_max_abs_error_percent", c.steady_max_abs_error_percent},
+                              {"steady_rms_error_percent", c.steady_rms_error_percent},
+                              {"max_abs_error_percent", c.max_abs_error_percent},
+                              {"rms_error_percent", c.rms_error_percent},
+                              {"max_overshoot_percent", c.max_overshoot_percent},
+                              {"warnings", check->warnings}};
+  }
+  std::cout << out.dump(2) << "\n";
+}
+
+void print_plan_text(const PlanCommandOptions& o, const PlanInputs& in, const PlanModel& model,
+                     const PlannedCycle& planned, const PlanOutputs& outputs) {
+  const cycles::CycleSpec& spec = in.spec;
+  const planner::PlanResult& result = planned.result;
+  const planner::PlanSummary& s = result.summary;
+  const mdb::ModelRecord& record = model.chosen.record;
+  const std::optional<trial::PlanCheck>& check = outputs.check;
+  std::printf("%s: %s, tool %s, %s, target %s N\n", o.spec_path.c_str(), spec.cycle.c_str(), spec.tool.name.c_str(),
+              spec.material.c_str(), shortest_number_text(in.target_force_n).c_str());
+  std::printf("model: id %lld v%d (%s in %s) — %s\n", static_cast<long long>(record.id), record.version,
+              record.tool_name.c_str(), record.material_name.c_str(), model.chosen.explanation.c_str());
+  std::printf("status: %s\n", planner::to_string(result.status).c_str());
+  std::printf("plan: %zu samples, %zu blocks, F %.0f–%.0f mm/min, predicted peak %.1f N (engagement %.3f s, plan %.3f s)\n",
+              result.samples.size(), result.blocks.size(), s.min_feed_mm_per_min, s.max_feed_mm_per_min,
+              s.max_predicted_force_n, planned.analyse_s, planned.plan_s);
+  std::printf("cycle time: planned %.2f s (cutting %.2f s) vs constant F%.0f %.2f s: %.1f %% saved\n", s.cycle_time_s,
+              s.cutting_time_s, s.baseline.feed_mm_per_min, s.baseline.cycle_time_s, s.time_saved_percent);
+  if (check) {
+    std::printf("virtual machine: cycle time %.2f s, largest per-revolution peak %.1f N\n", check->cycle_time_s,
+                check->max_peak_n);
+    std::printf("%s", planner::describe(check->comparison).c_str());
+  }
+  for (const std::string& path : outputs.written) std::printf("wrote %s\n", path.c_str());
+}
+
+// The virtual machine's warnings and the plan's notes, on stderr.
+void print_plan_notes(const planner::PlanResult& result, const PlanOutputs& out) {
+  if (out.check) {
+    for (const std::string& warning : out.check->warnings) std::cerr << "feedplan: virtual machine: " << warning << "\n";
+  }
+  for (const std::string& message : result.messages) std::cerr << "feedplan: note: " << message << "\n";
+}
 
 }  // namespace
 
@@ -72,229 +412,22 @@ void add_plan_command(CLI::App& app, PlanCommandOptions& options) {
 }
 
 int run_plan_command(const PlanCommandOptions& o) {
-  // 1. Everything the user gave, checked before anything is read from the database or written.
-  const cycles::CycleSpec spec = cycles::load_cycle_spec(o.spec_path);
-  std::vector<InputProblem> problems;
-  const auto dialect = gcode::dialect_from_string(o.dialect);
-  if (!dialect) problems.push_back({"--dialect", "= '" + o.dialect + "': expected linuxcnc, fanuc or haas"});
-  planner::PlanMode mode = planner::PlanMode::kSafe;
-  if (o.mode == "regulate") {
-    mode = planner::PlanMode::kRegulate;
-  } else if (o.mode != "safe") {
-    problems.push_back({"--mode", "= '" + o.mode + "': expected safe or regulate"});
-  }
-  const double target_force_n = o.target_force_n != 0.0 ? o.target_force_n : spec.target_force_n;
-  if (!(std::isfinite(target_force_n) && target_force_n > 0.0)) {
-    problems.push_back({o.target_force_n != 0.0 ? "--target-force" : "target_force_n",
-                        "= " + shortest_number_text(target_force_n) +
-                            ": a target force > 0 N is required (in the spec or with --target-force)"});
-  }
-  if (!(spec.spindle_rpm > 0.0)) problems.push_back({"spindle_rpm", "is required to plan feeds (rev/min > 0)"});
-  if (!(o.ds_mm >= 0.001 && o.ds_mm <= spec.tool.radius_mm())) {
-    problems.push_back({"--ds", "= " + shortest_number_text(o.ds_mm) + ": must be in [0.001, tool radius " +
-                                    shortest_number_text(spec.tool.radius_mm()) + "] mm"});
-  }
-  gcode::WriterOptions writer;
-  if (dialect) writer.dialect = *dialect;
-  writer.decimals = o.decimals;
-  writer.line_numbers = o.line_numbers;
-  writer.coolant = o.coolant;
-  writer.tool_number = o.tool_number;
-  writer.program_number = o.program_number;
-  for (InputProblem problem : gcode::validate(writer)) {
-    std::replace(problem.field.begin(), problem.field.end(), '_', '-');  // decimals, tool-number: the flags
-    problem.field = "--" + problem.field;
-    problems.push_back(problem);
-  }
-  if (o.constant_feed_mm_per_min != 0.0 &&
-      !(o.constant_feed_mm_per_min >= spec.machine.min_feed_mm_per_min &&
-        o.constant_feed_mm_per_min <= spec.machine.max_feed_mm_per_min)) {
-    problems.push_back({"--constant-feed", "= " + shortest_number_text(o.constant_feed_mm_per_min) +
-                                               ": must lie in the machine's feed range [" +
-                                               shortest_number_text(spec.machine.min_feed_mm_per_min) + ", " +
-                                               shortest_number_text(spec.machine.max_feed_mm_per_min) + "] mm/min"});
-  }
-  check_output_path("-o", o.program_path, problems);
-  check_output_path("--report", o.report_path, problems);
-  check_output_path("--csv", o.csv_path, problems);
-  check_output_path("--plot", o.plot_path, problems);
-  if (!problems.empty()) throw InputError(std::move(problems));
-
-  // 2. The model.
-  const std::string db_path = database_path(o.db_path);
-  const mdb::Store store = mdb::Store::open(db_path, mdb::OpenMode::kReadOnly);
-  const std::optional<ChosenModel> chosen = choose_model(store, spec, o.model_id);
-  if (!chosen) return kExitFailed;
-
-  // 3. Path, engagement, plan.
-  const auto started = std::chrono::steady_clock::now();
-  const cycles::Cycle cycle = cycles::generate(spec);
-  const planner::PlanGeometry geometry = planner::analyse(cycle.path, cycle.stock, spec.tool, o.ds_mm);  // = options.ds_mm
-  const auto analysed = std::chrono::steady_clock::now();
-  planner::PlanSettings settings;
-  settings.model = chosen->record.model;
-  settings.target_force_n = target_force_n;
-  settings.spindle_rpm = spec.spindle_rpm;
-  settings.machine = spec.machine;
-  settings.options.mode = mode;
-  settings.options.air_feed_mm_per_min = o.air_feed_mm_per_min;
-  settings.options.merge_tolerance = o.merge_tolerance;
-  settings.options.feed_resolution_mm_per_min = o.feed_resolution_mm_per_min;
-  settings.options.jerk_limit_mm_per_s3 = o.jerk_limit_mm_per_s3;
-  settings.options.ds_mm = o.ds_mm;
-  const planner::PlanResult result = planner::plan(geometry, settings);
-  const auto planned = std::chrono::steady_clock::now();
-
-  // 4. Outputs. The program only when the target can be met everywhere.
-  const bool write_program = result.status != planner::PlanStatus::kTargetNotMet && o.constant_feed_mm_per_min == 0.0;
-  const mdb::ModelRecord& record = chosen->record;
-  writer.program_name = spec.cycle + " " + spec.tool.name;
-  const bool constant = o.constant_feed_mm_per_min > 0.0;
-  writer.header_comments = {
-      {"cycle", spec.cycle + " from " + fs::path(o.spec_path).filename().string()},
-      {"tool", spec.tool.name + " D" + shortest_number_text(spec.tool.diameter_mm) + " Z" + std::to_string(spec.tool.flutes)},
-      {"material", spec.material}};
-  if (constant) {
-    writer.header_comments.push_back({"constant feed mm/min", shortest_number_text(o.constant_feed_mm_per_min)});
-  } else {
-    writer.header_comments.push_back(
-        {"model", "id " + std::to_string(record.id) + " v" + std::to_string(record.version) + " " + record.tool_name +
-                      " in " + record.material_name + " (" + chosen->match + ")"});
-    writer.header_comments.push_back({"target force N", shortest_number_text(target_force_n)});
-    writer.header_comments.push_back(
-        {"planned cycle time s", shortest_number_text(std::round(result.summary.cycle_time_s * 100.0) / 100.0)});
-  }
-  writer.header_comments.push_back({"feedplan", FEEDPLAN_VERSION});
-  writer.retract_z_mm = std::nullopt;
-  std::vector<std::string> written;
-  auto fail_write = [](const std::string& error) {
+  const PlanInputs in = read_plan_inputs(o);
+  const std::optional<PlanModel> model = choose_plan_model(o, in.spec);
+  if (!model) return kExitFailed;
+  const PlannedCycle planned = plan_cycle(o, in, model->chosen);
+  PlanOutputs out;
+  if (auto error = write_plan_outputs(o, in, *model, planned, out); !error.empty()) {
     std::cerr << "feedplan: failed: " << error << "\n";
     return kExitFailed;
-  };
-  // --constant-feed: the cycle's own moves, one F on every feed move (what the baseline is).
-  geometry::Program constant_program;
-  if (constant) {
-    constant_program.path = cycle.path;
-    for (const geometry::Move& move : cycle.path.moves) {
-      geometry::BlockCommand block;
-      block.feed_mm_per_min = move.kind == geometry::MoveKind::kRapid ? 0.0 : o.constant_feed_mm_per_min;
-      block.spindle_rpm = spec.spindle_rpm;
-      block.spindle = geometry::SpindleDirection::kClockwise;
-      constant_program.blocks.push_back(block);
-    }
   }
-  const std::string program_text =
-      write_program || constant ? gcode::write_gcode(constant ? constant_program : result.program, writer) : "";
-  if (write_program || constant) {
-    if (auto error = write_file_atomically(o.program_path, program_text); !error.empty()) return fail_write(error);
-    written.push_back(o.program_path);
-  }
-  std::optional<trial::PlanCheck> check;
-  if (o.simulate && (write_program || constant)) {
-    check = trial::check_on_virtual_machine(program_text, spec, cycle, result, target_force_n,
-                                     o.materials_path.empty() ? bundled_materials_path() : o.materials_path);
-  }
-  planner::PlanReportContext context;
-  context.spec_path = o.spec_path;
-  context.cycle = spec.cycle;
-  context.tool = spec.tool;
-  context.material = spec.material;
-  context.model_id = record.id;
-  context.model_version = record.version;
-  context.model_tool = record.tool_name;
-  context.model_material = record.material_name;
-  context.model_match = chosen->explanation;
-  context.database_path = db_path;
-  context.program_path = write_program || constant ? o.program_path : "";
-  context.dialect = gcode::to_string(writer.dialect);
-  if (!o.report_path.empty()) {
-    if (auto error = planner::write_plan_report(o.report_path, result, settings, context); !error.empty()) return fail_write(error);
-    written.push_back(o.report_path);
-  }
-  if (!o.csv_path.empty()) {
-    if (auto error = planner::write_plan_samples_csv(o.csv_path, result); !error.empty()) return fail_write(error);
-    written.push_back(o.csv_path);
-  }
-  if (!o.plot_path.empty()) {
-    planner::PlanPlotOptions plot;
-    plot.title = spec.cycle + " — " + spec.tool.name + " in " + spec.material + ", target " +
-                 shortest_number_text(target_force_n) + " N";
-    if (check) {
-      std::vector<std::pair<double, double>> peaks;
-      for (const auto& r : check->comparison.revolutions) {
-        if (r.in_cut) peaks.emplace_back(0.5 * (r.revolution.s_start_mm + r.revolution.s_end_mm), r.revolution.peak_n);
-      }
-      plot.measured_peaks = peaks;
-      plot.title += " (markers: virtual machine, per-revolution peaks)";
-    }
-    if (auto error = planner::write_plan_plot(o.plot_path, result, target_force_n, plot); !error.empty()) return fail_write(error);
-    written.push_back(o.plot_path);
-  }
-
-  // 5. Summary.
-  const planner::PlanSummary& s = result.summary;
-  const double analyse_s = std::chrono::duration<double>(analysed - started).count();
-  const double plan_s = std::chrono::duration<double>(planned - analysed).count();
   if (o.json) {
-    nlohmann::json out;
-    out["status"] = planner::to_string(result.status);
-    out["messages"] = result.messages;
-    out["spec"] = o.spec_path;
-    out["model"] = {{"id", record.id}, {"version", record.version}, {"tool", record.tool_name},
-                    {"material", record.material_name}, {"match", chosen->match}, {"explanation", chosen->explanation}};
-    out["target_force_n"] = target_force_n;
-    out["blocks"] = result.blocks.size();
-    out["samples"] = result.samples.size();
-    out["feed_min_mm_per_min"] = s.min_feed_mm_per_min;
-    out["feed_max_mm_per_min"] = s.max_feed_mm_per_min;
-    out["cycle_time_s"] = s.cycle_time_s;
-    out["cutting_time_s"] = s.cutting_time_s;
-    out["max_predicted_force_n"] = s.max_predicted_force_n;
-    out["baseline"] = {{"feed_mm_per_min", s.baseline.feed_mm_per_min}, {"cycle_time_s", s.baseline.cycle_time_s},
-                       {"peak_force_n", s.baseline.peak_force_n}};
-    out["time_saved_percent"] = s.time_saved_percent;
-    out["engagement_time_s"] = analyse_s;
-    out["plan_time_s"] = plan_s;
-    out["written"] = written;
-    if (check) {
-      const auto& c = check->comparison;
-      out["virtual_machine"] = {{"cycle_time_s", check->cycle_time_s},
-                                {"max_peak_n", check->max_peak_n},
-                                {"revolutions", c.revolutions.size()},
-                                {"in_cut", c.in_cut},
-                                {"held", c.held},
-                                {"steady", c.steady},
-                                {"steady_max_abs_error_percent", c.steady_max_abs_error_percent},
-                                {"steady_rms_error_percent", c.steady_rms_error_percent},
-                                {"max_abs_error_percent", c.max_abs_error_percent},
-                                {"rms_error_percent", c.rms_error_percent},
-                                {"max_overshoot_percent", c.max_overshoot_percent},
-                                {"warnings", check->warnings}};
-    }
-    std::cout << out.dump(2) << "\n";
+    print_plan_json(o, in, *model, planned, out);
   } else {
-    std::printf("%s: %s, tool %s, %s, target %s N\n", o.spec_path.c_str(), spec.cycle.c_str(), spec.tool.name.c_str(),
-                spec.material.c_str(), shortest_number_text(target_force_n).c_str());
-    std::printf("model: id %lld v%d (%s in %s) — %s\n", static_cast<long long>(record.id), record.version,
-                record.tool_name.c_str(), record.material_name.c_str(), chosen->explanation.c_str());
-    std::printf("status: %s\n", planner::to_string(result.status).c_str());
-    std::printf("plan: %zu samples, %zu blocks, F %.0f–%.0f mm/min, predicted peak %.1f N (engagement %.3f s, plan %.3f s)\n",
-                result.samples.size(), result.blocks.size(), s.min_feed_mm_per_min, s.max_feed_mm_per_min,
-                s.max_predicted_force_n, analyse_s, plan_s);
-    std::printf("cycle time: planned %.2f s (cutting %.2f s) vs constant F%.0f %.2f s: %.1f %% saved\n", s.cycle_time_s,
-                s.cutting_time_s, s.baseline.feed_mm_per_min, s.baseline.cycle_time_s, s.time_saved_percent);
-    if (check) {
-      std::printf("virtual machine: cycle time %.2f s, largest per-revolution peak %.1f N\n", check->cycle_time_s,
-                  check->max_peak_n);
-      std::printf("%s", planner::describe(check->comparison).c_str());
-    }
-    for (const std::string& path : written) std::printf("wrote %s\n", path.c_str());
+    print_plan_text(o, in, *model, planned, out);
   }
-  if (check) {
-    for (const std::string& warning : check->warnings) std::cerr << "feedplan: virtual machine: " << warning << "\n";
-  }
-  for (const std::string& message : result.messages) std::cerr << "feedplan: note: " << message << "\n";
-  if (!write_program && !constant) {
+  print_plan_notes(planned.result, out);
+  if (!out.program.any()) {
     std::cerr << "feedplan: failed: the target cannot be met everywhere (see the note above); no program written to "
               << o.program_path << " — raise the target, or lower the machine's min_feed_mm_per_min\n";
     return kExitFailed;

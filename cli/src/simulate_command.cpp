@@ -145,6 +145,233 @@ class ProgressBar {
   bool shown_ = false;
 };
 
+// What the job runs with: flags, else the spec.
+struct SimulateInputs {
+  std::optional<cycles::CycleSpec> spec;  // --spec
+  geometry::Tool tool;                    // --tool, else the spec's
+  std::string material_name;              // --material, else the spec's
+  double rpm = 0.0;                       // --spindle-rpm, else the spec's, rev/min
+  std::vector<double> runout;             // --runout-mm, mm per tooth
+};
+
+// What runs: its name and what the user should know about it.
+struct SimulationJob {
+  std::string name;                // the cutting test in words, or the program path
+  std::vector<std::string> notes;  // e.g. where the stock came from
+};
+
+// The simulation and its wall time.
+struct SimulationRun {
+  sim::SimulationResult result;  // log, revolutions, summary, warnings
+  double wall_s = 0.0;           // wall time of the simulation, s
+};
+
+void check_machine_flags(const SimulateOptions& options, std::vector<InputProblem>& problems) {
+  auto check_flag = [&](const char* flag, double value, bool zero_allowed) {
+    if (!(std::isfinite(value) && (value > 0.0 || (zero_allowed && value == 0.0)))) {
+      problems.push_back({flag, "= " + six_digit_number_text(value) + ": must be a finite number > 0"});
+    }
+  };
+  check_flag("--max-accel", options.max_accel_mm_per_s2, true);
+  check_flag("--rapid", options.rapid_feed_mm_per_min, true);
+  check_flag("--max-feed", options.max_feed_mm_per_min, true);
+  check_flag("--log-rate", options.log_rate_hz, false);
+  if (!(std::isfinite(options.noise_n) && options.noise_n >= 0.0)) {
+    problems.push_back({"--noise-n", "= " + six_digit_number_text(options.noise_n) + ": must be a finite number ≥ 0"});
+  }
+}
+
+// Where the tool, material, machine and stock come from: flags, else the spec; every flag checked.
+SimulateInputs read_simulate_inputs(const SimulateOptions& options) {
+  std::vector<InputProblem> problems;
+  SimulateInputs in;
+  std::optional<cycles::CycleSpec>& spec = in.spec;
+  if (!options.spec_path.empty()) spec = cycles::load_cycle_spec(options.spec_path);
+  if (options.cutting_test == !options.program_path.empty()) {
+    problems.push_back({"simulate", options.cutting_test
+                                        ? "give either a PROGRAM or --cutting-test, not both"
+                                        : "needs a PROGRAM to run, or --cutting-test for a straight cut"});
+  }
+  if (!options.tool_text.empty()) {
+    in.tool = parse_tool(options.tool_text, problems);
+  } else if (spec) {
+    in.tool = spec->tool;
+  } else {
+    problems.push_back({"--tool", "is required (or --spec): e.g. --tool diameter_mm=10,flutes=4,helix_deg=30"});
+  }
+  in.material_name = options.material_name;
+  if (in.material_name.empty() && spec) in.material_name = spec->material;
+  if (in.material_name.empty()) problems.push_back({"--material", "is required (or a --spec with material:), e.g. --material S50C"});
+  in.rpm = options.spindle_rpm;
+  if (in.rpm == 0.0 && spec) in.rpm = spec->spindle_rpm;
+  if (!(std::isfinite(in.rpm) && in.rpm >= 0.0)) {
+    problems.push_back(
+        {"--spindle-rpm", "= " + six_digit_number_text(options.spindle_rpm) + ": must be a finite number ≥ 0"});
+  }
+  check_machine_flags(options, problems);
+  if (!options.runout_text.empty()) in.runout = parse_runout(options.runout_text, problems);
+  if (!options.cutting_test &&
+      (options.radial_depth_mm != 0.0 || options.axial_depth_mm != 0.0 || options.feed_mm_per_min != 0.0 || options.up_milling)) {
+    problems.push_back({"--radial-depth-mm/--axial-depth-mm/--feed-mm-per-min/--up", "only apply with --cutting-test"});
+  }
+  if (!problems.empty()) throw InputError(std::move(problems));
+  return in;
+}
+
+// Material and machine: the spec's limits, each replaced by its flag when given; sensors and options.
+sim::SimulationRequest simulation_request(const SimulateOptions& options, const SimulateInputs& in,
+                                          const sim::Material& material) {
+  sim::SimulationRequest request;
+  request.tool = in.tool;
+  request.coefficients = material.coefficients;
+  if (in.spec) {
+    request.machine.max_accel_mm_per_s2 = in.spec->machine.max_accel_mm_per_s2;
+    request.machine.rapid_feed_mm_per_min = in.spec->machine.rapid_feed_mm_per_min;
+    request.machine.max_feed_mm_per_min = in.spec->machine.max_feed_mm_per_min;
+  }
+  if (options.max_accel_mm_per_s2 > 0.0) request.machine.max_accel_mm_per_s2 = options.max_accel_mm_per_s2;
+  if (options.rapid_feed_mm_per_min > 0.0) request.machine.rapid_feed_mm_per_min = options.rapid_feed_mm_per_min;
+  if (options.max_feed_mm_per_min > 0.0) request.machine.max_feed_mm_per_min = options.max_feed_mm_per_min;
+  request.sensors.dynamometer.noise_n = options.noise_n;
+  request.sensors.servo_current.enabled = options.currents;
+  request.sensors.seed = options.seed;
+  request.options.angle_step_deg = options.angle_step_deg;
+  request.options.layer_thickness_mm = options.layer_mm;
+  request.options.log_rate_hz = options.log_rate_hz;
+  request.options.runout_mm = in.runout;
+  request.options.default_spindle_rpm = in.rpm;
+  return request;
+}
+
+// --cutting-test: a straight cut into a block, its program and stock into `request`.
+SimulationJob set_cutting_test(const SimulateOptions& options, const SimulateInputs& in, sim::SimulationRequest& request) {
+  const double rpm = in.rpm;
+  sim::CuttingTest test;
+  test.radial_depth_mm = options.radial_depth_mm;
+  test.axial_depth_mm = options.axial_depth_mm;
+  test.feed_mm_per_min = options.feed_mm_per_min;
+  test.spindle_rpm = rpm;
+  test.cut_length_mm = options.cut_length_mm;
+  test.mode = options.up_milling ? sim::MillingMode::kUp : sim::MillingMode::kDown;
+  sim::CuttingTestSetup setup = sim::make_cutting_test(test, in.tool);
+  request.program = std::move(setup.program);
+  request.stock = std::move(setup.stock);
+  std::ostringstream name;
+  name << "cutting test: " << (options.up_milling ? "up" : "down") << " milling, a_e " << test.radial_depth_mm
+       << " mm, a_p " << test.axial_depth_mm << " mm, F " << test.feed_mm_per_min << " mm/min, S " << rpm << " rpm";
+  SimulationJob job;
+  job.name = name.str();
+  request.log_metadata = {{"cutting_test", job.name},
+                          {"radial_depth_mm", six_digit_number_text(test.radial_depth_mm)},
+                          {"axial_depth_mm", six_digit_number_text(test.axial_depth_mm)},
+                          {"feed_per_tooth_mm", six_digit_number_text(test.feed_mm_per_min / (rpm * in.tool.flutes))}};
+  return job;
+}
+
+// PROGRAM: the program read into `request`, with the stock from --stock, else the spec, else a block.
+SimulationJob set_program(const SimulateOptions& options, const SimulateInputs& in, sim::SimulationRequest& request) {
+  SimulationJob job;
+  request.program = gcode::load_program(options.program_path);
+  job.notes = request.program.notes;
+  job.name = options.program_path;
+  request.log_metadata = {{"program", options.program_path}};
+  if (!options.stock_path.empty()) {
+    request.stock = cycles::load_stock_spec(options.stock_path);
+  } else if (in.spec) {
+    request.stock = cycles::generate(*in.spec).stock;
+    job.notes.push_back("stock: the one " + options.spec_path + " implies");
+  } else {
+    request.stock = default_stock(request.program, in.tool.radius_mm());
+    job.notes.push_back("no --stock given: assuming a solid block around the program's feed moves below z = 0 "
+                        "(every feed move below z = 0 cuts full material)");
+  }
+  return job;
+}
+
+// Runs the simulation with a progress bar on a terminal.
+SimulationRun run_simulation(sim::SimulationRequest request) {
+  ProgressBar progress;
+  request.progress = [&progress](double fraction) { progress(fraction); };
+  const auto started = std::chrono::steady_clock::now();
+  SimulationRun run;
+  run.result = sim::simulate(request);
+  run.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+  return run;
+}
+
+// Outputs, each complete or untouched: the log, --peaks, --plot. Returns the first error, or empty.
+std::string write_simulation_outputs(const SimulateOptions& options, const sim::SimulationResult& result,
+                                     const std::string& job) {
+  if (const std::string error = force_log::write_force_log(options.log_path, result.log); !error.empty()) return error;
+  if (!options.peaks_path.empty()) {
+    if (const std::string error = force_log::write_revolution_peaks(options.peaks_path, result.revolutions); !error.empty()) {
+      return error;
+    }
+  }
+  if (!options.plot_path.empty()) {
+    const sim::ForcePlotData plot = sim::force_plot_data(result.log, job, result.revolutions);
+    if (const std::string error = sim::write_force_plot(options.plot_path, plot); !error.empty()) return error;
+  }
+  return "";
+}
+
+void print_simulation_json(const SimulateOptions& options, const geometry::Tool& tool, const std::string& material,
+                           const SimulationJob& job, const SimulationRun& run) {
+  const sim::SimulationResult& result = run.result;
+  const auto& s = result.summary;
+  nlohmann::json out;
+  out["job"] = job.name;
+  out["tool"] = {{"name", tool.name}, {"diameter_mm", tool.diameter_mm}, {"flutes", tool.flutes}, {"helix_deg", tool.helix_deg}};
+  out["material"] = material;
+  out["cycle_time_s"] = s.cycle_time_s;
+  out["cutting_time_s"] = s.cutting_time_s;
+  out["air_time_s"] = s.air_time_s;
+  out["time_in_contact_s"] = s.time_in_contact_s;
+  out["max_revolution_peak_n"] = s.max_revolution_peak_n;
+  out["mean_force_in_contact_n"] = s.mean_force_in_contact_n;
+  out["max_force_z_n"] = s.max_force_z_n;
+  out["steps"] = s.steps;
+  out["step_s"] = s.step_s;
+  out["stock_layers"] = s.stock_layers;
+  out["engagement_bands"] = s.engagement_bands;
+  out["log"] = options.log_path;
+  out["log_rows"] = result.log.rows.size();
+  if (!options.plot_path.empty()) out["plot"] = options.plot_path;
+  if (!options.peaks_path.empty()) out["peaks"] = options.peaks_path;
+  out["wall_time_s"] = run.wall_s;
+  out["revolutions"] = nlohmann::json::array();
+  for (const auto& rev : result.revolutions) {
+    out["revolutions"].push_back({{"t_start_s", rev.t_start_s}, {"peak_xy_n", rev.peak_xy_n}, {"mean_xy_n", rev.mean_xy_n}});
+  }
+  out["notes"] = job.notes;
+  out["warnings"] = result.warnings;
+  std::cout << out.dump(2) << "\n";
+}
+
+void print_simulation_text(const SimulateOptions& options, const geometry::Tool& tool, const std::string& material,
+                           const SimulationJob& job, const SimulationRun& run) {
+  const sim::SimulationResult& result = run.result;
+  const auto& s = result.summary;
+  const double wall_s = run.wall_s;
+  std::printf("%s\n", job.name.c_str());
+  std::printf("tool %s (D%.4g mm, %d flutes, helix %.3g deg), material %s\n", tool.name.c_str(), tool.diameter_mm,
+              tool.flutes, tool.helix_deg, material.c_str());
+  std::printf("cycle time %.3f s: cutting moves %.3f s, air %.3f s; tool in contact %.3f s\n", s.cycle_time_s,
+              s.cutting_time_s, s.air_time_s, s.time_in_contact_s);
+  std::printf("force |F_xy|: max per-revolution peak %.1f N, mean in contact %.1f N; max |F_z| %.1f N\n",
+              s.max_revolution_peak_n, s.mean_force_in_contact_n, s.max_force_z_n);
+  std::printf("simulated %lld steps of %.1f us on %d stock layers (%d engagement computations) in %.2f s wall "
+              "(%.1f simulated s per wall s)\n",
+              s.steps, s.step_s * 1e6, s.stock_layers, s.engagement_bands, wall_s,
+              wall_s > 0 ? s.cycle_time_s / wall_s : 0.0);
+  std::printf("force log (%zu rows) written to %s\n", result.log.rows.size(), options.log_path.c_str());
+  if (!options.peaks_path.empty()) {
+    std::printf("per-revolution peaks (%zu) written to %s\n", result.revolutions.size(), options.peaks_path.c_str());
+  }
+  if (!options.plot_path.empty()) std::printf("plot written to %s\n", options.plot_path.c_str());
+  for (const auto& note : job.notes) std::printf("note: %s\n", note.c_str());
+}
+
 }  // namespace
 
 void add_simulate_command(CLI::App& app, SimulateOptions& options) {
@@ -186,191 +413,24 @@ void add_simulate_command(CLI::App& app, SimulateOptions& options) {
 }
 
 int run_simulate_command(const SimulateOptions& options) {
-  std::vector<InputProblem> problems;
-  // 1. Where the tool, material, machine and stock come from: flags, else the spec.
-  std::optional<cycles::CycleSpec> spec;
-  if (!options.spec_path.empty()) spec = cycles::load_cycle_spec(options.spec_path);
-  if (options.cutting_test == !options.program_path.empty()) {
-    problems.push_back({"simulate", options.cutting_test
-                                        ? "give either a PROGRAM or --cutting-test, not both"
-                                        : "needs a PROGRAM to run, or --cutting-test for a straight cut"});
-  }
-  geometry::Tool tool;
-  if (!options.tool_text.empty()) {
-    tool = parse_tool(options.tool_text, problems);
-  } else if (spec) {
-    tool = spec->tool;
-  } else {
-    problems.push_back({"--tool", "is required (or --spec): e.g. --tool diameter_mm=10,flutes=4,helix_deg=30"});
-  }
-  std::string material_name = options.material_name;
-  if (material_name.empty() && spec) material_name = spec->material;
-  if (material_name.empty()) problems.push_back({"--material", "is required (or a --spec with material:), e.g. --material S50C"});
-  double rpm = options.spindle_rpm;
-  if (rpm == 0.0 && spec) rpm = spec->spindle_rpm;
-  if (!(std::isfinite(rpm) && rpm >= 0.0)) {
-    problems.push_back(
-        {"--spindle-rpm", "= " + six_digit_number_text(options.spindle_rpm) + ": must be a finite number ≥ 0"});
-  }
-  auto check_flag = [&](const char* flag, double value, bool zero_allowed) {
-    if (!(std::isfinite(value) && (value > 0.0 || (zero_allowed && value == 0.0)))) {
-      problems.push_back({flag, "= " + six_digit_number_text(value) + ": must be a finite number > 0"});
-    }
-  };
-  check_flag("--max-accel", options.max_accel_mm_per_s2, true);
-  check_flag("--rapid", options.rapid_feed_mm_per_min, true);
-  check_flag("--max-feed", options.max_feed_mm_per_min, true);
-  check_flag("--log-rate", options.log_rate_hz, false);
-  if (!(std::isfinite(options.noise_n) && options.noise_n >= 0.0)) {
-    problems.push_back({"--noise-n", "= " + six_digit_number_text(options.noise_n) + ": must be a finite number ≥ 0"});
-  }
-  std::vector<double> runout;
-  if (!options.runout_text.empty()) runout = parse_runout(options.runout_text, problems);
-  if (!options.cutting_test &&
-      (options.radial_depth_mm != 0.0 || options.axial_depth_mm != 0.0 || options.feed_mm_per_min != 0.0 || options.up_milling)) {
-    problems.push_back({"--radial-depth-mm/--axial-depth-mm/--feed-mm-per-min/--up", "only apply with --cutting-test"});
-  }
-  if (!problems.empty()) throw InputError(std::move(problems));
-
-  // 2. Material and machine.
+  const SimulateInputs in = read_simulate_inputs(options);
   const sim::MaterialLibrary materials =
       sim::load_materials(options.materials_path.empty() ? bundled_materials_path() : options.materials_path);
-  const sim::Material& material = materials.get(material_name, options.material_name.empty() ? "spec.material" : "--material");
-  sim::SimulationRequest request;
-  request.tool = tool;
-  request.coefficients = material.coefficients;
-  if (spec) {
-    request.machine.max_accel_mm_per_s2 = spec->machine.max_accel_mm_per_s2;
-    request.machine.rapid_feed_mm_per_min = spec->machine.rapid_feed_mm_per_min;
-    request.machine.max_feed_mm_per_min = spec->machine.max_feed_mm_per_min;
-  }
-  if (options.max_accel_mm_per_s2 > 0.0) request.machine.max_accel_mm_per_s2 = options.max_accel_mm_per_s2;
-  if (options.rapid_feed_mm_per_min > 0.0) request.machine.rapid_feed_mm_per_min = options.rapid_feed_mm_per_min;
-  if (options.max_feed_mm_per_min > 0.0) request.machine.max_feed_mm_per_min = options.max_feed_mm_per_min;
-  request.sensors.dynamometer.noise_n = options.noise_n;
-  request.sensors.servo_current.enabled = options.currents;
-  request.sensors.seed = options.seed;
-  request.options.angle_step_deg = options.angle_step_deg;
-  request.options.layer_thickness_mm = options.layer_mm;
-  request.options.log_rate_hz = options.log_rate_hz;
-  request.options.runout_mm = runout;
-  request.options.default_spindle_rpm = rpm;
-
-  // 3. The program and the stock.
-  std::vector<std::string> notes;
-  std::string job;
-  if (options.cutting_test) {
-    sim::CuttingTest test;
-    test.radial_depth_mm = options.radial_depth_mm;
-    test.axial_depth_mm = options.axial_depth_mm;
-    test.feed_mm_per_min = options.feed_mm_per_min;
-    test.spindle_rpm = rpm;
-    test.cut_length_mm = options.cut_length_mm;
-    test.mode = options.up_milling ? sim::MillingMode::kUp : sim::MillingMode::kDown;
-    sim::CuttingTestSetup setup = sim::make_cutting_test(test, tool);
-    request.program = std::move(setup.program);
-    request.stock = std::move(setup.stock);
-    std::ostringstream name;
-    name << "cutting test: " << (options.up_milling ? "up" : "down") << " milling, a_e " << test.radial_depth_mm
-         << " mm, a_p " << test.axial_depth_mm << " mm, F " << test.feed_mm_per_min << " mm/min, S " << rpm << " rpm";
-    job = name.str();
-    request.log_metadata = {{"cutting_test", job},
-                            {"radial_depth_mm", six_digit_number_text(test.radial_depth_mm)},
-                            {"axial_depth_mm", six_digit_number_text(test.axial_depth_mm)},
-                            {"feed_per_tooth_mm", six_digit_number_text(test.feed_mm_per_min / (rpm * tool.flutes))}};
-  } else {
-    request.program = gcode::load_program(options.program_path);
-    notes = request.program.notes;
-    job = options.program_path;
-    request.log_metadata = {{"program", options.program_path}};
-    if (!options.stock_path.empty()) {
-      request.stock = cycles::load_stock_spec(options.stock_path);
-    } else if (spec) {
-      request.stock = cycles::generate(*spec).stock;
-      notes.push_back("stock: the one " + options.spec_path + " implies");
-    } else {
-      request.stock = default_stock(request.program, tool.radius_mm());
-      notes.push_back("no --stock given: assuming a solid block around the program's feed moves below z = 0 "
-                      "(every feed move below z = 0 cuts full material)");
-    }
-  }
+  const sim::Material& material = materials.get(in.material_name, options.material_name.empty() ? "spec.material" : "--material");
+  sim::SimulationRequest request = simulation_request(options, in, material);
+  const SimulationJob job = options.cutting_test ? set_cutting_test(options, in, request) : set_program(options, in, request);
   request.log_metadata.push_back({"material", material.name});
-
-  // 4. Run.
-  ProgressBar progress;
-  request.progress = [&progress](double fraction) { progress(fraction); };
-  const auto started = std::chrono::steady_clock::now();
-  const sim::SimulationResult result = sim::simulate(request);
-  const double wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
-
-  // 5. Outputs, each complete or untouched.
-  if (const std::string error = force_log::write_force_log(options.log_path, result.log); !error.empty()) {
+  const SimulationRun run = run_simulation(std::move(request));
+  if (const std::string error = write_simulation_outputs(options, run.result, job.name); !error.empty()) {
     std::cerr << "feedplan: " << error << "\n";
     return 1;
   }
-  if (!options.peaks_path.empty()) {
-    if (const std::string error = force_log::write_revolution_peaks(options.peaks_path, result.revolutions); !error.empty()) {
-      std::cerr << "feedplan: " << error << "\n";
-      return 1;
-    }
-  }
-  if (!options.plot_path.empty()) {
-    const sim::ForcePlotData plot = sim::force_plot_data(result.log, job, result.revolutions);
-    if (const std::string error = sim::write_force_plot(options.plot_path, plot); !error.empty()) {
-      std::cerr << "feedplan: " << error << "\n";
-      return 1;
-    }
-  }
-
-  const auto& s = result.summary;
   if (options.json) {
-    nlohmann::json out;
-    out["job"] = job;
-    out["tool"] = {{"name", tool.name}, {"diameter_mm", tool.diameter_mm}, {"flutes", tool.flutes}, {"helix_deg", tool.helix_deg}};
-    out["material"] = material.name;
-    out["cycle_time_s"] = s.cycle_time_s;
-    out["cutting_time_s"] = s.cutting_time_s;
-    out["air_time_s"] = s.air_time_s;
-    out["time_in_contact_s"] = s.time_in_contact_s;
-    out["max_revolution_peak_n"] = s.max_revolution_peak_n;
-    out["mean_force_in_contact_n"] = s.mean_force_in_contact_n;
-    out["max_force_z_n"] = s.max_force_z_n;
-    out["steps"] = s.steps;
-    out["step_s"] = s.step_s;
-    out["stock_layers"] = s.stock_layers;
-    out["engagement_bands"] = s.engagement_bands;
-    out["log"] = options.log_path;
-    out["log_rows"] = result.log.rows.size();
-    if (!options.plot_path.empty()) out["plot"] = options.plot_path;
-    if (!options.peaks_path.empty()) out["peaks"] = options.peaks_path;
-    out["wall_time_s"] = wall_s;
-    out["revolutions"] = nlohmann::json::array();
-    for (const auto& rev : result.revolutions) {
-      out["revolutions"].push_back({{"t_start_s", rev.t_start_s}, {"peak_xy_n", rev.peak_xy_n}, {"mean_xy_n", rev.mean_xy_n}});
-    }
-    out["notes"] = notes;
-    out["warnings"] = result.warnings;
-    std::cout << out.dump(2) << "\n";
+    print_simulation_json(options, in.tool, material.name, job, run);
   } else {
-    std::printf("%s\n", job.c_str());
-    std::printf("tool %s (D%.4g mm, %d flutes, helix %.3g deg), material %s\n", tool.name.c_str(), tool.diameter_mm,
-                tool.flutes, tool.helix_deg, material.name.c_str());
-    std::printf("cycle time %.3f s: cutting moves %.3f s, air %.3f s; tool in contact %.3f s\n", s.cycle_time_s,
-                s.cutting_time_s, s.air_time_s, s.time_in_contact_s);
-    std::printf("force |F_xy|: max per-revolution peak %.1f N, mean in contact %.1f N; max |F_z| %.1f N\n",
-                s.max_revolution_peak_n, s.mean_force_in_contact_n, s.max_force_z_n);
-    std::printf("simulated %lld steps of %.1f us on %d stock layers (%d engagement computations) in %.2f s wall "
-                "(%.1f simulated s per wall s)\n",
-                s.steps, s.step_s * 1e6, s.stock_layers, s.engagement_bands, wall_s,
-                wall_s > 0 ? s.cycle_time_s / wall_s : 0.0);
-    std::printf("force log (%zu rows) written to %s\n", result.log.rows.size(), options.log_path.c_str());
-    if (!options.peaks_path.empty()) {
-      std::printf("per-revolution peaks (%zu) written to %s\n", result.revolutions.size(), options.peaks_path.c_str());
-    }
-    if (!options.plot_path.empty()) std::printf("plot written to %s\n", options.plot_path.c_str());
-    for (const auto& note : notes) std::printf("note: %s\n", note.c_str());
+    print_simulation_text(options, in.tool, material.name, job, run);
   }
-  for (const auto& warning : result.warnings) std::cerr << "feedplan: warning: " << warning << "\n";
+  for (const auto& warning : run.result.warnings) std::cerr << "feedplan: warning: " << warning << "\n";
   return 0;
 }
 
