@@ -127,7 +127,7 @@ RemadePlan remake_plan(const LearnInputs& in) {
 learning::ModelUpdate learn_from_logs(const LearnOptions& o, const LearnInputs& in, const model_db::Store& store,
                                       const model_db::ModelRecord& before, const planner::PlanResult& plan) {
   std::optional<model::Covariance> prior_covariance;
-  if (before.fit.covariance[0] > 0.0) prior_covariance = before.fit.covariance;
+  if (before.fit.covariance(0, 0) > 0.0) prior_covariance = before.fit.covariance;
   // Every earlier learning step of this tool and material (stored with its samples): the refit spans them all.
   std::vector<learning::LearningSample> earlier;
   for (const model_db::LearnedSample& stored : store.learned_samples(before.tool_name, before.material_name)) {

@@ -225,9 +225,7 @@ sim::SimulationRequest simulation_request(const SimulateOptions& options, const 
   request.tool = in.tool;
   request.coefficients = material.coefficients;
   if (in.spec) {
-    request.machine.max_accel_mm_per_s2 = in.spec->machine.max_accel_mm_per_s2;
-    request.machine.rapid_feed_mm_per_min = in.spec->machine.rapid_feed_mm_per_min;
-    request.machine.max_feed_mm_per_min = in.spec->machine.max_feed_mm_per_min;
+    request.machine = in.spec->machine;
   }
   if (options.max_accel_mm_per_s2 > 0.0) request.machine.max_accel_mm_per_s2 = options.max_accel_mm_per_s2;
   if (options.rapid_feed_mm_per_min > 0.0) request.machine.rapid_feed_mm_per_min = options.rapid_feed_mm_per_min;

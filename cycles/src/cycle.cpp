@@ -48,18 +48,7 @@ std::vector<InputProblem> validate_common(const CycleSpec& spec) {
   check(problems, "target_force_n", spec.target_force_n, at_least(0), "the cutting force to hold in N (0: not given)");
   check(problems, "clearance_z_mm", spec.clearance_z_mm, at_least(kFeedPlaneAboveTopMm),
         "rapids stop " + six_digit_number_text(kFeedPlaneAboveTopMm) + " mm above the stock before feeding down");
-  const MachineLimits& m = spec.machine;
-  const bool max_ok = check(problems, "machine.max_feed_mm_per_min", m.max_feed_mm_per_min, above(0));
-  if (check(problems, "machine.min_feed_mm_per_min", m.min_feed_mm_per_min, above(0)) && max_ok &&
-      !(m.min_feed_mm_per_min < m.max_feed_mm_per_min)) {
-    problems.push_back({"machine.min_feed_mm_per_min", "= " + six_digit_number_text(m.min_feed_mm_per_min) +
-                                                           ": must be < max_feed_mm_per_min = " +
-                                                           six_digit_number_text(m.max_feed_mm_per_min)});
-  }
-  check(problems, "machine.max_accel_mm_per_s2", m.max_accel_mm_per_s2, above(0));
-  check(problems, "machine.rapid_feed_mm_per_min", m.rapid_feed_mm_per_min, above(0));
-  check(problems, "machine.block_time_min_s", m.block_time_min_s, {0, true, 1, true},
-        "the shortest block execution time of the control");
+  for (auto& problem : geometry::validate(spec.machine)) problems.push_back(std::move(problem));
   if (spec.stock) {
     for (auto& problem : geometry::validate(*spec.stock, "stock")) problems.push_back(std::move(problem));
   }

@@ -349,7 +349,7 @@ void read_machine(SpecReader& in, const YAML::Node& root, CycleSpec& spec) {
                               "rapid_feed_mm_per_min", "block_time_min_s"})) {
     return;
   }
-  MachineLimits& m = spec.machine;
+  geometry::MachineLimits& m = spec.machine;
   m.max_feed_mm_per_min = in.number(machine, p, "max_feed_mm_per_min", false, m.max_feed_mm_per_min, "mm/min");
   m.min_feed_mm_per_min = in.number(machine, p, "min_feed_mm_per_min", false, m.min_feed_mm_per_min, "mm/min");
   m.max_accel_mm_per_s2 = in.number(machine, p, "max_accel_mm_per_s2", false, m.max_accel_mm_per_s2, "mm/s²");

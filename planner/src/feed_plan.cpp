@@ -120,26 +120,8 @@ std::vector<InputProblem> validate(const PlanSettings& settings, const geometry:
     problems.push_back({"spindle_rpm", "= " + num(settings.spindle_rpm) + ": must be a finite speed > 0 rev/min"});
   }
   if (tool.flutes < 1) problems.push_back({"tool.flutes", "= " + std::to_string(tool.flutes) + ": must be ≥ 1"});
-  const cycles::MachineLimits& m = settings.machine;
-  if (!finite_positive(m.max_feed_mm_per_min)) {
-    problems.push_back({"machine.max_feed_mm_per_min", "= " + num(m.max_feed_mm_per_min) + ": must be finite and > 0"});
-  }
-  if (!finite_positive(m.min_feed_mm_per_min)) {
-    problems.push_back({"machine.min_feed_mm_per_min", "= " + num(m.min_feed_mm_per_min) + ": must be finite and > 0"});
-  } else if (finite_positive(m.max_feed_mm_per_min) && m.min_feed_mm_per_min > m.max_feed_mm_per_min) {
-    problems.push_back({"machine.min_feed_mm_per_min", "= " + num(m.min_feed_mm_per_min) +
-                                                           ": must not exceed machine.max_feed_mm_per_min = " +
-                                                           num(m.max_feed_mm_per_min)});
-  }
-  if (!finite_positive(m.max_accel_mm_per_s2)) {
-    problems.push_back({"machine.max_accel_mm_per_s2", "= " + num(m.max_accel_mm_per_s2) + ": must be finite and > 0"});
-  }
-  if (!finite_positive(m.rapid_feed_mm_per_min)) {
-    problems.push_back({"machine.rapid_feed_mm_per_min", "= " + num(m.rapid_feed_mm_per_min) + ": must be finite and > 0"});
-  }
-  if (!(std::isfinite(m.block_time_min_s) && m.block_time_min_s >= 0.0 && m.block_time_min_s <= 1.0)) {
-    problems.push_back({"machine.block_time_min_s", "= " + num(m.block_time_min_s) + ": must be in [0, 1] s"});
-  }
+  const geometry::MachineLimits& m = settings.machine;
+  for (InputProblem& p : geometry::validate(m)) problems.push_back(std::move(p));
   if (settings.uncertainty) {
     const ForceUncertainty& u = *settings.uncertainty;
     if (!(std::isfinite(u.sigmas) && u.sigmas >= 0.0)) {

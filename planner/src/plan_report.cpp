@@ -408,7 +408,7 @@ std::vector<PlannedBlock> read_blocks(const Node& list) {
 }  // namespace
 
 std::string plan_report_json(const PlanResult& result, const PlanSettings& settings, const PlanReportContext& context) {
-  const cycles::MachineLimits& machine = settings.machine;
+  const geometry::MachineLimits& machine = settings.machine;
   const PlanOptions& options = settings.options;
   Json root{{"format", kFormatTag}, {"format_version", kPlanReportFormatVersion}};
   root["status"] = to_string(result.status);

@@ -416,7 +416,7 @@ std::vector<InputProblem> validate(const SimulationRequest& request) {
   check_tool(problems, request.tool);
   check_coefficients(problems, request.coefficients);
   check_options(problems, request.options, request.tool);
-  for (auto& p : validate(request.machine)) problems.push_back(std::move(p));
+  for (auto& p : geometry::validate(request.machine)) problems.push_back(std::move(p));
   for (auto& p : validate(request.sensors)) problems.push_back(std::move(p));
   for (auto& p : geometry::validate(request.stock, "stock")) problems.push_back(std::move(p));
   if (request.override_loop.controller) {

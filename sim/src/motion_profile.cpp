@@ -59,8 +59,8 @@ std::string block_name(const geometry::BlockCommand& block, std::size_t index) {
   return "move " + std::to_string(index);
 }
 
-void check_program(const geometry::Program& program, const MotionLimits& limits) {
-  std::vector<InputProblem> problems = validate(limits);
+void check_program(const geometry::Program& program, const geometry::MachineLimits& limits) {
+  std::vector<InputProblem> problems = geometry::validate(limits);
   if (program.path.moves.empty()) problems.push_back({"program", "has no moves: there is nothing to run"});
   std::size_t bad_moves = 0;
   for (std::size_t i = 0; i < program.path.moves.size(); ++i) {
@@ -89,7 +89,7 @@ void check_program(const geometry::Program& program, const MotionLimits& limits)
 
 // Steps 1–2: the speed cap of one move (its F, the machine's maximum feed, the centripetal limit on
 // arcs, or the rapid rate), mm/s.
-double speed_cap_mm_per_s(const Move& move, const geometry::BlockCommand& block, const MotionLimits& limits) {
+double speed_cap_mm_per_s(const Move& move, const geometry::BlockCommand& block, const geometry::MachineLimits& limits) {
   const double accel = limits.max_accel_mm_per_s2;
   double cap_mm_per_s = limits.rapid_feed_mm_per_min / 60.0;
   if (!is_rapid(move)) {
@@ -103,7 +103,7 @@ double speed_cap_mm_per_s(const Move& move, const geometry::BlockCommand& block,
 
 // Steps 1–2 for every move: where it starts, its length and its cap, into `timings` (one per move).
 // Returns the total path length, mm.
-double measure_moves(const geometry::Program& program, const MotionLimits& limits, std::vector<MoveTiming>& timings) {
+double measure_moves(const geometry::Program& program, const geometry::MachineLimits& limits, std::vector<MoveTiming>& timings) {
   double s_mm = 0.0;
   for (std::size_t i = 0; i < program.path.moves.size(); ++i) {
     const Move& move = program.path.moves[i];
@@ -127,7 +127,7 @@ std::vector<std::size_t> moves_taking_time(const std::vector<MoveTiming>& timing
 
 // Step 3: point caps at the junctions, as v² (mm²/s²). Junction j lies before real move j (j = 0 is
 // the start, j = m the end, both at rest).
-std::vector<double> junction_speeds_squared(const geometry::Program& program, const MotionLimits& limits,
+std::vector<double> junction_speeds_squared(const geometry::Program& program, const geometry::MachineLimits& limits,
                                             const std::vector<MoveTiming>& timings,
                                             const std::vector<std::size_t>& real) {
   const std::vector<Move>& moves = program.path.moves;
@@ -237,20 +237,7 @@ PhaseSchedule schedule_phases(const geometry::Program& program, std::vector<Move
 
 }  // namespace
 
-std::vector<InputProblem> validate(const MotionLimits& limits) {
-  std::vector<InputProblem> problems;
-  auto positive = [&](const std::string& field, double value, const std::string& unit) {
-    require(problems, std::isfinite(value) && value > 0.0, "machine." + field, value, "> 0 " + unit);
-  };
-  positive("max_accel_mm_per_s2", limits.max_accel_mm_per_s2, "mm/s²");
-  positive("rapid_feed_mm_per_min", limits.rapid_feed_mm_per_min, "mm/min");
-  positive("max_feed_mm_per_min", limits.max_feed_mm_per_min, "mm/min");
-  require(problems, std::isfinite(limits.junction_deviation_mm) && limits.junction_deviation_mm >= 0.0,
-          "machine.junction_deviation_mm", limits.junction_deviation_mm, "≥ 0 mm");
-  return problems;
-}
-
-MotionProfile plan_motion(const geometry::Program& program, const MotionLimits& limits) {
+MotionProfile plan_motion(const geometry::Program& program, const geometry::MachineLimits& limits) {
   assert(program.blocks.size() == program.path.moves.size());
   check_program(program, limits);
   const double accel = limits.max_accel_mm_per_s2;

@@ -26,8 +26,9 @@ namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
-sim::MotionLimits motion_limits(const cycles::MachineLimits& machine) {
-  sim::MotionLimits limits;
+// The virtual machine's drives with the spec's feed, acceleration and rapid limits.
+geometry::MachineLimits motion_limits(const geometry::MachineLimits& machine) {
+  geometry::MachineLimits limits = sim::kVirtualMachineLimits;
   limits.max_accel_mm_per_s2 = machine.max_accel_mm_per_s2;
   limits.rapid_feed_mm_per_min = machine.rapid_feed_mm_per_min;
   limits.max_feed_mm_per_min = machine.max_feed_mm_per_min;

@@ -64,9 +64,7 @@ CornerRun simulate_corner(const std::vector<double>& runout_mm) {
   request.tool = spec.tool;
   request.coefficients = materials.get(spec.material).coefficients;
   request.stock = cycle.stock;
-  request.machine.max_accel_mm_per_s2 = spec.machine.max_accel_mm_per_s2;
-  request.machine.rapid_feed_mm_per_min = spec.machine.rapid_feed_mm_per_min;
-  request.machine.max_feed_mm_per_min = spec.machine.max_feed_mm_per_min;
+  request.machine = spec.machine;
   request.options.default_spindle_rpm = spec.spindle_rpm;
   request.options.layer_thickness_mm = 1.0;
   request.options.runout_mm = runout_mm;

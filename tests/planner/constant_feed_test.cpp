@@ -69,7 +69,7 @@ TEST(ConstantFeedProgram, CycleTimeIsLengthOverFeedWithoutAccelerationLimit) {
   path.moves = {rapid, line, arc};
   path.part_names = {"all"};
 
-  sim::MotionLimits limits;
+  geometry::MachineLimits limits = sim::kVirtualMachineLimits;
   limits.max_accel_mm_per_s2 = 1e9;  // accelerating to 250 mm/s takes 0.25 µs
   limits.rapid_feed_mm_per_min = 15000.0;
   const sim::MotionProfile motion = sim::plan_motion(constant_feed_program(path, 600.0, 5000.0), limits);

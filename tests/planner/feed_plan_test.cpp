@@ -37,8 +37,8 @@ PlanGeometry geometry_for(const cycles::CycleSpec& spec, double ds_mm = 0.05) {
   return analyse(cycle.path, cycle.stock, spec.tool, ds_mm);
 }
 
-sim::MotionLimits sim_limits(const cycles::MachineLimits& machine) {
-  sim::MotionLimits limits;
+geometry::MachineLimits sim_limits(const geometry::MachineLimits& machine) {
+  geometry::MachineLimits limits = sim::kVirtualMachineLimits;
   limits.max_accel_mm_per_s2 = machine.max_accel_mm_per_s2;
   limits.rapid_feed_mm_per_min = machine.rapid_feed_mm_per_min;
   limits.max_feed_mm_per_min = machine.max_feed_mm_per_min;

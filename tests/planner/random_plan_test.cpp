@@ -128,7 +128,7 @@ RandomCase random_case(std::mt19937_64& rng) {
       break;
     }
   }
-  cycles::MachineLimits& m = spec.machine;
+  geometry::MachineLimits& m = spec.machine;
   m.max_feed_mm_per_min = 2000.0 + 18000.0 * u(rng);
   m.min_feed_mm_per_min = 1.0 + 99.0 * u(rng);
   m.max_accel_mm_per_s2 = 200.0 + 9800.0 * u(rng);
@@ -166,7 +166,7 @@ TEST(RandomPlans, FeedsAccelerationsAndForcesWithinLimits) {
     }
     const PlanGeometry geometry = analyse(cycle.path, cycle.stock, c.spec.tool, 0.02 * c.spec.tool.diameter_mm);
     const PlanResult result = plan(geometry, c.settings);
-    const cycles::MachineLimits& m = c.settings.machine;
+    const geometry::MachineLimits& m = c.settings.machine;
     const double resolution = c.settings.options.feed_resolution_mm_per_min;
     const std::string where = "case " + std::to_string(n) + ": " + c.description;
 
@@ -202,7 +202,7 @@ TEST(RandomPlans, FeedsAccelerationsAndForcesWithinLimits) {
     // reachable (status kTargetNotMet), above it only where the planner says the minimum feed binds.
     const bool reachable = result.status != PlanStatus::kTargetNotMet;
     not_met += reachable ? 0 : 1;
-    sim::MotionLimits limits;
+    geometry::MachineLimits limits = sim::kVirtualMachineLimits;
     limits.max_accel_mm_per_s2 = m.max_accel_mm_per_s2;
     limits.rapid_feed_mm_per_min = m.rapid_feed_mm_per_min;
     limits.max_feed_mm_per_min = m.max_feed_mm_per_min;

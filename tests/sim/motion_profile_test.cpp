@@ -124,7 +124,7 @@ Sampled sample(const MotionProfile& profile, int count) {
 TEST(MotionProfile, LongLineFromRestToRestIsATrapezoid) {
   ProgramBuilder b;
   b.line({100, 0, 0}, 6000);  // 100 mm/s; reaches F after v²/2a = 2.5 mm
-  const MotionLimits limits;
+  const geometry::MachineLimits limits = kVirtualMachineLimits;
   const MotionProfile profile = plan_motion(b.program, limits);
   const double v = 100.0, a = 2000.0, length = 100.0;
   EXPECT_NEAR(profile.duration_s(), length / v + v / a, 1e-12);
@@ -147,7 +147,7 @@ TEST(MotionProfile, LongLineFromRestToRestIsATrapezoid) {
 TEST(MotionProfile, ShortLineThatCannotReachItsFeedIsATriangle) {
   ProgramBuilder b;
   b.line({0.6, 0.8, 0}, 6000);  // L = 1 mm < v²/a = 5 mm
-  const MotionProfile profile = plan_motion(b.program, MotionLimits{});
+  const MotionProfile profile = plan_motion(b.program, kVirtualMachineLimits);
   const double a = 2000.0;
   EXPECT_NEAR(profile.duration_s(), 2.0 * std::sqrt(1.0 / a), 1e-12);
   const MotionState peak = profile.state_at_time(std::sqrt(1.0 / a));
@@ -161,7 +161,7 @@ TEST(MotionProfile, SlowerCollinearBlockIsEnteredAtExactlyItsFeed) {
   ProgramBuilder b;
   b.line({50, 0, 0}, 6000);   // 100 mm/s
   b.line({100, 0, 0}, 1200);  // 20 mm/s
-  const MotionProfile profile = plan_motion(b.program, MotionLimits{});
+  const MotionProfile profile = plan_motion(b.program, kVirtualMachineLimits);
   const double a = 2000.0;
   // Move 1: 0 → 100 (2.5 mm), cruise, 100 → 20 (2.4 mm). Move 2: cruise at 20, 20 → 0 (0.1 mm).
   const double move1_s = 100.0 / a + (50.0 - 2.5 - 2.4) / 100.0 + 80.0 / a;
@@ -180,7 +180,7 @@ TEST(MotionProfile, CornerJunctionSpeedFollowsJunctionDeviation) {
   b.line({50, 50, 0}, 6000);  // 90° corner
   const double cos60 = std::cos(deg_to_rad(120.0)), sin60 = std::sin(deg_to_rad(120.0));
   b.line({50 + 30 * cos60, 50 + 30 * sin60, 0}, 6000);  // turns 30° further left: a 30° deflection
-  const MotionProfile profile = plan_motion(b.program, MotionLimits{});
+  const MotionProfile profile = plan_motion(b.program, kVirtualMachineLimits);
   const double v90 = grbl_junction_speed(1, 0, 0, 0, 1, 0, a, delta);
   // With θ = 90° interior angle: sin 45° / (1 − sin 45°) = 1 + √2.
   EXPECT_NEAR(v90, std::sqrt(a * delta * (1 + std::sqrt(2.0))), 1e-12);
@@ -196,7 +196,7 @@ TEST(MotionProfile, CornerJunctionSpeedFollowsJunctionDeviation) {
   };
   EXPECT_NEAR(profile.duration_s(), leg_s(50, 0, v90) + leg_s(50, v90, v30) + leg_s(30, v30, 0), 1e-12);
 
-  MotionLimits exact_stop;
+  geometry::MachineLimits exact_stop = kVirtualMachineLimits;
   exact_stop.junction_deviation_mm = 0.0;
   const MotionProfile stopping = plan_motion(b.program, exact_stop);
   EXPECT_EQ(stopping.moves()[1].entry_speed_mm_per_s, 0.0);
@@ -208,7 +208,7 @@ TEST(MotionProfile, FullReversalStops) {
   ProgramBuilder b;
   b.line({20, 0, 0}, 3000);
   b.line({5, 0, 0}, 3000);
-  const MotionProfile profile = plan_motion(b.program, MotionLimits{});
+  const MotionProfile profile = plan_motion(b.program, kVirtualMachineLimits);
   EXPECT_EQ(profile.moves()[1].entry_speed_mm_per_s, 0.0);
   EXPECT_NEAR(profile.duration_s(), rest_to_rest_s(20, 50, 2000) + rest_to_rest_s(15, 50, 2000), 1e-12);
 }
@@ -222,7 +222,7 @@ TEST(MotionProfile, TangentContinuousTrochoidDoesNotStopAtJunctions) {
     b.arc({static_cast<double>(k), 0}, kTwoPi, true, 3000);  // 50 mm/s < √(aR) = 100 mm/s
     if (k + 1 < loops) b.line({k + 1.0, -5, 0}, 3000);
   }
-  const MotionProfile profile = plan_motion(b.program, MotionLimits{});
+  const MotionProfile profile = plan_motion(b.program, kVirtualMachineLimits);
   const double length = loops * kTwoPi * 5 + (loops - 1);
   EXPECT_NEAR(profile.length_mm(), length, 1e-9);
   for (std::size_t i = 1; i < profile.moves().size(); ++i) {
@@ -237,13 +237,13 @@ TEST(MotionProfile, ArcSpeedIsCappedByCentripetalAcceleration) {
   b.arc({0, 0}, kTwoPi, true, 6000);  // F = 100 mm/s > √(aR) = 63.2 mm/s
   const double v_cap = std::sqrt(a * radius);
   const double length = kTwoPi * radius;
-  const MotionProfile capped = plan_motion(b.program, MotionLimits{});
+  const MotionProfile capped = plan_motion(b.program, kVirtualMachineLimits);
   EXPECT_NEAR(capped.moves()[0].cap_mm_per_s, v_cap, 1e-12);
   EXPECT_NEAR(capped.speed_cap_at(0.5 * length), v_cap, 1e-9);
   EXPECT_NEAR(capped.duration_s(), length / v_cap + v_cap / a, 1e-12);
   EXPECT_LE(sample(capped, 2000).max_speed, v_cap * (1 + 1e-12));
 
-  MotionLimits no_centripetal;
+  geometry::MachineLimits no_centripetal = kVirtualMachineLimits;
   no_centripetal.limit_centripetal = false;
   const MotionProfile free = plan_motion(b.program, no_centripetal);
   EXPECT_NEAR(free.duration_s(), length / 100.0 + 100.0 / a, 1e-12);
@@ -258,7 +258,7 @@ TEST(MotionProfile, ArcSpeedIsCappedByCentripetalAcceleration) {
 TEST(MotionProfile, FeedAboveMachineMaximumIsClamped) {
   ProgramBuilder b;
   b.line({500, 0, 0}, 30000);
-  const MotionProfile profile = plan_motion(b.program, MotionLimits{});
+  const MotionProfile profile = plan_motion(b.program, kVirtualMachineLimits);
   const double v = 20000.0 / 60.0;
   EXPECT_NEAR(profile.duration_s(), 500.0 / v + v / 2000.0, 1e-12);
 }
@@ -267,7 +267,7 @@ TEST(MotionProfile, PlungeRunsAtItsFeedAlongZ) {
   ProgramBuilder b({0, 0, 5});
   b.line({0, 0, -3}, 600, false);  // 10 mm/s over 8 mm
   b.line({40, 0, -3}, 600);        // 90° corner from −z to +x
-  const MotionProfile profile = plan_motion(b.program, MotionLimits{});
+  const MotionProfile profile = plan_motion(b.program, kVirtualMachineLimits);
   const double a = 2000.0;
   const double v_corner = grbl_junction_speed(0, 0, -1, 1, 0, 0, a, 0.01);
   ASSERT_LT(v_corner, 10.0);
@@ -296,7 +296,7 @@ TEST(MotionProfile, RapidsRunAtTheRapidRateWithExactStopsAtFeedSwitches) {
   b.line({150, 0, 0}, 3000);  // collinear, but a rapid → feed switch
   b.rapid({250, 0, 0});
   b.rapid({350, 0, 0});  // rapid → rapid, collinear: no stop
-  const MotionProfile profile = plan_motion(b.program, MotionLimits{});
+  const MotionProfile profile = plan_motion(b.program, kVirtualMachineLimits);
   EXPECT_EQ(profile.moves()[1].entry_speed_mm_per_s, 0.0);
   EXPECT_EQ(profile.moves()[2].entry_speed_mm_per_s, 0.0);
   EXPECT_NEAR(profile.moves()[3].entry_speed_mm_per_s, rapid, 1e-9);
@@ -312,7 +312,7 @@ TEST(MotionProfile, DwellAddsExactlyItsTimeAtRest) {
   b.line({30, 0, 0}, 3000);
   b.line({60, 0, 0}, 3000).dwell_before_s = 0.7;  // collinear: only the dwell stops it
   b.program.dwell_at_end_s = 0.25;
-  const MotionProfile profile = plan_motion(b.program, MotionLimits{});
+  const MotionProfile profile = plan_motion(b.program, kVirtualMachineLimits);
   const double leg_s = rest_to_rest_s(30, 50, a);
   EXPECT_NEAR(profile.duration_s(), 2 * leg_s + 0.7 + 0.25, 1e-12);
   EXPECT_NEAR(profile.time_dwelling_s(), 0.95, 1e-15);
@@ -337,7 +337,7 @@ TEST(MotionProfile, ZeroLengthMovesTakeNoTimeAndFormNoJunction) {
   b.line({50, 0, 0}, 3000);
   b.line({50, 0, 0}, 3000);  // zero length: the neighbours meet directly (collinear, no stop)
   b.line({100, 0, 0}, 3000);
-  const MotionProfile profile = plan_motion(b.program, MotionLimits{});
+  const MotionProfile profile = plan_motion(b.program, kVirtualMachineLimits);
   EXPECT_NEAR(profile.duration_s(), rest_to_rest_s(100, 50, 2000), 1e-12);
   EXPECT_NEAR(profile.moves()[1].entry_speed_mm_per_s, 50.0, 1e-12);
   EXPECT_EQ(profile.moves()[1].start_time_s, profile.moves()[1].end_time_s);
@@ -352,7 +352,7 @@ TEST(MotionProfile, StateIsContinuousAndWithinLimitsOnAMixedProgram) {
   b.line({0, 10, -2}, 900).dwell_before_s = 0.1;
   b.arc({0, 12}, 1.5 * kPi, false, 4000, -1.0);
   b.rapid({0, 12, 10});
-  const MotionLimits limits;
+  const geometry::MachineLimits limits = kVirtualMachineLimits;
   const MotionProfile profile = plan_motion(b.program, limits);
   const int count = 200000;
   const Sampled s = sample(profile, count);
@@ -374,7 +374,7 @@ TEST(MotionProfile, StateIsContinuousAndWithinLimitsOnAMixedProgram) {
 }
 
 TEST(MotionProfile, InvalidLimitsAndProgramsAreRejected) {
-  MotionLimits bad;
+  geometry::MachineLimits bad = kVirtualMachineLimits;
   bad.max_accel_mm_per_s2 = -1;
   bad.rapid_feed_mm_per_min = std::nan("");
   bad.max_feed_mm_per_min = 0;
@@ -385,7 +385,7 @@ TEST(MotionProfile, InvalidLimitsAndProgramsAreRejected) {
   EXPECT_EQ(problems[1].field, "machine.rapid_feed_mm_per_min");
   EXPECT_EQ(problems[2].field, "machine.max_feed_mm_per_min");
   EXPECT_EQ(problems[3].field, "machine.junction_deviation_mm");
-  EXPECT_TRUE(validate(MotionLimits{}).empty());
+  EXPECT_TRUE(validate(kVirtualMachineLimits).empty());
 
   ProgramBuilder b;
   b.line({10, 0, 0}, 1000);
@@ -431,7 +431,7 @@ Tangent tangent_of(const Move& move, double fraction) {
   return {-sign * ry / r * xy, sign * rx / r * xy, dz};
 }
 
-Program random_program(std::mt19937_64& rng, MotionLimits& limits) {
+Program random_program(std::mt19937_64& rng, geometry::MachineLimits& limits) {
   std::uniform_real_distribution<double> unit(0.0, 1.0);
   auto uniform = [&](double lo, double hi) { return lo + (hi - lo) * unit(rng); };
   limits.max_accel_mm_per_s2 = uniform(200, 5000);
@@ -496,7 +496,7 @@ double fastest_interval_s(double ds, double v0, double v1, double cap, double a)
   return (v_top - v0) / a + (v_top - v1) / a + std::max(0.0, ds - ramp_ds) / v_top;
 }
 
-Oracle grid_oracle(const Program& program, const MotionLimits& limits, int intervals_per_move) {
+Oracle grid_oracle(const Program& program, const geometry::MachineLimits& limits, int intervals_per_move) {
   const auto& moves = program.path.moves;
   const double a = limits.max_accel_mm_per_s2;
   Oracle oracle;
@@ -560,7 +560,7 @@ TEST(MotionProfile, RandomProgramsStayWithinEveryLimitAndMatchTheGridOracle) {
   std::size_t total_moves = 0, total_segments = 0;
   double worst_oracle_gap = 0.0;
   for (unsigned c = 0; c < count; ++c) {
-    MotionLimits limits;
+    geometry::MachineLimits limits = kVirtualMachineLimits;
     const Program program = random_program(rng, limits);
     SCOPED_TRACE("program " + std::to_string(c) + " of seed " + std::to_string(seed));
     const MotionProfile profile = plan_motion(program, limits);

@@ -11,9 +11,7 @@ VirtualMachineRun run_on_virtual_machine(const geometry::Program& program, const
   request.tool = machine.tool;
   request.coefficients = machine.coefficients;
   request.stock = machine.stock;
-  request.machine.max_accel_mm_per_s2 = machine.machine.max_accel_mm_per_s2;
-  request.machine.rapid_feed_mm_per_min = machine.machine.rapid_feed_mm_per_min;
-  request.machine.max_feed_mm_per_min = machine.machine.max_feed_mm_per_min;
+  request.machine = machine.machine;
   request.options.default_spindle_rpm = machine.spindle_rpm;
   request.sensors = machine.sensors;
   VirtualMachineRun run;

@@ -7,7 +7,6 @@
 #include <array>
 #include <charconv>
 #include <cmath>
-#include <sstream>
 #include <string>
 
 namespace feedplan {
@@ -22,13 +21,14 @@ inline std::string shortest_number_text(double value) {
   return std::string(buffer.data(), result.ptr);
 }
 
-//! `value` as a default `std::ostringstream << value` writes it: up to 6 significant digits
-//! ("0.333333", "1e+06"), infinities "inf" and "-inf"; every NaN is "nan" (whatever its sign bit).
+//! `value` with up to 6 significant digits, as printf's "%g" writes it in the C locale (and a default
+//! `std::ostringstream << value`): "0.333333", "1e+06", "inf", "-inf"; every NaN is "nan" (whatever its
+//! sign bit).
 inline std::string six_digit_number_text(double value) {
   if (std::isnan(value)) return "nan";
-  std::ostringstream out;
-  out << value;
-  return out.str();
+  std::array<char, 32> buffer{};
+  const auto result = std::to_chars(buffer.data(), buffer.data() + buffer.size(), value, std::chars_format::general, 6);
+  return std::string(buffer.data(), result.ptr);
 }
 
 //! `value` with exactly `decimals` (≥ 0) digits after the point, correctly rounded: "12.50", "-0.100",

@@ -13,6 +13,7 @@
 #include <string>
 #include <variant>
 
+#include "feedplan/geometry/machine_limits.hpp"
 #include "feedplan/geometry/point.hpp"
 #include "feedplan/geometry/stock.hpp"
 #include "feedplan/geometry/tool.hpp"
@@ -27,15 +28,6 @@ enum class Direction {
 
 //! "ccw" or "cw", as written in specs.
 const char* to_string(Direction direction);
-
-//! What the machine can do; the planner keeps every feed and acceleration inside these.
-struct MachineLimits {
-  double max_feed_mm_per_min = 10000.0;    //!< highest programmable feed, mm/min
-  double min_feed_mm_per_min = 10.0;       //!< lowest feed the planner may command, mm/min
-  double max_accel_mm_per_s2 = 6500.0;     //!< path acceleration limit, mm/s² (0.67 G on seed 003's VM4-II)
-  double rapid_feed_mm_per_min = 30000.0;  //!< rapid traverse rate (G0), mm/min
-  double block_time_min_s = 0.002;         //!< shortest time the control can execute one block in, s
-};
 
 //! Corner rounding (seed 003 Fig. 5): finishing an internal (concave) corner between two straight
 //! walls, the walls on the tool's right, the path turning left. The material before the cut is what
@@ -107,7 +99,7 @@ struct CycleSpec {
   double axial_depth_mm = 0.0;            //!< axial depth of cut A_d of corner, trochoid and spiral, mm (0 for
                                           //!< helical boring and pocket, which use their own depth_mm)
   double target_force_n = 0.0;            //!< cutting force to hold, N (0 = not given)
-  MachineLimits machine;                  //!< machine limits
+  geometry::MachineLimits machine;        //!< machine limits
   double clearance_z_mm = 5.0;            //!< rapid height above the stock top, mm (≥ 1)
   std::optional<geometry::Stock> stock;   //!< user-given stock; unset: the stock the cycle implies
   CycleGeometry geometry;                 //!< the cycle's own parameters; its type matches `cycle`

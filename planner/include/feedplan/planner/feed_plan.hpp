@@ -37,7 +37,7 @@
 #include <vector>
 
 #include "feedplan/core/input_error.hpp"
-#include "feedplan/cycles/spec.hpp"
+#include "feedplan/geometry/machine_limits.hpp"
 #include "feedplan/geometry/engagement.hpp"
 #include "feedplan/geometry/program.hpp"
 #include "feedplan/geometry/stock.hpp"
@@ -98,7 +98,7 @@ struct PlanSettings {
   model::ResponseSurfaceModel model;  //!< the force model F̂(t_m, L) (seed 003 Eq. 1)
   double target_force_n = 0.0;           //!< per-revolution peak XY force to hold, N (> 0)
   double spindle_rpm = 0.0;              //!< spindle speed, rev/min (> 0)
-  cycles::MachineLimits machine;         //!< feed range, acceleration, rapid rate, block time
+  geometry::MachineLimits machine;         //!< feed range, acceleration, rapid rate, block time
   PlanOptions options;                   //!< mode, air feed, merging, resolution, jerk
   //! When set, the cautious plan: the upper bound F̂ + z·σ is held at the target (force_bound.hpp).
   std::optional<ForceUncertainty> uncertainty;

@@ -62,7 +62,7 @@ struct SimulationRequest {
   geometry::Tool tool;                //!< the end mill
   CuttingCoefficients coefficients;   //!< the tool–material pair's physics
   geometry::Stock stock;              //!< the workpiece before the program
-  MotionLimits machine;               //!< feed drive limits
+  geometry::MachineLimits machine = kVirtualMachineLimits;  //!< feed drive limits
   SensorOptions sensors;              //!< what is measured and how
   SimulationOptions options;          //!< resolution, runout, log rate
   OverrideLoop override_loop;         //!< optional feedback controller on the feed override

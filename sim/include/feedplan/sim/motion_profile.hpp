@@ -4,8 +4,8 @@
 //
 // The model, step by step:
 //   1. Speed caps per move (constant along the move): a feed move (kLine, kArc) runs at most at its
-//      block's F, clamped to MotionLimits::max_feed_mm_per_min; a rapid runs at most at
-//      MotionLimits::rapid_feed_mm_per_min. F is measured along the move in space
+//      block's F, clamped to MachineLimits::max_feed_mm_per_min; a rapid runs at most at
+//      MachineLimits::rapid_feed_mm_per_min. F is measured along the move in space
 //      (geometry::length_mm: the helix length of helical arcs, the z length of a plunge).
 //   2. Centripetal cap on arcs (limit_centripetal): v² ≤ a_max · R with R the XY radius of the arc.
 //      For a helix the true radius of curvature (R² + (dz/dθ)²)/R is larger, so R is slightly
@@ -39,6 +39,7 @@
 #include <vector>
 
 #include "feedplan/core/input_error.hpp"
+#include "feedplan/geometry/machine_limits.hpp"
 #include "feedplan/geometry/point.hpp"
 #include "feedplan/geometry/program.hpp"
 
@@ -51,21 +52,11 @@ inline constexpr double kTangentJunctionToleranceRad = 1e-6;
 //! Moves shorter than this take no time and form no junction (their neighbours meet directly), mm.
 inline constexpr double kMinMoveLengthMm = 1e-9;
 
-//! The machine's path-speed limits.
-struct MotionLimits {
-  //! Path acceleration limit a (tangential, both signs), and the centripetal limit on arcs, mm/s².
-  double max_accel_mm_per_s2 = 2000.0;
-  double rapid_feed_mm_per_min = 15000.0;  //!< speed of rapids (G0), mm/min
-  double max_feed_mm_per_min = 20000.0;    //!< feed moves with a larger F run at this speed, mm/min
-  //! δ of the junction-deviation rule (grbl's $11, default 0.01 mm); 0 stops at every corner that is
-  //! not tangent-continuous, mm.
-  double junction_deviation_mm = 0.01;
-  bool limit_centripetal = true;  //!< cap arc speeds by v² ≤ max_accel_mm_per_s2 · arc radius
-};
-
-//! Checks the limits: acceleration, rapid feed and max feed finite and > 0, junction deviation
-//! finite and ≥ 0. Fields are named "machine.<field>". Returns every problem; empty when valid.
-std::vector<InputProblem> validate(const MotionLimits& limits);
+//! The virtual machine's limits when a request names none: a slower machine than a spec's defaults
+//! (2000 mm/s², rapids at 15 m/min, feeds up to 20 m/min), the machine the sample database's cutting
+//! tests were run on.
+inline constexpr geometry::MachineLimits kVirtualMachineLimits{
+    .max_feed_mm_per_min = 20000.0, .max_accel_mm_per_s2 = 2000.0, .rapid_feed_mm_per_min = 15000.0};
 
 //! Where the machine is at one instant.
 struct MotionState {
@@ -109,7 +100,8 @@ class MotionProfile;
 //! a feed move has no positive finite F, a dwell is negative or not finite, or a move's length is
 //! not finite; problems are named after the block's source line ("line 12") or the move ("move 3").
 //! Linear in the number of moves.
-MotionProfile plan_motion(const geometry::Program& program, const MotionLimits& limits = {});
+MotionProfile plan_motion(const geometry::Program& program,
+                          const geometry::MachineLimits& limits = kVirtualMachineLimits);
 
 //! The planned motion of one program: speed, acceleration and position at any time, exactly.
 class MotionProfile {
@@ -151,7 +143,7 @@ class MotionProfile {
   const std::vector<MoveTiming>& moves() const { return timings_; }
 
  private:
-  friend MotionProfile plan_motion(const geometry::Program& program, const MotionLimits& limits);
+  friend MotionProfile plan_motion(const geometry::Program& program, const geometry::MachineLimits& limits);
   MotionProfile() = default;
 
   MotionState state_in_segment(const MotionSegment& segment, double t_s) const;

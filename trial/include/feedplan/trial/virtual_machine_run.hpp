@@ -19,7 +19,7 @@ struct VirtualMachine {
   geometry::Tool tool;                    //!< the end mill
   sim::CuttingCoefficients coefficients;  //!< the true physics of the tool–material pair
   geometry::Stock stock;                  //!< the material before the program
-  cycles::MachineLimits machine;          //!< feed, acceleration and rapid limits
+  geometry::MachineLimits machine;          //!< feed, acceleration and rapid limits
   double spindle_rpm = 0.0;               //!< for blocks without S, rev/min
   sim::SensorOptions sensors;             //!< what is logged (dynamometer by default)
 };
