@@ -14,17 +14,23 @@
 #include "feedplan/core/number_text.hpp"
 #include "feedplan/geometry/analytic_engagement.hpp"
 #include "feedplan/force_log/revolution_peaks.hpp"
+#include "median.hpp"
+#include "revolution_signals.hpp"
+#include "steady_run.hpp"
 
 namespace feedplan::model_db {
 
 namespace {
 
+using detail::find_steady;
+using detail::median;
+using detail::median_over;
+using detail::revolution_signals;
+using detail::RevolutionSignals;
+using detail::SteadyRun;
+
 // Relative difference below which a radial depth counts as the tool diameter (a slot).
 constexpr double kSlotTolerance = 1e-9;
-// MAD → standard deviation for normally distributed data.
-constexpr double kMadToSigma = 1.4826;
-// Plateau search repeats at most this often (it normally settles in one or two rounds).
-constexpr int kMaxPlateauRounds = 10;
 // Fewer log samples per tooth period than this and the sampled peak may read low: a note.
 constexpr double kFewSamplesPerTooth = 20.0;
 // Steady peaks scattering more than this (std / mean) earn a note.
@@ -51,18 +57,6 @@ std::string to_string(CutMode mode) {
   return "unknown";
 }
 
-// Median of the finite values; NaN when there are none.
-double median(std::vector<double> values) {
-  std::erase_if(values, [](double v) { return !std::isfinite(v); });
-  if (values.empty()) return std::nan("");
-  const std::size_t mid = values.size() / 2;
-  std::nth_element(values.begin(), values.begin() + static_cast<std::ptrdiff_t>(mid), values.end());
-  const double upper = values[mid];
-  if (values.size() % 2 == 1) return upper;
-  const double lower = *std::max_element(values.begin(), values.begin() + static_cast<std::ptrdiff_t>(mid));
-  return 0.5 * (lower + upper);
-}
-
 std::optional<double> parse_number(std::string_view text) {
   while (!text.empty() && (text.front() == ' ' || text.front() == '\t')) text.remove_prefix(1);
   while (!text.empty() && (text.back() == ' ' || text.back() == '\t' || text.back() == '\r')) text.remove_suffix(1);
@@ -79,155 +73,6 @@ void require_positive(std::vector<InputProblem>& problems, const std::string& fi
                       const std::string& unit, const std::string& meaning) {
   if (std::isfinite(value) && value > 0.0) return;
   problems.push_back({field, "= " + number(value) + ": must be a finite number > 0 " + unit + " — " + meaning});
-}
-
-// What the log says per revolution, NaN where it says nothing.
-struct RevolutionSignals {
-  std::vector<double> feed_column_mm_per_min;     // mean of the feed_mm_per_min column
-  std::vector<double> feed_positions_mm_per_min;  // distance first → last sample over their time
-  std::vector<double> spindle_rpm;                // mean of the spindle_rpm column
-};
-
-RevolutionSignals revolution_signals(const force_log::ForceLog& log, const std::vector<force_log::RevolutionPeak>& peaks) {
-  RevolutionSignals signals;
-  const auto& rows = log.rows;
-  auto first_at = [&](double t) {
-    return static_cast<std::size_t>(
-        std::lower_bound(rows.begin(), rows.end(), t, [](const force_log::ForceLogRow& r, double v) { return r.t_s < v; }) -
-        rows.begin());
-  };
-  for (const auto& peak : peaks) {
-    const std::size_t i0 = first_at(peak.t_start_s);
-    const std::size_t i1 = first_at(peak.t_end_s);
-    double feed_sum = 0.0, rpm_sum = 0.0;
-    int feed_count = 0, rpm_count = 0;
-    for (std::size_t i = i0; i < i1; ++i) {
-      if (std::isfinite(rows[i].feed_mm_per_min)) {
-        feed_sum += rows[i].feed_mm_per_min;
-        ++feed_count;
-      }
-      if (std::isfinite(rows[i].spindle_rpm)) {
-        rpm_sum += rows[i].spindle_rpm;
-        ++rpm_count;
-      }
-    }
-    signals.feed_column_mm_per_min.push_back(feed_count > 0 ? feed_sum / feed_count : std::nan(""));
-    signals.spindle_rpm.push_back(rpm_count > 0 ? rpm_sum / rpm_count : std::nan(""));
-    double feed_positions = std::nan("");
-    if (log.has_positions && i1 >= i0 + 2) {
-      const force_log::ForceLogRow& a = rows[i0];
-      const force_log::ForceLogRow& b = rows[i1 - 1];
-      const double distance_mm = std::hypot(b.x_mm - a.x_mm, b.y_mm - a.y_mm);
-      if (std::isfinite(distance_mm) && b.t_s > a.t_s) feed_positions = distance_mm / (b.t_s - a.t_s) * 60.0;
-    }
-    signals.feed_positions_mm_per_min.push_back(feed_positions);
-  }
-  return signals;
-}
-
-// A run [begin, end) of revolutions (indices into the peaks).
-struct SteadyRun {
-  std::size_t begin = 0;
-  std::size_t end = 0;
-  std::size_t plateau_begin = 0;  // the plateau before end trimming
-  std::size_t plateau_end = 0;
-  double level_n = 0.0;           // median peak of the plateau
-  bool any_force = false;         // some eligible revolution has a peak > 0
-
-  std::size_t size() const { return end - begin; }
-};
-
-// Steps 2–4 of the steady-state rule (header) over the revolutions marked eligible.
-SteadyRun find_steady(const std::vector<force_log::RevolutionPeak>& peaks, const std::vector<bool>& eligible,
-                      const CuttingTestImportOptions& options) {
-  SteadyRun run;
-  const std::size_t n = peaks.size();
-  // Consecutive: both eligible and no gap in the revolution numbers between them.
-  auto linked = [&](std::size_t k) {  // k and k + 1
-    return eligible[k] && eligible[k + 1] && peaks[k + 1].revolution == peaks[k].revolution + 1;
-  };
-  // 2. Trend: running median inside each stretch of consecutive eligible revolutions.
-  std::vector<std::size_t> stretch_begin(n), stretch_end(n);
-  for (std::size_t k = 0; k < n;) {
-    std::size_t e = k + 1;
-    while (e < n && linked(e - 1)) ++e;
-    for (std::size_t j = k; j < e; ++j) {
-      stretch_begin[j] = k;
-      stretch_end[j] = e;
-    }
-    k = e;
-  }
-  const std::size_t half = static_cast<std::size_t>(options.trend_window_revolutions / 2);
-  std::vector<double> trend(n, std::nan(""));
-  double max_trend = 0.0;
-  for (std::size_t k = 0; k < n; ++k) {
-    if (!eligible[k]) continue;
-    std::vector<double> window;
-    const std::size_t lo = std::max(stretch_begin[k], k >= half ? k - half : 0);
-    const std::size_t hi = std::min(stretch_end[k], k + half + 1);
-    for (std::size_t j = lo; j < hi; ++j) window.push_back(peaks[j].peak_xy_n);
-    trend[k] = median(window);
-    max_trend = std::max(max_trend, trend[k]);
-  }
-  if (!(max_trend > 0.0)) return run;
-  run.any_force = true;
-
-  // 3. Plateau.
-  std::vector<double> loaded;
-  for (std::size_t k = 0; k < n; ++k) {
-    if (eligible[k] && trend[k] >= options.loaded_fraction * max_trend) loaded.push_back(peaks[k].peak_xy_n);
-  }
-  double level = median(loaded);
-  std::size_t best_begin = 0, best_end = 0;
-  for (int round = 0; round < kMaxPlateauRounds; ++round) {
-    std::size_t begin = 0, end = 0;
-    bool is_open = false;
-    std::size_t open = 0;  // first revolution of the run being extended, when is_open
-    auto close = [&](std::size_t k) {
-      if (is_open && k - open > end - begin) {
-        begin = open;
-        end = k;
-      }
-      is_open = false;
-    };
-    for (std::size_t k = 0; k < n; ++k) {
-      const bool ok = eligible[k] && std::abs(trend[k] - level) <= options.plateau_tolerance * level;
-      if (is_open && (!ok || !linked(k - 1))) close(k);
-      if (ok && !is_open) {
-        is_open = true;
-        open = k;
-      }
-    }
-    close(n);
-    if (end == begin) break;
-    std::vector<double> values;
-    for (std::size_t k = begin; k < end; ++k) values.push_back(peaks[k].peak_xy_n);
-    const double new_level = median(values);
-    const bool same = begin == best_begin && end == best_end;
-    best_begin = begin;
-    best_end = end;
-    level = new_level;
-    if (same) break;
-  }
-  run.plateau_begin = run.begin = best_begin;
-  run.plateau_end = run.end = best_end;
-  run.level_n = level;
-  if (run.size() == 0) return run;
-
-  // 4. End trimming.
-  std::vector<double> deviations;
-  for (std::size_t k = run.begin; k < run.end; ++k) deviations.push_back(std::abs(peaks[k].peak_xy_n - level));
-  const double sigma = kMadToSigma * median(deviations);
-  const double threshold = level - std::max(options.trim_sigmas * sigma, options.trim_min_fraction * level);
-  while (run.begin < run.end && peaks[run.begin].peak_xy_n < threshold) ++run.begin;
-  while (run.end > run.begin && peaks[run.end - 1].peak_xy_n < threshold) --run.end;
-  return run;
-}
-
-// Median of `values` over the run's revolutions.
-double median_over(const std::vector<double>& values, const SteadyRun& run) {
-  return median(std::vector<double>(values.begin() + static_cast<std::ptrdiff_t>(run.begin),
-                                    values.begin() + static_cast<std::ptrdiff_t>(run.end)));
 }
 
 bool any_finite(const std::vector<double>& values) {
