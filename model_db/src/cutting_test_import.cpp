@@ -14,24 +14,27 @@
 #include "feedplan/core/number_text.hpp"
 #include "feedplan/geometry/analytic_engagement.hpp"
 #include "feedplan/force_log/revolution_peaks.hpp"
+#include "median.hpp"
+#include "revolution_signals.hpp"
+#include "steady_run.hpp"
 
 namespace feedplan::model_db {
 
 namespace {
 
+using detail::find_steady;
+using detail::median;
+using detail::median_over;
+using detail::revolution_signals;
+using detail::RevolutionSignals;
+using detail::SteadyRun;
+
 // Relative difference below which a radial depth counts as the tool diameter (a slot).
 constexpr double kSlotTolerance = 1e-9;
-// MAD → standard deviation for normally distributed data.
-constexpr double kMadToSigma = 1.4826;
-// Plateau search repeats at most this often (it normally settles in one or two rounds).
-constexpr int kMaxPlateauRounds = 10;
 // Fewer log samples per tooth period than this and the sampled peak may read low: a note.
 constexpr double kFewSamplesPerTooth = 20.0;
 // Steady peaks scattering more than this (std / mean) earn a note.
 constexpr double kLargeScatter = 0.05;
-
-std::string number(double value) { return shortest_number_text(value); }
-std::string measured(double value) { return six_digit_number_text(value); }
 
 std::string percent(double fraction) {
   char buffer[32];
@@ -51,18 +54,6 @@ std::string to_string(CutMode mode) {
   return "unknown";
 }
 
-// Median of the finite values; NaN when there are none.
-double median(std::vector<double> values) {
-  std::erase_if(values, [](double v) { return !std::isfinite(v); });
-  if (values.empty()) return std::nan("");
-  const std::size_t mid = values.size() / 2;
-  std::nth_element(values.begin(), values.begin() + static_cast<std::ptrdiff_t>(mid), values.end());
-  const double upper = values[mid];
-  if (values.size() % 2 == 1) return upper;
-  const double lower = *std::max_element(values.begin(), values.begin() + static_cast<std::ptrdiff_t>(mid));
-  return 0.5 * (lower + upper);
-}
-
 std::optional<double> parse_number(std::string_view text) {
   while (!text.empty() && (text.front() == ' ' || text.front() == '\t')) text.remove_prefix(1);
   while (!text.empty() && (text.back() == ' ' || text.back() == '\t' || text.back() == '\r')) text.remove_suffix(1);
@@ -78,160 +69,306 @@ std::optional<double> parse_number(std::string_view text) {
 void require_positive(std::vector<InputProblem>& problems, const std::string& field, double value,
                       const std::string& unit, const std::string& meaning) {
   if (std::isfinite(value) && value > 0.0) return;
-  problems.push_back({field, "= " + number(value) + ": must be a finite number > 0 " + unit + " — " + meaning});
-}
-
-// What the log says per revolution, NaN where it says nothing.
-struct RevolutionSignals {
-  std::vector<double> feed_column_mm_per_min;     // mean of the feed_mm_per_min column
-  std::vector<double> feed_positions_mm_per_min;  // distance first → last sample over their time
-  std::vector<double> spindle_rpm;                // mean of the spindle_rpm column
-};
-
-RevolutionSignals revolution_signals(const force_log::ForceLog& log, const std::vector<force_log::RevolutionPeak>& peaks) {
-  RevolutionSignals signals;
-  const auto& rows = log.rows;
-  auto first_at = [&](double t) {
-    return static_cast<std::size_t>(
-        std::lower_bound(rows.begin(), rows.end(), t, [](const force_log::ForceLogRow& r, double v) { return r.t_s < v; }) -
-        rows.begin());
-  };
-  for (const auto& peak : peaks) {
-    const std::size_t i0 = first_at(peak.t_start_s);
-    const std::size_t i1 = first_at(peak.t_end_s);
-    double feed_sum = 0.0, rpm_sum = 0.0;
-    int feed_count = 0, rpm_count = 0;
-    for (std::size_t i = i0; i < i1; ++i) {
-      if (std::isfinite(rows[i].feed_mm_per_min)) {
-        feed_sum += rows[i].feed_mm_per_min;
-        ++feed_count;
-      }
-      if (std::isfinite(rows[i].spindle_rpm)) {
-        rpm_sum += rows[i].spindle_rpm;
-        ++rpm_count;
-      }
-    }
-    signals.feed_column_mm_per_min.push_back(feed_count > 0 ? feed_sum / feed_count : std::nan(""));
-    signals.spindle_rpm.push_back(rpm_count > 0 ? rpm_sum / rpm_count : std::nan(""));
-    double feed_positions = std::nan("");
-    if (log.has_positions && i1 >= i0 + 2) {
-      const force_log::ForceLogRow& a = rows[i0];
-      const force_log::ForceLogRow& b = rows[i1 - 1];
-      const double distance_mm = std::hypot(b.x_mm - a.x_mm, b.y_mm - a.y_mm);
-      if (std::isfinite(distance_mm) && b.t_s > a.t_s) feed_positions = distance_mm / (b.t_s - a.t_s) * 60.0;
-    }
-    signals.feed_positions_mm_per_min.push_back(feed_positions);
-  }
-  return signals;
-}
-
-// A run [begin, end) of revolutions (indices into the peaks).
-struct SteadyRun {
-  std::size_t begin = 0;
-  std::size_t end = 0;
-  std::size_t plateau_begin = 0;  // the plateau before end trimming
-  std::size_t plateau_end = 0;
-  double level_n = 0.0;           // median peak of the plateau
-  bool any_force = false;         // some eligible revolution has a peak > 0
-
-  std::size_t size() const { return end - begin; }
-};
-
-// Steps 2–4 of the steady-state rule (header) over the revolutions marked eligible.
-SteadyRun find_steady(const std::vector<force_log::RevolutionPeak>& peaks, const std::vector<bool>& eligible,
-                      const CuttingTestImportOptions& options) {
-  SteadyRun run;
-  const std::size_t n = peaks.size();
-  // Consecutive: both eligible and no gap in the revolution numbers between them.
-  auto linked = [&](std::size_t k) {  // k and k + 1
-    return eligible[k] && eligible[k + 1] && peaks[k + 1].revolution == peaks[k].revolution + 1;
-  };
-  // 2. Trend: running median inside each stretch of consecutive eligible revolutions.
-  std::vector<std::size_t> stretch_begin(n), stretch_end(n);
-  for (std::size_t k = 0; k < n;) {
-    std::size_t e = k + 1;
-    while (e < n && linked(e - 1)) ++e;
-    for (std::size_t j = k; j < e; ++j) {
-      stretch_begin[j] = k;
-      stretch_end[j] = e;
-    }
-    k = e;
-  }
-  const std::size_t half = static_cast<std::size_t>(options.trend_window_revolutions / 2);
-  std::vector<double> trend(n, std::nan(""));
-  double max_trend = 0.0;
-  for (std::size_t k = 0; k < n; ++k) {
-    if (!eligible[k]) continue;
-    std::vector<double> window;
-    const std::size_t lo = std::max(stretch_begin[k], k >= half ? k - half : 0);
-    const std::size_t hi = std::min(stretch_end[k], k + half + 1);
-    for (std::size_t j = lo; j < hi; ++j) window.push_back(peaks[j].peak_xy_n);
-    trend[k] = median(window);
-    max_trend = std::max(max_trend, trend[k]);
-  }
-  if (!(max_trend > 0.0)) return run;
-  run.any_force = true;
-
-  // 3. Plateau.
-  std::vector<double> loaded;
-  for (std::size_t k = 0; k < n; ++k) {
-    if (eligible[k] && trend[k] >= options.loaded_fraction * max_trend) loaded.push_back(peaks[k].peak_xy_n);
-  }
-  double level = median(loaded);
-  std::size_t best_begin = 0, best_end = 0;
-  for (int round = 0; round < kMaxPlateauRounds; ++round) {
-    std::size_t begin = 0, end = 0;
-    bool is_open = false;
-    std::size_t open = 0;  // first revolution of the run being extended, when is_open
-    auto close = [&](std::size_t k) {
-      if (is_open && k - open > end - begin) {
-        begin = open;
-        end = k;
-      }
-      is_open = false;
-    };
-    for (std::size_t k = 0; k < n; ++k) {
-      const bool ok = eligible[k] && std::abs(trend[k] - level) <= options.plateau_tolerance * level;
-      if (is_open && (!ok || !linked(k - 1))) close(k);
-      if (ok && !is_open) {
-        is_open = true;
-        open = k;
-      }
-    }
-    close(n);
-    if (end == begin) break;
-    std::vector<double> values;
-    for (std::size_t k = begin; k < end; ++k) values.push_back(peaks[k].peak_xy_n);
-    const double new_level = median(values);
-    const bool same = begin == best_begin && end == best_end;
-    best_begin = begin;
-    best_end = end;
-    level = new_level;
-    if (same) break;
-  }
-  run.plateau_begin = run.begin = best_begin;
-  run.plateau_end = run.end = best_end;
-  run.level_n = level;
-  if (run.size() == 0) return run;
-
-  // 4. End trimming.
-  std::vector<double> deviations;
-  for (std::size_t k = run.begin; k < run.end; ++k) deviations.push_back(std::abs(peaks[k].peak_xy_n - level));
-  const double sigma = kMadToSigma * median(deviations);
-  const double threshold = level - std::max(options.trim_sigmas * sigma, options.trim_min_fraction * level);
-  while (run.begin < run.end && peaks[run.begin].peak_xy_n < threshold) ++run.begin;
-  while (run.end > run.begin && peaks[run.end - 1].peak_xy_n < threshold) --run.end;
-  return run;
-}
-
-// Median of `values` over the run's revolutions.
-double median_over(const std::vector<double>& values, const SteadyRun& run) {
-  return median(std::vector<double>(values.begin() + static_cast<std::ptrdiff_t>(run.begin),
-                                    values.begin() + static_cast<std::ptrdiff_t>(run.end)));
+  problems.push_back(
+      {field, "= " + shortest_number_text(value) + ": must be a finite number > 0 " + unit + " — " + meaning});
 }
 
 bool any_finite(const std::vector<double>& values) {
   return std::any_of(values.begin(), values.end(), [](double v) { return std::isfinite(v); });
+}
+
+//! Throws feedplan::InputError listing every problem with the conditions, the tool and the options.
+void check_input(const CuttingTestConditions& conditions, const geometry::Tool& tool,
+                 const CuttingTestImportOptions& options) {
+  std::vector<InputProblem> problems = validate(conditions, tool);
+  for (auto& p : validate(options)) problems.push_back(std::move(p));
+  if (!problems.empty()) throw InputError(std::move(problems));
+}
+
+//! Throws feedplan::InputError when the log has no forces or no samples.
+void require_force_samples(const force_log::ForceLog& log, const std::string& source) {
+  if (!log.has_forces) {
+    throw InputError(source, "has no force columns (fx_n, fy_n): a cutting test needs measured forces — turn servo "
+                             "currents into forces with a calibration first (DESIGN.md §6.4)");
+  }
+  if (log.rows.empty()) throw InputError(source, "has no samples");
+}
+
+//! One import under way: its inputs and what the checks against the log found so far.
+struct Import {
+  Import(const force_log::ForceLog& log, const CuttingTestConditions& conditions, const geometry::Tool& tool,
+         const CuttingTestImportOptions& options)
+      : log(log), conditions(conditions), tool(tool), options(options),
+        source(options.source_name.empty() ? "force log" : options.source_name) {}
+
+  const force_log::ForceLog& log;
+  const CuttingTestConditions& conditions;
+  const geometry::Tool& tool;
+  const CuttingTestImportOptions& options;
+  std::string source;                    // names the log in messages
+  std::vector<InputProblem> problems;    // where the conditions contradict the log
+  bool rpm_checked = false;              // the log records the spindle speed, and it was compared
+  double sample_rate_hz = std::nan("");  // 1 / median step of the time column; NaN for one sample
+};
+
+double relative(double a, double b) { return std::abs(a - b) / std::abs(b); }
+
+//! The log's `# spindle_rpm:` metadata against the conditions.
+void check_metadata_spindle_rpm(Import& import) {
+  const double rpm = import.conditions.spindle_rpm;
+  const std::string rpm_text = import.log.metadata_value("spindle_rpm");
+  if (rpm_text.empty()) return;
+  const std::optional<double> log_rpm = parse_number(rpm_text);
+  if (!log_rpm || *log_rpm <= 0.0) {
+    import.problems.push_back({import.source + " spindle_rpm", "= \"" + rpm_text + "\": must be a number > 0 rev/min"});
+  } else {
+    import.rpm_checked = true;
+    if (relative(rpm, *log_rpm) > import.options.rpm_tolerance) {
+      import.problems.push_back(
+          {"conditions.spindle_rpm", "= " + shortest_number_text(rpm) + " rev/min, but " + import.source + " says " +
+                                         six_digit_number_text(*log_rpm) + " (# spindle_rpm): " +
+                                         percent(relative(rpm, *log_rpm)) + " apart, more than " +
+                                         percent(import.options.rpm_tolerance)});
+    }
+  }
+}
+
+//! The time and XY force columns of the log.
+struct ForceColumns {
+  std::vector<double> t_s;
+  std::vector<double> fx_n;
+  std::vector<double> fy_n;
+};
+
+ForceColumns force_columns(const force_log::ForceLog& log) {
+  ForceColumns columns;
+  columns.t_s.reserve(log.rows.size());
+  columns.fx_n.reserve(log.rows.size());
+  columns.fy_n.reserve(log.rows.size());
+  for (const auto& row : log.rows) {
+    columns.t_s.push_back(row.t_s);
+    columns.fx_n.push_back(row.fx_n);
+    columns.fy_n.push_back(row.fy_n);
+  }
+  return columns;
+}
+
+//! 1 / the median step of the time column, Hz; NaN for fewer than two samples.
+double time_column_rate_hz(const std::vector<double>& t_s) {
+  double sample_rate_hz = std::nan("");
+  if (t_s.size() >= 2) {
+    std::vector<double> steps;
+    steps.reserve(t_s.size() - 1);
+    for (std::size_t i = 1; i < t_s.size(); ++i) steps.push_back(t_s[i] - t_s[i - 1]);
+    sample_rate_hz = 1.0 / median(steps);
+  }
+  return sample_rate_hz;
+}
+
+//! The log's `# sample_rate_hz:` metadata against the rate of its time column.
+void check_metadata_sample_rate(Import& import) {
+  const double sample_rate_hz = import.sample_rate_hz;
+  const std::string rate_text = import.log.metadata_value("sample_rate_hz");
+  if (rate_text.empty() || !std::isfinite(sample_rate_hz)) return;
+  const std::optional<double> log_rate = parse_number(rate_text);
+  if (!log_rate || *log_rate <= 0.0) {
+    import.problems.push_back({import.source + " sample_rate_hz", "= \"" + rate_text + "\": must be a number > 0 Hz"});
+  } else if (relative(*log_rate, sample_rate_hz) > import.options.sample_rate_tolerance) {
+    import.problems.push_back({import.source + " sample_rate_hz",
+                               "= " + six_digit_number_text(*log_rate) + " Hz, but the time column steps by " +
+                                   six_digit_number_text(1.0 / sample_rate_hz) + " s (" +
+                                   six_digit_number_text(sample_rate_hz) + " Hz): " +
+                                   percent(relative(*log_rate, sample_rate_hz)) + " apart, more than " +
+                                   percent(import.options.sample_rate_tolerance)});
+  }
+}
+
+//! The complete revolutions of the log: their force peaks and what the log says about each.
+struct LogRevolutions {
+  std::vector<force_log::RevolutionPeak> peaks;
+  RevolutionSignals signals;
+  bool has_feed_column = false;     // the feed_mm_per_min column says something
+  bool has_feed_positions = false;  // the positions give a feed
+
+  bool has_feed() const { return has_feed_column || has_feed_positions; }
+  //! The per-revolution feed step 1 selects by: the column's, else the positions'.
+  const std::vector<double>& feed_signal() const {
+    return has_feed_column ? signals.feed_column_mm_per_min : signals.feed_positions_mm_per_min;
+  }
+};
+
+LogRevolutions log_revolutions(const force_log::ForceLog& log, const ForceColumns& columns, double rpm) {
+  LogRevolutions revolutions;
+  revolutions.peaks = force_log::revolution_peaks(columns.t_s, columns.fx_n, columns.fy_n, rpm);
+  revolutions.signals = revolution_signals(log, revolutions.peaks);
+  revolutions.has_feed_column = any_finite(revolutions.signals.feed_column_mm_per_min);
+  revolutions.has_feed_positions = any_finite(revolutions.signals.feed_positions_mm_per_min);
+  return revolutions;
+}
+
+//! The spindle_rpm column over the steady part against the conditions.
+void check_spindle_rpm_column(Import& import, const LogRevolutions& revolutions, const SteadyRun& steady) {
+  const double rpm = import.conditions.spindle_rpm;
+  const double column_rpm = median_over(revolutions.signals.spindle_rpm, steady);
+  if (!std::isfinite(column_rpm)) return;
+  import.rpm_checked = true;
+  if (!(column_rpm > 0.0) || relative(rpm, column_rpm) > import.options.rpm_tolerance) {
+    import.problems.push_back({"conditions.spindle_rpm",
+                               "= " + shortest_number_text(rpm) + " rev/min, but the spindle_rpm column of " +
+                                   import.source + " reads " + six_digit_number_text(column_rpm) +
+                                   " in the steady part: more than " + percent(import.options.rpm_tolerance) +
+                                   " apart"});
+  }
+}
+
+//! The feed_mm_per_min column and the feed from positions over the steady part against the conditions.
+void check_feed_columns(Import& import, const LogRevolutions& revolutions, const SteadyRun& steady) {
+  const double feed = import.conditions.feed_mm_per_min;
+  const double tolerance = import.options.feed_tolerance;
+  const double column_feed = median_over(revolutions.signals.feed_column_mm_per_min, steady);
+  if (std::isfinite(column_feed) && relative(feed, column_feed) > tolerance) {
+    import.problems.push_back({"conditions.feed_mm_per_min",
+                               "= " + shortest_number_text(feed) + " mm/min, but the feed_mm_per_min column of " +
+                                   import.source + " reads " + six_digit_number_text(column_feed) +
+                                   " in the steady part: " + percent(relative(feed, column_feed)) +
+                                   " apart, more than " + percent(tolerance)});
+  }
+  const double position_feed = median_over(revolutions.signals.feed_positions_mm_per_min, steady);
+  if (std::isfinite(position_feed) && relative(feed, position_feed) > tolerance) {
+    import.problems.push_back({"conditions.feed_mm_per_min",
+                               "= " + shortest_number_text(feed) + " mm/min, but the positions (x_mm, y_mm) in " +
+                                   import.source + " move at " + six_digit_number_text(position_feed) +
+                                   " mm/min in the steady part: " + percent(relative(feed, position_feed)) +
+                                   " apart, more than " + percent(tolerance)});
+  }
+}
+
+//! The log's forces, spindle speed and feed in the steady part found from the forces alone.
+void check_steady_part(Import& import, const LogRevolutions& revolutions, const SteadyRun& force_only) {
+  if (!revolutions.peaks.empty() && !force_only.any_force) {
+    import.problems.push_back({import.source, "has no cutting force: every per-revolution peak of |F_xy| is 0 N"});
+  }
+  if (force_only.size() > 0) {
+    check_spindle_rpm_column(import, revolutions, force_only);
+    check_feed_columns(import, revolutions, force_only);
+  }
+}
+
+//! Step 1 of the steady-state rule: which revolutions are at the given feed, where the log says.
+struct AtFeed {
+  std::vector<bool> eligible;  // one per revolution
+  int count = 0;               // eligible revolutions
+};
+
+AtFeed revolutions_at_feed(const Import& import, const LogRevolutions& revolutions) {
+  const std::vector<double>& feed_signal = revolutions.feed_signal();
+  const std::size_t n = revolutions.peaks.size();
+  AtFeed at_feed{std::vector<bool>(n, true), 0};
+  for (std::size_t k = 0; k < n; ++k) {
+    if (std::isfinite(feed_signal[k])) {
+      const double feed_mm_per_min = import.conditions.feed_mm_per_min;
+      at_feed.eligible[k] = relative(feed_signal[k], feed_mm_per_min) <= import.options.feed_tolerance;
+    }
+    at_feed.count += at_feed.eligible[k] ? 1 : 0;
+  }
+  return at_feed;
+}
+
+//! Steps 1–5 of the steady-state rule: the steady run among the revolutions at the feed (that from the
+//! forces alone when the log records no feed). Throws feedplan::InputError when it is too short.
+SteadyRun steady_revolutions(const Import& import, const LogRevolutions& revolutions, const SteadyRun& force_only) {
+  const AtFeed at_feed = revolutions_at_feed(import, revolutions);
+  const SteadyRun steady =
+      revolutions.has_feed() ? find_steady(revolutions.peaks, at_feed.eligible, import.options) : force_only;
+  const int found = static_cast<int>(steady.size());
+  if (found < import.options.min_steady_revolutions) {
+    std::string where = "of " + std::to_string(revolutions.peaks.size()) + " complete revolutions at " +
+                        shortest_number_text(import.conditions.spindle_rpm) + " rev/min";
+    if (revolutions.has_feed()) where += ", " + std::to_string(at_feed.count) + " of them at the feed";
+    throw InputError(import.source, "has " + std::to_string(found) + " steady revolution" +
+                                        (found == 1 ? "" : "s") + " (" + where + "): at least " +
+                                        std::to_string(import.options.min_steady_revolutions) +
+                                        " are needed — record a longer cut at constant conditions");
+  }
+  return steady;
+}
+
+//! The steady peaks of the record and their mean, sample standard deviation, min and max.
+void fill_statistics(const std::vector<force_log::RevolutionPeak>& peaks, const SteadyRun& steady,
+                     CuttingTestRecord& record) {
+  const int found = static_cast<int>(steady.size());
+  record.revolutions_used = found;
+  double sum = 0.0;
+  record.peak_min_n = peaks[steady.begin].peak_xy_n;
+  record.peak_max_n = peaks[steady.begin].peak_xy_n;
+  for (std::size_t k = steady.begin; k < steady.end; ++k) {
+    const double p = peaks[k].peak_xy_n;
+    record.steady_peaks_n.push_back(p);
+    sum += p;
+    record.peak_min_n = std::min(record.peak_min_n, p);
+    record.peak_max_n = std::max(record.peak_max_n, p);
+  }
+  record.peak_mean_n = sum / found;
+  double squares = 0.0;
+  for (double p : record.steady_peaks_n) squares += (p - record.peak_mean_n) * (p - record.peak_mean_n);
+  record.peak_std_n = found > 1 ? std::sqrt(squares / (found - 1)) : 0.0;
+}
+
+//! Model inputs (DESIGN.md §5.1): straight cut, f_z at the tool centre.
+void fill_model_inputs(const CuttingTestConditions& conditions, const geometry::Tool& tool,
+                       CuttingTestRecord& record) {
+  const double radius_mm = tool.radius_mm();
+  const double engagement_rad = conditions.mode == CutMode::kSlot
+                                    ? std::numbers::pi
+                                    : geometry::straight_engagement_rad(radius_mm, conditions.radial_depth_mm);
+  record.feed_per_tooth_mm = conditions.feed_mm_per_min / (tool.flutes * conditions.spindle_rpm);
+  record.chip_mm = record.feed_per_tooth_mm * geometry::steady_chip_factor(engagement_rad);
+  record.contact_length_mm = radius_mm * engagement_rad;
+}
+
+//! Which revolutions are steady, and how many were trimmed off the plateau.
+std::string steady_note(const std::vector<force_log::RevolutionPeak>& peaks, const SteadyRun& steady) {
+  const force_log::RevolutionPeak& first = peaks[steady.begin];
+  const force_log::RevolutionPeak& last = peaks[steady.end - 1];
+  return "steady: " + std::to_string(steady.size()) + " of " + std::to_string(peaks.size()) +
+         " complete revolutions (numbers " + std::to_string(first.revolution) + "–" +
+         std::to_string(last.revolution) + ", t " + six_digit_number_text(first.t_start_s) + "–" +
+         six_digit_number_text(last.t_end_s) + " s); " + std::to_string(steady.begin - steady.plateau_begin) +
+         " trimmed at the start and " + std::to_string(steady.plateau_end - steady.end) + " at the end of the plateau";
+}
+
+//! How the feed was checked, or why not.
+std::string feed_note(const LogRevolutions& revolutions, const SteadyRun& steady) {
+  if (!revolutions.has_feed()) {
+    return "feed: the log records neither feed nor positions (e.g. a Kistler export) — the feed "
+           "was not checked, and the steady part comes from the forces alone";
+  }
+  const double measured_feed = median_over(revolutions.feed_signal(), steady);
+  return "feed: " + six_digit_number_text(measured_feed) + " mm/min from the " +
+         (revolutions.has_feed_column ? "feed_mm_per_min column" : "positions") +
+         " in the steady part; revolutions at another feed were not used";
+}
+
+//! The notes of the record: the steady revolutions, the feed and spindle speed checks, sparse sampling and
+//! large scatter.
+void add_notes(const Import& import, const LogRevolutions& revolutions, const SteadyRun& steady,
+               CuttingTestRecord& record) {
+  record.notes.push_back(steady_note(revolutions.peaks, steady));
+  record.notes.push_back(feed_note(revolutions, steady));
+  if (!import.rpm_checked) {
+    record.notes.push_back("spindle speed: the log does not record it — not checked");
+  }
+  const double samples_per_tooth = import.sample_rate_hz * 60.0 / (import.conditions.spindle_rpm * import.tool.flutes);
+  if (std::isfinite(samples_per_tooth) && samples_per_tooth < kFewSamplesPerTooth) {
+    record.notes.push_back("sampling: " + six_digit_number_text(samples_per_tooth) +
+                           " samples per tooth period — the sampled peaks may read low");
+  }
+  if (record.peak_mean_n > 0.0 && record.peak_std_n / record.peak_mean_n > kLargeScatter) {
+    record.notes.push_back("scatter: the steady peaks vary by " + percent(record.peak_std_n / record.peak_mean_n) +
+                           " (std / mean), " + six_digit_number_text(record.peak_min_n) + "–" +
+                           six_digit_number_text(record.peak_max_n) +
+                           " N — runout, chatter or an unsteady process");
+  }
 }
 
 }  // namespace
@@ -243,7 +380,7 @@ std::vector<InputProblem> validate(const CuttingTestConditions& conditions, cons
     problems.push_back({"tool.flutes", "= " + std::to_string(tool.flutes) + ": must be at least 1"});
   }
   if (!(std::isfinite(tool.helix_deg) && tool.helix_deg >= 0.0 && tool.helix_deg < 90.0)) {
-    problems.push_back({"tool.helix_deg", "= " + number(tool.helix_deg) + ": must be in [0, 90) deg"});
+    problems.push_back({"tool.helix_deg", "= " + shortest_number_text(tool.helix_deg) + ": must be in [0, 90) deg"});
   }
   require_positive(problems, "conditions.spindle_rpm", conditions.spindle_rpm, "rev/min", "the spindle speed");
   require_positive(problems, "conditions.feed_mm_per_min", conditions.feed_mm_per_min, "mm/min", "the feed");
@@ -252,19 +389,22 @@ std::vector<InputProblem> validate(const CuttingTestConditions& conditions, cons
   const double ae = conditions.radial_depth_mm;
   const bool diameter_ok = std::isfinite(d) && d > 0.0;
   if (!(std::isfinite(ae) && ae > 0.0)) {
-    problems.push_back({"conditions.radial_depth_mm", "= " + number(ae) + ": must be a finite number > 0 mm — a_e"});
+    problems.push_back(
+        {"conditions.radial_depth_mm", "= " + shortest_number_text(ae) + ": must be a finite number > 0 mm — a_e"});
   } else if (diameter_ok && ae > d * (1.0 + kSlotTolerance)) {
-    problems.push_back({"conditions.radial_depth_mm", "= " + number(ae) + ": must be in (0, " + number(d) +
+    problems.push_back({"conditions.radial_depth_mm", "= " + shortest_number_text(ae) + ": must be in (0, " +
+                                                          shortest_number_text(d) +
                                                           "] mm — at most the tool diameter (tool.diameter_mm = " +
-                                                          number(d) + ")"});
+                                                          shortest_number_text(d) + ")"});
   } else if (diameter_ok) {
     const bool full = std::abs(ae - d) <= kSlotTolerance * d;
     if (conditions.mode == CutMode::kSlot && !full) {
       problems.push_back({"conditions.mode", "= slot: a slot cuts the full tool diameter, but radial_depth_mm = " +
-                                                 number(ae) + " is not tool.diameter_mm = " + number(d) +
-                                                 " — use down or up for a partial radial depth"});
+                                                 shortest_number_text(ae) + " is not tool.diameter_mm = " +
+                                                 shortest_number_text(d) + " — use down or up for a partial radial depth"});
     } else if (conditions.mode != CutMode::kSlot && full) {
-      problems.push_back({"conditions.mode", "= " + to_string(conditions.mode) + ": radial_depth_mm = " + number(ae) +
+      problems.push_back({"conditions.mode", "= " + to_string(conditions.mode) + ": radial_depth_mm = " +
+                                                 shortest_number_text(ae) +
                                                  " is the tool diameter, which is a full slot — use slot"});
     }
   }
@@ -275,7 +415,7 @@ std::vector<InputProblem> validate(const CuttingTestImportOptions& options) {
   std::vector<InputProblem> problems;
   auto fraction = [&](const char* field, double value, bool zero_ok) {
     if (std::isfinite(value) && (zero_ok ? value >= 0.0 : value > 0.0) && value < 1.0) return;
-    problems.push_back({field, "= " + number(value) + ": must be in " + (zero_ok ? "[0, 1)" : "(0, 1)")});
+    problems.push_back({field, "= " + shortest_number_text(value) + ": must be in " + (zero_ok ? "[0, 1)" : "(0, 1)")});
   };
   fraction("options.rpm_tolerance", options.rpm_tolerance, true);
   fraction("options.feed_tolerance", options.feed_tolerance, true);
@@ -292,195 +432,37 @@ std::vector<InputProblem> validate(const CuttingTestImportOptions& options) {
                         "= " + std::to_string(options.trend_window_revolutions) + ": must be an odd number ≥ 1"});
   }
   if (!(std::isfinite(options.trim_sigmas) && options.trim_sigmas >= 0.0)) {
-    problems.push_back({"options.trim_sigmas", "= " + number(options.trim_sigmas) + ": must be a finite number ≥ 0"});
+    problems.push_back({"options.trim_sigmas",
+                        "= " + shortest_number_text(options.trim_sigmas) + ": must be a finite number ≥ 0"});
   }
   return problems;
 }
 
 CuttingTestRecord import_cutting_test(const force_log::ForceLog& log, const CuttingTestConditions& conditions,
                                       const geometry::Tool& tool, const CuttingTestImportOptions& options) {
-  std::vector<InputProblem> problems = validate(conditions, tool);
-  for (auto& p : validate(options)) problems.push_back(std::move(p));
-  if (!problems.empty()) throw InputError(std::move(problems));
-
-  const std::string source = options.source_name.empty() ? "force log" : options.source_name;
-  const double rpm = conditions.spindle_rpm;
-  const double feed = conditions.feed_mm_per_min;
-  if (!log.has_forces) {
-    throw InputError(source, "has no force columns (fx_n, fy_n): a cutting test needs measured forces — turn servo "
-                             "currents into forces with a calibration first (DESIGN.md §6.4)");
-  }
-  if (log.rows.empty()) throw InputError(source, "has no samples");
-
+  check_input(conditions, tool, options);
+  Import import(log, conditions, tool, options);
+  require_force_samples(log, import.source);
   CuttingTestRecord record;
   record.conditions = conditions;
-  record.source = source;
+  record.source = import.source;
 
-  // Metadata against the conditions and the time column.
-  auto relative = [](double a, double b) { return std::abs(a - b) / std::abs(b); };
-  bool rpm_checked = false;
-  const std::string rpm_text = log.metadata_value("spindle_rpm");
-  if (!rpm_text.empty()) {
-    const std::optional<double> log_rpm = parse_number(rpm_text);
-    if (!log_rpm || *log_rpm <= 0.0) {
-      problems.push_back({source + " spindle_rpm", "= \"" + rpm_text + "\": must be a number > 0 rev/min"});
-    } else {
-      rpm_checked = true;
-      if (relative(rpm, *log_rpm) > options.rpm_tolerance) {
-        problems.push_back({"conditions.spindle_rpm",
-                            "= " + number(rpm) + " rev/min, but " + source + " says " + measured(*log_rpm) +
-                                " (# spindle_rpm): " + percent(relative(rpm, *log_rpm)) + " apart, more than " +
-                                percent(options.rpm_tolerance)});
-      }
-    }
-  }
-  std::vector<double> t_s, fx_n, fy_n;
-  t_s.reserve(log.rows.size());
-  fx_n.reserve(log.rows.size());
-  fy_n.reserve(log.rows.size());
-  for (const auto& row : log.rows) {
-    t_s.push_back(row.t_s);
-    fx_n.push_back(row.fx_n);
-    fy_n.push_back(row.fy_n);
-  }
-  double sample_rate_hz = std::nan("");
-  if (t_s.size() >= 2) {
-    std::vector<double> steps;
-    steps.reserve(t_s.size() - 1);
-    for (std::size_t i = 1; i < t_s.size(); ++i) steps.push_back(t_s[i] - t_s[i - 1]);
-    sample_rate_hz = 1.0 / median(steps);
-  }
-  const std::string rate_text = log.metadata_value("sample_rate_hz");
-  if (!rate_text.empty() && std::isfinite(sample_rate_hz)) {
-    const std::optional<double> log_rate = parse_number(rate_text);
-    if (!log_rate || *log_rate <= 0.0) {
-      problems.push_back({source + " sample_rate_hz", "= \"" + rate_text + "\": must be a number > 0 Hz"});
-    } else if (relative(*log_rate, sample_rate_hz) > options.sample_rate_tolerance) {
-      problems.push_back({source + " sample_rate_hz",
-                          "= " + measured(*log_rate) + " Hz, but the time column steps by " +
-                              measured(1.0 / sample_rate_hz) + " s (" + measured(sample_rate_hz) + " Hz): " +
-                              percent(relative(*log_rate, sample_rate_hz)) + " apart, more than " +
-                              percent(options.sample_rate_tolerance)});
-    }
-  }
-
-  // Per-revolution peaks and what the log says about each revolution.
-  const std::vector<force_log::RevolutionPeak> peaks = force_log::revolution_peaks(t_s, fx_n, fy_n, rpm);
-  const RevolutionSignals signals = revolution_signals(log, peaks);
-  record.revolutions_total = static_cast<int>(peaks.size());
-
+  check_metadata_spindle_rpm(import);
+  const ForceColumns columns = force_columns(log);
+  import.sample_rate_hz = time_column_rate_hz(columns.t_s);
+  check_metadata_sample_rate(import);
+  const LogRevolutions revolutions = log_revolutions(log, columns, conditions.spindle_rpm);
+  record.revolutions_total = static_cast<int>(revolutions.peaks.size());
   // The steady part from the forces alone, to check the log's feed and spindle speed in it.
-  const SteadyRun force_only = find_steady(peaks, std::vector<bool>(peaks.size(), true), options);
-  if (!peaks.empty() && !force_only.any_force) {
-    problems.push_back({source, "has no cutting force: every per-revolution peak of |F_xy| is 0 N"});
-  }
-  const bool has_feed_column = any_finite(signals.feed_column_mm_per_min);
-  const bool has_feed_positions = any_finite(signals.feed_positions_mm_per_min);
-  if (force_only.size() > 0) {
-    const double column_rpm = median_over(signals.spindle_rpm, force_only);
-    if (std::isfinite(column_rpm)) {
-      rpm_checked = true;
-      if (!(column_rpm > 0.0) || relative(rpm, column_rpm) > options.rpm_tolerance) {
-        problems.push_back({"conditions.spindle_rpm",
-                            "= " + number(rpm) + " rev/min, but the spindle_rpm column of " + source +
-                                " reads " + measured(column_rpm) + " in the steady part: more than " +
-                                percent(options.rpm_tolerance) + " apart"});
-      }
-    }
-    const double column_feed = median_over(signals.feed_column_mm_per_min, force_only);
-    if (std::isfinite(column_feed) && relative(feed, column_feed) > options.feed_tolerance) {
-      problems.push_back({"conditions.feed_mm_per_min",
-                          "= " + number(feed) + " mm/min, but the feed_mm_per_min column of " + source + " reads " +
-                              measured(column_feed) + " in the steady part: " + percent(relative(feed, column_feed)) +
-                              " apart, more than " + percent(options.feed_tolerance)});
-    }
-    const double position_feed = median_over(signals.feed_positions_mm_per_min, force_only);
-    if (std::isfinite(position_feed) && relative(feed, position_feed) > options.feed_tolerance) {
-      problems.push_back({"conditions.feed_mm_per_min",
-                          "= " + number(feed) + " mm/min, but the positions (x_mm, y_mm) in " + source +
-                              " move at " + measured(position_feed) + " mm/min in the steady part: " +
-                              percent(relative(feed, position_feed)) + " apart, more than " +
-                              percent(options.feed_tolerance)});
-    }
-  }
-  if (!problems.empty()) throw InputError(std::move(problems));
+  const SteadyRun force_only =
+      find_steady(revolutions.peaks, std::vector<bool>(revolutions.peaks.size(), true), options);
+  check_steady_part(import, revolutions, force_only);
+  if (!import.problems.empty()) throw InputError(std::move(import.problems));
 
-  // Step 1: only revolutions at the given feed, where the log says.
-  const std::vector<double>& feed_signal =
-      has_feed_column ? signals.feed_column_mm_per_min : signals.feed_positions_mm_per_min;
-  std::vector<bool> eligible(peaks.size(), true);
-  int at_feed = 0;
-  for (std::size_t k = 0; k < peaks.size(); ++k) {
-    if (std::isfinite(feed_signal[k])) eligible[k] = relative(feed_signal[k], feed) <= options.feed_tolerance;
-    at_feed += eligible[k] ? 1 : 0;
-  }
-  const SteadyRun steady = (has_feed_column || has_feed_positions) ? find_steady(peaks, eligible, options) : force_only;
-  const int found = static_cast<int>(steady.size());
-  if (found < options.min_steady_revolutions) {
-    std::string where = "of " + std::to_string(peaks.size()) + " complete revolutions at " + number(rpm) + " rev/min";
-    if (has_feed_column || has_feed_positions) where += ", " + std::to_string(at_feed) + " of them at the feed";
-    throw InputError(source, "has " + std::to_string(found) + " steady revolution" + (found == 1 ? "" : "s") + " (" +
-                                 where + "): at least " + std::to_string(options.min_steady_revolutions) +
-                                 " are needed — record a longer cut at constant conditions");
-  }
-
-  // Statistics.
-  record.revolutions_used = found;
-  double sum = 0.0;
-  record.peak_min_n = peaks[steady.begin].peak_xy_n;
-  record.peak_max_n = peaks[steady.begin].peak_xy_n;
-  for (std::size_t k = steady.begin; k < steady.end; ++k) {
-    const double p = peaks[k].peak_xy_n;
-    record.steady_peaks_n.push_back(p);
-    sum += p;
-    record.peak_min_n = std::min(record.peak_min_n, p);
-    record.peak_max_n = std::max(record.peak_max_n, p);
-  }
-  record.peak_mean_n = sum / found;
-  double squares = 0.0;
-  for (double p : record.steady_peaks_n) squares += (p - record.peak_mean_n) * (p - record.peak_mean_n);
-  record.peak_std_n = found > 1 ? std::sqrt(squares / (found - 1)) : 0.0;
-
-  // Model inputs (DESIGN.md §5.1): straight cut, f_z at the tool centre.
-  const double radius_mm = tool.radius_mm();
-  const double engagement_rad = conditions.mode == CutMode::kSlot
-                                    ? std::numbers::pi
-                                    : geometry::straight_engagement_rad(radius_mm, conditions.radial_depth_mm);
-  record.feed_per_tooth_mm = feed / (tool.flutes * rpm);
-  record.chip_mm = record.feed_per_tooth_mm * geometry::steady_chip_factor(engagement_rad);
-  record.contact_length_mm = radius_mm * engagement_rad;
-
-  // Notes.
-  const force_log::RevolutionPeak& first = peaks[steady.begin];
-  const force_log::RevolutionPeak& last = peaks[steady.end - 1];
-  record.notes.push_back("steady: " + std::to_string(found) + " of " + std::to_string(peaks.size()) +
-                         " complete revolutions (numbers " + std::to_string(first.revolution) + "–" +
-                         std::to_string(last.revolution) + ", t " + measured(first.t_start_s) + "–" +
-                         measured(last.t_end_s) + " s); " + std::to_string(steady.begin - steady.plateau_begin) +
-                         " trimmed at the start and " + std::to_string(steady.plateau_end - steady.end) +
-                         " at the end of the plateau");
-  if (has_feed_column || has_feed_positions) {
-    const double measured_feed = median_over(feed_signal, steady);
-    record.notes.push_back("feed: " + measured(measured_feed) + " mm/min from the " +
-                           (has_feed_column ? "feed_mm_per_min column" : "positions") +
-                           " in the steady part; revolutions at another feed were not used");
-  } else {
-    record.notes.push_back("feed: the log records neither feed nor positions (e.g. a Kistler export) — the feed "
-                           "was not checked, and the steady part comes from the forces alone");
-  }
-  if (!rpm_checked) {
-    record.notes.push_back("spindle speed: the log does not record it — not checked");
-  }
-  const double samples_per_tooth = sample_rate_hz * 60.0 / (rpm * tool.flutes);
-  if (std::isfinite(samples_per_tooth) && samples_per_tooth < kFewSamplesPerTooth) {
-    record.notes.push_back("sampling: " + measured(samples_per_tooth) +
-                           " samples per tooth period — the sampled peaks may read low");
-  }
-  if (record.peak_mean_n > 0.0 && record.peak_std_n / record.peak_mean_n > kLargeScatter) {
-    record.notes.push_back("scatter: the steady peaks vary by " + percent(record.peak_std_n / record.peak_mean_n) +
-                           " (std / mean), " + measured(record.peak_min_n) + "–" + measured(record.peak_max_n) +
-                           " N — runout, chatter or an unsteady process");
-  }
+  const SteadyRun steady = steady_revolutions(import, revolutions, force_only);
+  fill_statistics(revolutions.peaks, steady, record);
+  fill_model_inputs(conditions, tool, record);
+  add_notes(import, revolutions, steady, record);
   return record;
 }
 
@@ -489,9 +471,7 @@ CuttingTestRecord import_cutting_test(const std::string& log_path, const Cutting
   CuttingTestImportOptions named = options;
   if (named.source_name.empty()) named.source_name = log_path;
   // Validate before reading so that bad conditions are reported without touching the file.
-  std::vector<InputProblem> problems = validate(conditions, tool);
-  for (auto& p : validate(named)) problems.push_back(std::move(p));
-  if (!problems.empty()) throw InputError(std::move(problems));
+  check_input(conditions, tool, named);
   return import_cutting_test(force_log::load_force_log(log_path), conditions, tool, named);
 }
 
