@@ -20,6 +20,7 @@
 #include "feedplan/model_db/cutting_test_import.hpp"
 #include "feedplan/model_db/model_exchange.hpp"
 #include "feedplan/model/model_fit.hpp"
+#include "feedplan/model/model_json.hpp"
 #include "feedplan/model/model_prediction.hpp"
 #include "feedplan/model_db/store.hpp"
 
@@ -68,11 +69,7 @@ json model_json(const mdb::ModelRecord& m) {
               {"chip_scale_mm", r.chip_scale_mm},
               {"contact_length_center_mm", r.contact_length_center_mm},
               {"contact_length_scale_mm", r.contact_length_scale_mm},
-              {"fitted_range",
-               {{"chip_min_mm", r.range.chip_min_mm},
-                {"chip_max_mm", r.range.chip_max_mm},
-                {"contact_length_min_mm", r.range.contact_length_min_mm},
-                {"contact_length_max_mm", r.range.contact_length_max_mm}}},
+              {"fitted_range", model::to_json(r.range)},
               {"axial_depth_mm", r.axial_depth_mm},
               {"spindle_rpm", r.spindle_rpm},
               {"n", m.fit.n},

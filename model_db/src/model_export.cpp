@@ -5,6 +5,7 @@
 
 #include "cutting_test_rows.hpp"
 #include "feedplan/core/atomic_file.hpp"
+#include "feedplan/model/model_json.hpp"
 #include "feedplan/model_db/model_exchange.hpp"
 
 namespace feedplan::model_db {
@@ -31,7 +32,6 @@ Json to_json(const MaterialRecord& material) {
 }
 
 Json to_json(const ModelRecord& record, const std::optional<int>& parent_version) {
-  const model::ResponseSurfaceModel& model = record.model;
   Json json{{"tool", record.tool_name},
             {"material", record.material_name},
             {"version", record.version},
@@ -40,19 +40,7 @@ Json to_json(const ModelRecord& record, const std::optional<int>& parent_version
             {"source", to_string(record.source)},
             {"created_at", record.created_at},
             {"note", record.note}};
-  json["model"] = Json{{"beta", model.beta},
-                       {"chip_center_mm", model.chip_center_mm},
-                       {"chip_scale_mm", model.chip_scale_mm},
-                       {"contact_length_center_mm", model.contact_length_center_mm},
-                       {"contact_length_scale_mm", model.contact_length_scale_mm},
-                       {"range",
-                        {{"chip_min_mm", model.range.chip_min_mm},
-                         {"chip_max_mm", model.range.chip_max_mm},
-                         {"contact_length_min_mm", model.range.contact_length_min_mm},
-                         {"contact_length_max_mm", model.range.contact_length_max_mm}}},
-                       {"axial_depth_mm", model.axial_depth_mm},
-                       {"spindle_rpm", model.spindle_rpm},
-                       {"quantity", model.quantity}};
+  json["model"] = model::to_json(record.model);
   json["fit"] = Json{{"n", record.fit.n},
                      {"rmse_n", record.fit.rmse_n},
                      {"r_squared", record.fit.r_squared},

@@ -9,9 +9,10 @@
 
 #include "catalog_rows.hpp"
 #include "cutting_test_rows.hpp"
+#include "feedplan/core/json_fields.hpp"
 #include "feedplan/core/number_text.hpp"
+#include "feedplan/model/model_json.hpp"
 #include "feedplan/model_db/model_exchange.hpp"
-#include "json_fields.hpp"
 #include "learning_rows.hpp"
 #include "model_rows.hpp"
 #include "store_impl.hpp"
@@ -20,8 +21,14 @@
 namespace feedplan::model_db {
 namespace {
 
-using detail::JsonFields;
 using Json = nlohmann::json;
+using Reader = JsonFieldReader<Json>;
+using Node = JsonNode<Json>;
+
+// How the exchange file phrases problems (core/json_fields.hpp): values as 'text', each member of a
+// missing object named, array lengths after the elements, bad list elements read as 0.
+constexpr JsonFieldRules kExchangeRules{JsonTextShown::kSingleQuoted, JsonObjectRule::kEachMemberMissing,
+                                        JsonLengthRule::kCountNumbersLast, JsonBadElement::kReadAsZero};
 
 // ---- the document, read and checked before anything is written ----
 
@@ -80,165 +87,150 @@ void add_located(std::vector<InputProblem>& to, std::vector<InputProblem> from, 
   }
 }
 
-void check_time(JsonFields& fields, const std::string& path, const std::string& created_at) {
+void check_time(const Node& node, const std::string& created_at) {
   if (!detail::is_utc_iso8601(created_at)) {
-    fields.add(path + ".created_at", "= '" + created_at + "': must be UTC ISO 8601, e.g. 2024-05-01T12:00:00.000Z");
+    node.report(node.child_path("created_at"),
+                "= '" + created_at + "': must be UTC ISO 8601, e.g. 2024-05-01T12:00:00.000Z");
   }
 }
 
-ToolRecord read_tool(JsonFields& fields, const Json& json, const std::string& path) {
+ToolRecord read_tool(const Node& node) {
   ToolRecord tool;
-  tool.name = fields.text(json, path, "name");
-  tool.diameter_mm = fields.number(json, path, "diameter_mm");
-  tool.flutes = fields.integer(json, path, "flutes");
-  tool.helix_deg = fields.number(json, path, "helix_deg");
-  tool.tool_material = fields.text(json, path, "tool_material", false);
-  tool.coating = fields.text(json, path, "coating", false);
-  tool.notes = fields.text(json, path, "notes", false);
+  tool.name = node.text("name");
+  tool.diameter_mm = node.number("diameter_mm");
+  tool.flutes = node.integer("flutes");
+  tool.helix_deg = node.number("helix_deg");
+  tool.tool_material = node.text("tool_material", JsonPresence::kOptional);
+  tool.coating = node.text("coating", JsonPresence::kOptional);
+  tool.notes = node.text("notes", JsonPresence::kOptional);
   return tool;
 }
 
-MaterialRecord read_material(JsonFields& fields, const Json& json, const std::string& path) {
+MaterialRecord read_material(const Node& node) {
   MaterialRecord material;
-  material.name = fields.text(json, path, "name");
-  const std::string group = fields.text(json, path, "iso_group");
+  material.name = node.text("name");
+  const std::string group = node.text("iso_group");
   if (const auto parsed = parse_iso_group(group)) {
     material.iso_group = *parsed;
-  } else if (json.contains("iso_group")) {
-    fields.add(path + ".iso_group", "= '" + group + "': must be one of P, M, K, N, S, H");
+  } else if (node.has("iso_group")) {
+    node.report(node.child_path("iso_group"), "= '" + group + "': must be one of P, M, K, N, S, H");
   }
-  material.hardness_value = fields.number(json, path, "hardness_value");
-  material.hardness_scale = fields.text(json, path, "hardness_scale");
-  material.notes = fields.text(json, path, "notes", false);
+  material.hardness_value = node.number("hardness_value");
+  material.hardness_scale = node.text("hardness_scale");
+  material.notes = node.text("notes", JsonPresence::kOptional);
   return material;
 }
 
-IncomingModel read_model(JsonFields& fields, const Json& json, const std::string& path) {
-  IncomingModel incoming{path, {}, std::nullopt};
+ModelFitStatistics read_fit(const Node& node) {
+  ModelFitStatistics fit;
+  fit.n = node.integer("n");
+  fit.rmse_n = node.number("rmse_n");
+  fit.r_squared = node.number("r_squared");
+  fit.covariance = model::Covariance::from_entries(node.fixed_numbers<36>("covariance"));
+  fit.standard_errors = node.fixed_numbers<6>("standard_errors");
+  fit.loo_rmse_n = node.number("loo_rmse_n");
+  return fit;
+}
+
+IncomingModel read_model(const Node& node) {
+  IncomingModel incoming{node.path(), {}, std::nullopt};
   ModelRecord& record = incoming.record;
-  record.tool_name = fields.text(json, path, "tool");
-  record.material_name = fields.text(json, path, "material");
-  record.version = fields.integer(json, path, "version");
-  if (record.version < 1 && json.contains("version")) {
-    fields.add(path + ".version", "= " + std::to_string(record.version) + ": must be ≥ 1");
+  record.tool_name = node.text("tool");
+  record.material_name = node.text("material");
+  record.version = node.integer("version");
+  if (record.version < 1 && node.has("version")) {
+    node.report(node.child_path("version"), "= " + std::to_string(record.version) + ": must be ≥ 1");
   }
-  incoming.parent_version = fields.optional_integer(json, path, "parent_version");
-  record.active = fields.boolean(json, path, "active");
-  const std::string source = fields.text(json, path, "source");
+  incoming.parent_version = node.optional_integer("parent_version");
+  record.active = node.boolean("active");
+  const std::string source = node.text("source");
   if (const auto parsed = parse_model_source(source)) {
     record.source = *parsed;
-  } else if (json.contains("source")) {
-    fields.add(path + ".source", "= '" + source + "': must be cutting_tests, learned or imported");
+  } else if (node.has("source")) {
+    node.report(node.child_path("source"), "= '" + source + "': must be cutting_tests, learned or imported");
   }
-  record.created_at = fields.text(json, path, "created_at");
-  check_time(fields, path, record.created_at);
-  record.note = fields.text(json, path, "note", false);
-
-  const std::string model_path = path + ".model";
-  static const Json kNoObject = Json::object();
-  const Json* model_json = fields.member(json, path, "model");
-  const Json& m = model_json != nullptr ? *model_json : kNoObject;
-  model::ResponseSurfaceModel& model = record.model;
-  model.beta = fields.fixed_numbers<6>(m, model_path, "beta");
-  model.chip_center_mm = fields.number(m, model_path, "chip_center_mm");
-  model.chip_scale_mm = fields.number(m, model_path, "chip_scale_mm");
-  model.contact_length_center_mm = fields.number(m, model_path, "contact_length_center_mm");
-  model.contact_length_scale_mm = fields.number(m, model_path, "contact_length_scale_mm");
-  const std::string range_path = model_path + ".range";
-  const Json* range_json = fields.member(m, model_path, "range");
-  const Json& r = range_json != nullptr ? *range_json : kNoObject;
-  model.range.chip_min_mm = fields.number(r, range_path, "chip_min_mm");
-  model.range.chip_max_mm = fields.number(r, range_path, "chip_max_mm");
-  model.range.contact_length_min_mm = fields.number(r, range_path, "contact_length_min_mm");
-  model.range.contact_length_max_mm = fields.number(r, range_path, "contact_length_max_mm");
-  model.axial_depth_mm = fields.number(m, model_path, "axial_depth_mm");
-  model.spindle_rpm = fields.number(m, model_path, "spindle_rpm");
-  model.quantity = fields.text(m, model_path, "quantity");
-
-  const std::string fit_path = path + ".fit";
-  const Json* fit_json = fields.member(json, path, "fit");
-  const Json& f = fit_json != nullptr ? *fit_json : kNoObject;
-  record.fit.n = fields.integer(f, fit_path, "n");
-  record.fit.rmse_n = fields.number(f, fit_path, "rmse_n");
-  record.fit.r_squared = fields.number(f, fit_path, "r_squared");
-  record.fit.covariance = model::Covariance::from_entries(fields.fixed_numbers<36>(f, fit_path, "covariance"));
-  record.fit.standard_errors = fields.fixed_numbers<6>(f, fit_path, "standard_errors");
-  record.fit.loo_rmse_n = fields.number(f, fit_path, "loo_rmse_n");
+  record.created_at = node.text("created_at");
+  check_time(node, record.created_at);
+  record.note = node.text("note", JsonPresence::kOptional);
+  record.model = model::read_model_json(node.object("model"));
+  record.fit = read_fit(node.object("fit"));
   return incoming;
 }
 
-StoredCuttingTest read_test(JsonFields& fields, const Json& json, const std::string& path) {
+StoredCuttingTest read_test(const Node& node) {
   StoredCuttingTest stored;
-  stored.created_at = fields.text(json, path, "created_at");
-  check_time(fields, path, stored.created_at);
+  stored.created_at = node.text("created_at");
+  check_time(node, stored.created_at);
   CuttingTestRecord& test = stored.test;
   CuttingTestConditions& conditions = test.conditions;
-  conditions.tool_name = fields.text(json, path, "tool");
-  conditions.material_name = fields.text(json, path, "material");
-  conditions.spindle_rpm = fields.number(json, path, "spindle_rpm");
-  conditions.feed_mm_per_min = fields.number(json, path, "feed_mm_per_min");
-  conditions.radial_depth_mm = fields.number(json, path, "radial_depth_mm");
-  conditions.axial_depth_mm = fields.number(json, path, "axial_depth_mm");
-  const std::string mode = fields.text(json, path, "mode");
+  conditions.tool_name = node.text("tool");
+  conditions.material_name = node.text("material");
+  conditions.spindle_rpm = node.number("spindle_rpm");
+  conditions.feed_mm_per_min = node.number("feed_mm_per_min");
+  conditions.radial_depth_mm = node.number("radial_depth_mm");
+  conditions.axial_depth_mm = node.number("axial_depth_mm");
+  const std::string mode = node.text("mode");
   if (const auto parsed = detail::parse_cut_mode(mode)) {
     conditions.mode = *parsed;
-  } else if (json.contains("mode")) {
-    fields.add(path + ".mode", "= '" + mode + "': must be down, up or slot");
+  } else if (node.has("mode")) {
+    node.report(node.child_path("mode"), "= '" + mode + "': must be down, up or slot");
   }
-  test.feed_per_tooth_mm = fields.number(json, path, "feed_per_tooth_mm");
-  test.chip_mm = fields.number(json, path, "chip_mm");
-  test.contact_length_mm = fields.number(json, path, "contact_length_mm");
-  test.peak_mean_n = fields.number(json, path, "peak_mean_n");
-  test.peak_std_n = fields.number(json, path, "peak_std_n");
-  test.peak_min_n = fields.number(json, path, "peak_min_n");
-  test.peak_max_n = fields.number(json, path, "peak_max_n");
-  test.revolutions_total = fields.integer(json, path, "revolutions_total");
-  test.revolutions_used = fields.integer(json, path, "revolutions_used");
-  test.steady_peaks_n = fields.numbers(json, path, "steady_peaks_n");
-  test.source = fields.text(json, path, "source", false);
-  test.notes = fields.texts(json, path, "notes");
+  test.feed_per_tooth_mm = node.number("feed_per_tooth_mm");
+  test.chip_mm = node.number("chip_mm");
+  test.contact_length_mm = node.number("contact_length_mm");
+  test.peak_mean_n = node.number("peak_mean_n");
+  test.peak_std_n = node.number("peak_std_n");
+  test.peak_min_n = node.number("peak_min_n");
+  test.peak_max_n = node.number("peak_max_n");
+  test.revolutions_total = node.integer("revolutions_total");
+  test.revolutions_used = node.integer("revolutions_used");
+  test.steady_peaks_n = node.numbers("steady_peaks_n");
+  test.source = node.text("source", JsonPresence::kOptional);
+  test.notes = node.texts("notes", JsonPresence::kOptional);
   return stored;
 }
 
-ModelKey read_reference(JsonFields& fields, const Json& json, const std::string& path) {
-  return {fields.text(json, path, "tool"), fields.text(json, path, "material"), fields.integer(json, path, "version")};
+ModelKey read_reference(const Node& node) {
+  return {node.text("tool"), node.text("material"), node.integer("version")};
 }
 
-IncomingEntry read_entry(JsonFields& fields, const Json& json, const std::string& path) {
+IncomingEntry read_entry(const Node& node) {
   IncomingEntry incoming;
-  incoming.path = path;
-  static const Json kNoObject = Json::object();
-  const Json* before = fields.member(json, path, "model_before");
-  incoming.before = read_reference(fields, before != nullptr ? *before : kNoObject, path + ".model_before");
-  const Json* after = fields.member(json, path, "model_after", false);
-  if (after != nullptr && !after->is_null()) incoming.after = read_reference(fields, *after, path + ".model_after");
+  incoming.path = node.path();
+  incoming.before = read_reference(node.object("model_before"));
+  const Json* after = node.member("model_after", JsonPresence::kOptional);
+  if (after != nullptr && !after->is_null()) incoming.after = read_reference(node.object("model_after"));
   LearningEntry& entry = incoming.entry;
-  entry.part_name = fields.text(json, path, "part_name");
-  entry.n_samples = fields.integer(json, path, "n_samples");
-  entry.error_before_n = fields.number(json, path, "error_before_n");
-  entry.error_after_n = fields.number(json, path, "error_after_n");
-  entry.created_at = fields.text(json, path, "created_at");
-  check_time(fields, path, entry.created_at);
-  entry.note = fields.text(json, path, "note", false);
+  entry.part_name = node.text("part_name");
+  entry.n_samples = node.integer("n_samples");
+  entry.error_before_n = node.number("error_before_n");
+  entry.error_after_n = node.number("error_after_n");
+  entry.created_at = node.text("created_at");
+  check_time(node, entry.created_at);
+  entry.note = node.text("note", JsonPresence::kOptional);
   return incoming;
 }
 
-//! Parses and checks the document on its own (references to names not in it are checked later,
-//! against the store). Throws InputError with every problem.
-Document read_document(std::string_view text, const std::string& source_name) {
+// ---- the steps of read_document ----
+
+//! The JSON text parsed; text that is not JSON, or JSON of another format, throws.
+Json parse_exchange_text(std::string_view text, const std::string& source_name) {
   Json root;
   try {
     root = Json::parse(text);
   } catch (const Json::parse_error& error) {
     throw InputError(source_name, std::string("is not valid JSON: ") + error.what());
   }
-  std::vector<InputProblem> problems;
-  JsonFields fields(problems);
   if (!root.is_object() || root.value("format", "") != "feedplan-model-db") {
     throw InputError(source_name, "is not a feedplan model database export (expected \"format\": \"feedplan-model-db\")");
   }
-  const int format_version = fields.integer(root, "document", "format_version");
-  if (!problems.empty()) throw InputError(std::move(problems));
+  return root;
+}
+
+//! Throws unless the document's format_version is one this code reads (1 up to kExchangeFormatVersion).
+void check_format_version(Reader& reader, const Node& root, const std::string& source_name) {
+  const int format_version = root.integer("format_version");
+  reader.throw_if_any();
   if (format_version > kExchangeFormatVersion) {
     throw InputError(source_name, "has format_version " + std::to_string(format_version) +
                                       ", newer than this feedplan reads (" + std::to_string(kExchangeFormatVersion) +
@@ -247,79 +239,120 @@ Document read_document(std::string_view text, const std::string& source_name) {
   if (format_version < 1) {
     throw InputError("document.format_version", "= " + std::to_string(format_version) + ": must be ≥ 1");
   }
+}
 
-  Document document;
-  std::set<std::string> tool_names;
-  const Json& tools = fields.array(root, "document", "tools", false);
-  for (std::size_t i = 0; i < tools.size(); ++i) {
-    const std::string path = "tools[" + std::to_string(i) + "]";
-    IncomingTool tool{path, read_tool(fields, tools[i], path)};
-    add_located(problems, validate(tool.record), "tools", path);
-    if (!tool_names.insert(tool.record.name).second) {
-      fields.add(path + ".name", "= '" + tool.record.name + "': appears twice in the document");
-    }
-    document.tools.push_back(std::move(tool));
+//! The list `key` of the document, its items named "key[i]" (without the document's name).
+template <typename Item, typename ReadItem>
+std::vector<Item> read_list(const Node& root, const std::string& key, ReadItem&& read_item) {
+  const Node list = root.array(key, JsonPresence::kOptional);
+  std::vector<Item> items;
+  for (std::size_t i = 0; i < list.size(); ++i) {
+    items.push_back(read_item(list.item(i, key + "[" + std::to_string(i) + "]")));
   }
-  std::set<std::string> material_names;
-  const Json& materials = fields.array(root, "document", "materials", false);
-  for (std::size_t i = 0; i < materials.size(); ++i) {
-    const std::string path = "materials[" + std::to_string(i) + "]";
-    IncomingMaterial material{path, read_material(fields, materials[i], path)};
-    add_located(problems, validate(material.record), "materials", path);
-    if (!material_names.insert(material.record.name).second) {
-      fields.add(path + ".name", "= '" + material.record.name + "': appears twice in the document");
-    }
-    document.materials.push_back(std::move(material));
-  }
+  return items;
+}
 
-  const Json& models = fields.array(root, "document", "models", false);
-  std::set<ModelKey> model_keys;
-  std::map<std::pair<std::string, std::string>, int> active_per_pair;
-  for (std::size_t i = 0; i < models.size(); ++i) {
-    const std::string path = "models[" + std::to_string(i) + "]";
-    IncomingModel model = read_model(fields, models[i], path);
-    add_located(problems, validate(model.record), "models", path);
+//! "<path>.name = '<name>': appears twice in the document" for each name given before.
+void check_unique_name(Reader& reader, std::set<std::string>& names, const std::string& path,
+                       const std::string& name) {
+  if (!names.insert(name).second) reader.add(path + ".name", "= '" + name + "': appears twice in the document");
+}
+
+std::vector<IncomingTool> read_tools(Reader& reader, const Node& root) {
+  std::set<std::string> names;
+  return read_list<IncomingTool>(root, "tools", [&](const Node& node) {
+    IncomingTool tool{node.path(), read_tool(node)};
+    add_located(reader.problems, validate(tool.record), "tools", tool.path);
+    check_unique_name(reader, names, tool.path, tool.record.name);
+    return tool;
+  });
+}
+
+std::vector<IncomingMaterial> read_materials(Reader& reader, const Node& root) {
+  std::set<std::string> names;
+  return read_list<IncomingMaterial>(root, "materials", [&](const Node& node) {
+    IncomingMaterial material{node.path(), read_material(node)};
+    add_located(reader.problems, validate(material.record), "materials", material.path);
+    check_unique_name(reader, names, material.path, material.record.name);
+    return material;
+  });
+}
+
+//! The models, each checked on its own and for a version given twice.
+std::vector<IncomingModel> read_models(Reader& reader, const Node& root) {
+  std::set<ModelKey> keys;
+  return read_list<IncomingModel>(root, "models", [&](const Node& node) {
+    IncomingModel model = read_model(node);
+    add_located(reader.problems, validate(model.record), "models", model.path);
     const ModelRecord& r = model.record;
-    if (!model_keys.insert({r.tool_name, r.material_name, r.version}).second) {
-      fields.add(path + ".version", "= " + std::to_string(r.version) + ": " + r.tool_name + " in " + r.material_name +
-                                        " has this version twice in the document");
+    if (!keys.insert({r.tool_name, r.material_name, r.version}).second) {
+      reader.add(model.path + ".version", "= " + std::to_string(r.version) + ": " + r.tool_name + " in " +
+                                              r.material_name + " has this version twice in the document");
     }
+    return model;
+  });
+}
+
+//! Each parent_version names an earlier version of the same pair in the document, and each pair has
+//! exactly one active version.
+void check_model_history(Reader& reader, const std::vector<IncomingModel>& models) {
+  std::set<ModelKey> keys;
+  std::map<std::pair<std::string, std::string>, int> active_per_pair;
+  for (const auto& model : models) {
+    const ModelRecord& r = model.record;
+    keys.insert({r.tool_name, r.material_name, r.version});
     active_per_pair[{r.tool_name, r.material_name}] += r.active ? 1 : 0;
-    document.models.push_back(std::move(model));
   }
-  for (const auto& model : document.models) {
+  for (const auto& model : models) {
     const ModelRecord& r = model.record;
     if (model.parent_version &&
-        (*model.parent_version >= r.version || model_keys.count({r.tool_name, r.material_name, *model.parent_version}) == 0)) {
-      fields.add(model.path + ".parent_version",
+        (*model.parent_version >= r.version || keys.count({r.tool_name, r.material_name, *model.parent_version}) == 0)) {
+      reader.add(model.path + ".parent_version",
                  "= " + std::to_string(*model.parent_version) + ": must be an earlier version of " + r.tool_name +
                      " in " + r.material_name + " in the document (or null)");
     }
   }
   for (const auto& [pair, count] : active_per_pair) {
     if (count != 1) {
-      fields.add("models", pair.first + " in " + pair.second + " has " + std::to_string(count) +
+      reader.add("models", pair.first + " in " + pair.second + " has " + std::to_string(count) +
                                " active versions: must have exactly one");
     }
   }
+}
 
-  const Json& tests = fields.array(root, "document", "cutting_tests", false);
-  for (std::size_t i = 0; i < tests.size(); ++i) {
-    const std::string path = "cutting_tests[" + std::to_string(i) + "]";
-    IncomingTest test{path, read_test(fields, tests[i], path)};
-    add_located(problems, validate(test.stored.test), "cutting_tests", path);
-    document.tests.push_back(std::move(test));
-  }
-  const Json& entries = fields.array(root, "document", "learning_history", false);
-  for (std::size_t i = 0; i < entries.size(); ++i) {
-    const std::string path = "learning_history[" + std::to_string(i) + "]";
-    IncomingEntry entry = read_entry(fields, entries[i], path);
+std::vector<IncomingTest> read_tests(Reader& reader, const Node& root) {
+  return read_list<IncomingTest>(root, "cutting_tests", [&](const Node& node) {
+    IncomingTest test{node.path(), read_test(node)};
+    add_located(reader.problems, validate(test.stored.test), "cutting_tests", test.path);
+    return test;
+  });
+}
+
+std::vector<IncomingEntry> read_entries(Reader& reader, const Node& root) {
+  return read_list<IncomingEntry>(root, "learning_history", [&](const Node& node) {
+    IncomingEntry entry = read_entry(node);
     LearningEntry checked = entry.entry;
     checked.model_id_before = 1;  // references are checked against the models when writing
-    add_located(problems, validate(checked), "learning_history", path);
-    document.entries.push_back(std::move(entry));
-  }
-  if (!problems.empty()) throw InputError(std::move(problems));
+    add_located(reader.problems, validate(checked), "learning_history", entry.path);
+    return entry;
+  });
+}
+
+//! Parses and checks the document on its own (references to names not in it are checked later,
+//! against the store). Throws InputError with every problem.
+Document read_document(std::string_view text, const std::string& source_name) {
+  const Json json = parse_exchange_text(text, source_name);
+  Reader reader(kExchangeRules);
+  const Node root = reader.node(json, "document");
+  check_format_version(reader, root, source_name);
+  Document document;
+  document.tools = read_tools(reader, root);
+  document.materials = read_materials(reader, root);
+  document.models = read_models(reader, root);
+  check_model_history(reader, document.models);
+  document.tests = read_tests(reader, root);
+  document.entries = read_entries(reader, root);
+  reader.throw_if_any();
   return document;
 }
 

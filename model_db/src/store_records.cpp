@@ -108,28 +108,10 @@ std::vector<InputProblem> validate(const MaterialRecord& material) {
 
 std::vector<InputProblem> validate(const ModelRecord& record) {
   Problems problems("models");
-  const model::ResponseSurfaceModel& model = record.model;
-  for (std::size_t i = 0; i < model.beta.size(); ++i) problems.finite("beta[" + std::to_string(i) + "]", model.beta[i]);
-  problems.finite("chip_center_mm", model.chip_center_mm);
-  problems.positive("chip_scale_mm", model.chip_scale_mm);
-  problems.finite("contact_length_center_mm", model.contact_length_center_mm);
-  problems.positive("contact_length_scale_mm", model.contact_length_scale_mm);
-  const model::FittedRange& range = model.range;
-  problems.non_negative("range.chip_min_mm", range.chip_min_mm);
-  problems.non_negative("range.chip_max_mm", range.chip_max_mm);
-  problems.non_negative("range.contact_length_min_mm", range.contact_length_min_mm);
-  problems.non_negative("range.contact_length_max_mm", range.contact_length_max_mm);
-  if (range.chip_min_mm > range.chip_max_mm) {
-    problems.add("range.chip_min_mm", shortest_number_text(range.chip_min_mm),
-                 "must be ≤ range.chip_max_mm = " + shortest_number_text(range.chip_max_mm));
-  }
-  if (range.contact_length_min_mm > range.contact_length_max_mm) {
-    problems.add("range.contact_length_min_mm", shortest_number_text(range.contact_length_min_mm),
-                 "must be ≤ range.contact_length_max_mm = " + shortest_number_text(range.contact_length_max_mm));
-  }
-  problems.non_negative("axial_depth_mm", model.axial_depth_mm);
-  problems.non_negative("spindle_rpm", model.spindle_rpm);
-  if (model.quantity.empty()) problems.add("quantity", "''", "must name what the model predicts");
+  // The model's own numbers as the planner checks them, named after the table; any named quantity is
+  // stored (the planner accepts only its own).
+  const model::ModelCheckOptions model_checks{"models.", "", model::QuantityRule::kAnyNamed};
+  std::vector<InputProblem> list = model::validate(record.model, model_checks);
   const ModelFitStatistics& fit = record.fit;
   if (fit.n < 0) problems.add("fit.n", std::to_string(fit.n), "must be ≥ 0");
   problems.non_negative("fit.rmse_n", fit.rmse_n);
@@ -141,7 +123,8 @@ std::vector<InputProblem> validate(const ModelRecord& record) {
   for (std::size_t i = 0; i < fit.standard_errors.size(); ++i) {
     problems.non_negative("fit.standard_errors[" + std::to_string(i) + "]", fit.standard_errors[i]);
   }
-  return problems.take();
+  for (auto& problem : problems.take()) list.push_back(std::move(problem));
+  return list;
 }
 
 std::vector<InputProblem> validate(const CuttingTestRecord& test) {

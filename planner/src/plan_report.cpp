@@ -11,12 +11,16 @@
 #include <nlohmann/json.hpp>
 
 #include "feedplan/core/atomic_file.hpp"
+#include "feedplan/core/json_fields.hpp"
 #include "feedplan/core/number_text.hpp"
+#include "feedplan/model/model_json.hpp"
 
 namespace feedplan::planner {
 namespace {
 
 using Json = nlohmann::ordered_json;
+using Reader = JsonFieldReader<Json>;  // the plan report's rules are JsonFieldRules' defaults
+using Node = JsonNode<Json>;
 
 constexpr const char* kFormatTag = "feedplan-plan";
 constexpr double kRadToDeg = 180.0 / 3.14159265358979323846;
@@ -58,28 +62,16 @@ Json summary_json(const PlanSummary& summary) {
               {"accel_used_mm_per_s2", json_number(summary.accel_used_mm_per_s2)}};
 }
 
+// The model's identity (the plan's context), then its members as model_json.hpp writes them.
 Json model_json(const model::ResponseSurfaceModel& model, const PlanReportContext& context) {
-  Json beta = Json::array();
-  for (const double b : model.beta) beta.push_back(json_number(b));
-  return Json{{"id", context.model_id},
-              {"version", context.model_version},
-              {"database", context.database_path},
-              {"tool", context.model_tool},
-              {"material", context.model_material},
-              {"match", context.model_match},
-              {"beta", std::move(beta)},
-              {"chip_center_mm", json_number(model.chip_center_mm)},
-              {"chip_scale_mm", json_number(model.chip_scale_mm)},
-              {"contact_length_center_mm", json_number(model.contact_length_center_mm)},
-              {"contact_length_scale_mm", json_number(model.contact_length_scale_mm)},
-              {"range",
-               {{"chip_min_mm", json_number(model.range.chip_min_mm)},
-                {"chip_max_mm", json_number(model.range.chip_max_mm)},
-                {"contact_length_min_mm", json_number(model.range.contact_length_min_mm)},
-                {"contact_length_max_mm", json_number(model.range.contact_length_max_mm)}}},
-              {"axial_depth_mm", json_number(model.axial_depth_mm)},
-              {"spindle_rpm", json_number(model.spindle_rpm)},
-              {"quantity", model.quantity}};
+  Json json{{"id", context.model_id},
+            {"version", context.model_version},
+            {"database", context.database_path},
+            {"tool", context.model_tool},
+            {"material", context.model_material},
+            {"match", context.model_match}};
+  json.update(model::to_json(model));
+  return json;
 }
 
 // --- CSV numbers ----------------------------------------------------------------------------------
@@ -110,210 +102,6 @@ void append_decimal(std::string& out, double value, int decimals) {
 
 // --- Reading --------------------------------------------------------------------------------------
 
-// A short text of a JSON value for messages.
-std::string shown(const Json& value) {
-  constexpr std::size_t kLongest = 40;
-  std::string text = value.dump();
-  if (text.size() > kLongest) text = text.substr(0, kLongest) + "…";
-  return text;
-}
-
-// A place in the document being read. Every accessor records a problem naming the member's path and the
-// value found and returns a neutral value, so that one pass reports everything. A node whose own value
-// is absent (already reported) yields neutral values silently for its members.
-class Node {
- public:
-  Node(const Json* value, std::string path, std::vector<InputProblem>& problems)
-      : value_(value), path_(std::move(path)), problems_(&problems) {}
-
-  //! The member `key`, which must be an object.
-  Node object(const std::string& key) const { return typed(key, &Json::is_object, "must be an object"); }
-
-  //! The member `key`, which must be an array.
-  Node array(const std::string& key) const { return typed(key, &Json::is_array, "must be an array"); }
-
-  //! Elements of this array node (0 when it is absent).
-  std::size_t size() const { return value_ != nullptr ? value_->size() : 0; }
-
-  //! Element `index` of this array node, which must be an object.
-  Node item(std::size_t index) const {
-    const std::string path = path_ + "[" + std::to_string(index) + "]";
-    const Json& value = (*value_)[index];
-    if (!value.is_object()) {
-      report(path, "= " + shown(value) + ": must be an object");
-      return Node(nullptr, path, *problems_);
-    }
-    return Node(&value, path, *problems_);
-  }
-
-  //! A finite number.
-  double number(const std::string& key) const {
-    const Json* value = member(key);
-    if (value == nullptr) return 0.0;
-    if (value->is_number() && std::isfinite(value->get<double>())) return value->get<double>();
-    report(child_path(key), "= " + shown(*value) + ": must be a finite number");
-    return 0.0;
-  }
-
-  //! A finite number ≥ `min`.
-  double number_at_least(const std::string& key, double min) const {
-    const double value = number(key);
-    if (value < min) report(child_path(key), "= " + shortest_number_text(value) + ": must be ≥ " + shortest_number_text(min));
-    return value;
-  }
-
-  //! A number, or null for a value the writer could not express (NaN).
-  double number_or_null(const std::string& key) const {
-    const Json* value = member(key);
-    if (value == nullptr || value->is_null()) return std::numeric_limits<double>::quiet_NaN();
-    if (value->is_number()) return value->get<double>();
-    report(child_path(key), "= " + shown(*value) + ": must be a number or null");
-    return std::numeric_limits<double>::quiet_NaN();
-  }
-
-  //! An integer in [min, max].
-  std::int64_t integer(const std::string& key, std::int64_t min, std::int64_t max) const {
-    const Json* value = member(key);
-    if (value == nullptr) return min;
-    if (value->is_number_unsigned()) {
-      const auto n = value->get<std::uint64_t>();
-      if (n <= static_cast<std::uint64_t>(max) && static_cast<std::int64_t>(n) >= min) return static_cast<std::int64_t>(n);
-    } else if (value->is_number_integer()) {
-      const auto n = value->get<std::int64_t>();
-      if (n >= min && n <= max) return n;
-    }
-    report(child_path(key), "= " + shown(*value) + ": must be an integer in [" + std::to_string(min) + ", " +
-                                std::to_string(max) + "]");
-    return min;
-  }
-
-  //! An int ≥ `min`.
-  int count(const std::string& key, int min = 0) const {
-    return static_cast<int>(integer(key, min, std::numeric_limits<int>::max()));
-  }
-
-  //! A string; nothing when it is missing or not a string (reported).
-  std::optional<std::string> text_if_valid(const std::string& key) const {
-    const Json* value = member(key);
-    if (value == nullptr) return std::nullopt;
-    if (value->is_string()) return value->get<std::string>();
-    report(child_path(key), "= " + shown(*value) + ": must be a string");
-    return std::nullopt;
-  }
-
-  //! A string ("" when it is missing or not a string, reported).
-  std::string text(const std::string& key) const { return text_if_valid(key).value_or(""); }
-
-  //! An array of strings.
-  std::vector<std::string> texts(const std::string& key) const {
-    const Node list = array(key);
-    std::vector<std::string> values;
-    for (std::size_t i = 0; i < list.size(); ++i) {
-      const Json& value = (*list.value_)[i];
-      if (value.is_string()) {
-        values.push_back(value.get<std::string>());
-      } else {
-        report(list.path_ + "[" + std::to_string(i) + "]", "= " + shown(value) + ": must be a string");
-      }
-    }
-    return values;
-  }
-
-  //! An array of exactly N finite numbers.
-  //! An optional array of finite numbers: empty when the member is absent.
-  std::vector<double> optional_numbers(const std::string& key) const {
-    std::vector<double> values;
-    if (value_ == nullptr || value_->find(key) == value_->end()) return values;
-    const Node list = array(key);
-    for (std::size_t i = 0; i < list.size(); ++i) {
-      const Json& value = (*list.value_)[i];
-      if (value.is_number() && std::isfinite(value.get<double>())) {
-        values.push_back(value.get<double>());
-      } else {
-        report(list.path_ + "[" + std::to_string(i) + "]", "= " + shown(value) + ": must be a finite number");
-      }
-    }
-    return values;
-  }
-
-  template <std::size_t N>
-  std::array<double, N> numbers(const std::string& key) const {
-    const Node list = array(key);
-    std::array<double, N> values{};
-    if (list.value_ != nullptr && list.size() != N) {
-      report(list.path_, "has " + std::to_string(list.size()) + " elements: must have " + std::to_string(N));
-    }
-    for (std::size_t i = 0; i < N && i < list.size(); ++i) {
-      const Json& value = (*list.value_)[i];
-      if (value.is_number() && std::isfinite(value.get<double>())) {
-        values[i] = value.get<double>();
-      } else {
-        report(list.path_ + "[" + std::to_string(i) + "]", "= " + shown(value) + ": must be a finite number");
-      }
-    }
-    return values;
-  }
-
-  //! An array of arrays of exactly N finite numbers each.
-  template <std::size_t N>
-  std::vector<std::array<double, N>> number_rows(const std::string& key) const {
-    const Node list = array(key);
-    std::vector<std::array<double, N>> rows;
-    for (std::size_t i = 0; i < list.size(); ++i) {
-      const Json& row = (*list.value_)[i];
-      const std::string path = list.path_ + "[" + std::to_string(i) + "]";
-      std::array<double, N> values{};
-      if (!row.is_array() || row.size() != N) {
-        report(path, "= " + shown(row) + ": must be an array of " + std::to_string(N) + " numbers");
-      } else {
-        for (std::size_t j = 0; j < N; ++j) {
-          if (row[j].is_number() && std::isfinite(row[j].get<double>())) {
-            values[j] = row[j].get<double>();
-          } else {
-            report(path + "[" + std::to_string(j) + "]", "= " + shown(row[j]) + ": must be a finite number");
-          }
-        }
-      }
-      rows.push_back(values);
-    }
-    return rows;
-  }
-
-  //! True when member `key` is there (absence is not a problem).
-  bool has(const std::string& key) const { return value_ != nullptr && value_->find(key) != value_->end(); }
-
-  //! The path of member `key`, for problems found by the caller.
-  std::string child_path(const std::string& key) const { return path_.empty() ? key : path_ + "." + key; }
-
-  //! Records a problem.
-  void report(std::string field, std::string message) const {
-    problems_->push_back({std::move(field), std::move(message)});
-  }
-
- private:
-  // The member `key`, or nullptr: reported as missing unless this node itself is absent.
-  const Json* member(const std::string& key) const {
-    if (value_ == nullptr) return nullptr;
-    const auto found = value_->find(key);
-    if (found != value_->end()) return &*found;
-    report(child_path(key), "is missing");
-    return nullptr;
-  }
-
-  Node typed(const std::string& key, bool (Json::*is_kind)() const noexcept, const char* expected) const {
-    const Json* value = member(key);
-    if (value != nullptr && !(value->*is_kind)()) {
-      report(child_path(key), "= " + shown(*value) + ": " + expected);
-      value = nullptr;
-    }
-    return Node(value, child_path(key), *problems_);
-  }
-
-  const Json* value_;
-  std::string path_;
-  std::vector<InputProblem>* problems_;
-};
-
 // The enum value whose to_string is `text`; `fallback` and a problem when none is.
 template <typename Enum, std::size_t N>
 Enum enum_from_text(const Node& node, const std::string& key, const std::array<Enum, N>& values, Enum fallback) {
@@ -326,24 +114,6 @@ Enum enum_from_text(const Node& node, const std::string& key, const std::array<E
   }
   node.report(node.child_path(key), "= '" + *text + "': must be one of " + allowed);
   return fallback;
-}
-
-model::ResponseSurfaceModel read_model(const Node& node) {
-  model::ResponseSurfaceModel model;
-  model.beta = node.numbers<6>("beta");
-  model.chip_center_mm = node.number("chip_center_mm");
-  model.chip_scale_mm = node.number("chip_scale_mm");
-  model.contact_length_center_mm = node.number("contact_length_center_mm");
-  model.contact_length_scale_mm = node.number("contact_length_scale_mm");
-  const Node range = node.object("range");
-  model.range.chip_min_mm = range.number("chip_min_mm");
-  model.range.chip_max_mm = range.number("chip_max_mm");
-  model.range.contact_length_min_mm = range.number("contact_length_min_mm");
-  model.range.contact_length_max_mm = range.number("contact_length_max_mm");
-  model.axial_depth_mm = node.number("axial_depth_mm");
-  model.spindle_rpm = node.number("spindle_rpm");
-  model.quantity = node.text("quantity");
-  return model;
 }
 
 PlanSummary read_summary(const Node& node) {
@@ -403,6 +173,144 @@ std::vector<PlannedBlock> read_blocks(const Node& list) {
     blocks.push_back(block);
   }
   return blocks;
+}
+
+// The steps of parse_plan_report, in its order.
+
+// The JSON text parsed; text that is not JSON, or not an object, throws.
+Json parse_report_text(std::string_view json_text, const std::string& source_name) {
+  Json document;
+  try {
+    document = Json::parse(json_text.begin(), json_text.end());
+  } catch (const Json::parse_error& error) {
+    throw InputError(source_name, std::string("is not valid JSON: ") + error.what());
+  }
+  if (!document.is_object()) {
+    throw InputError(source_name, "= " + json_value_text(document, JsonTextShown::kAsJson) +
+                                      ": is not a feedplan plan report (expected a JSON object)");
+  }
+  return document;
+}
+
+// The format first: another document's fields would only give confusing problems. Throws unless the
+// document is a plan report of a format_version this code reads; returns that version.
+int read_format_version(Reader& reader, const Node& root, const std::string& source_name) {
+  const std::string format = root.text("format");
+  reader.throw_if_any();
+  if (format != kFormatTag) {
+    throw InputError("format", "= '" + format + "': must be '" + kFormatTag + "' (" + source_name +
+                                   " is not a feedplan plan report)");
+  }
+  const int format_version = static_cast<int>(root.integer_in("format_version", 1, std::numeric_limits<int>::max()));
+  reader.throw_if_any();
+  if (format_version > kPlanReportFormatVersion) {
+    throw InputError("format_version", "= " + std::to_string(format_version) + ": " + source_name +
+                                           " was written by a newer feedplan (this one reads up to " +
+                                           std::to_string(kPlanReportFormatVersion) + ")");
+  }
+  return format_version;
+}
+
+// The plan's spec, cycle, tool and material.
+void read_origin(const Node& root, PlanReportContext& context) {
+  context.spec_path = root.text("spec");
+  context.cycle = root.text("cycle");
+  const Node tool = root.object("tool");
+  context.tool.name = tool.text("name");
+  context.tool.diameter_mm = tool.number("diameter_mm");
+  context.tool.flutes = tool.count("flutes", 1);
+  context.tool.helix_deg = tool.number("helix_deg");
+  context.material = root.text("material");
+}
+
+// Which stored model the plan used: the members of "model" besides the model's own.
+void read_model_identity(const Node& model, PlanReportContext& context) {
+  context.model_id = model.integer_in("id", 0, std::numeric_limits<std::int64_t>::max());
+  context.model_version = model.count("version");
+  context.database_path = model.text("database");
+  context.model_tool = model.text("tool");
+  context.model_material = model.text("material");
+  context.model_match = model.text("match");
+}
+
+// The model, target, spindle speed, machine limits, options and force correction.
+void read_settings(const Node& root, const Node& model, PlanSettings& settings) {
+  settings.model = model::read_model_json(model);
+  settings.target_force_n = root.number("target_force_n");
+  settings.spindle_rpm = root.number("spindle_rpm");
+  const Node machine = root.object("machine");
+  settings.machine.max_feed_mm_per_min = machine.number("max_feed_mm_per_min");
+  settings.machine.min_feed_mm_per_min = machine.number("min_feed_mm_per_min");
+  settings.machine.max_accel_mm_per_s2 = machine.number("max_accel_mm_per_s2");
+  settings.machine.rapid_feed_mm_per_min = machine.number("rapid_feed_mm_per_min");
+  settings.machine.block_time_min_s = machine.number("block_time_min_s");
+  const Node options = root.object("options");
+  settings.options.mode = enum_from_text(options, "mode", std::array{PlanMode::kSafe, PlanMode::kRegulate},
+                                         PlanMode::kSafe);
+  settings.options.air_feed_mm_per_min = options.number("air_feed_mm_per_min");
+  settings.options.merge_tolerance = options.number("merge_tolerance");
+  settings.options.feed_resolution_mm_per_min = options.number("feed_resolution_mm_per_min");
+  settings.options.jerk_limit_mm_per_s3 = options.number("jerk_limit_mm_per_s3");
+  settings.options.ds_mm = options.number("ds_mm");
+  settings.force_correction = root.numbers("force_correction", JsonPresence::kOptional);
+}
+
+// One entry of path_learning per plan sample, as force_correction has (`samples`).
+void check_path_learning_lengths(const Node& learning, const PlanReportContext& context, std::size_t samples) {
+  if (context.path_place_correction.size() != samples) {
+    learning.report("path_learning.place_correction", "has " + std::to_string(context.path_place_correction.size()) +
+                                                          " values: must have " + std::to_string(samples) +
+                                                          ", one per plan sample as force_correction");
+  }
+  if (context.path_measurements.size() != samples) {
+    learning.report("path_learning.measurements", "has " + std::to_string(context.path_measurements.size()) +
+                                                      " rows: must have " + std::to_string(samples) +
+                                                      ", one per plan sample as force_correction");
+  }
+}
+
+// Corrections within the learning's bounds, measurements not negative.
+void check_path_learning_values(const Node& learning, const PlanReportContext& context) {
+  for (std::size_t i = 0; i < context.path_place_correction.size(); ++i) {
+    const double c = context.path_place_correction[i];
+    if (!(c >= kMinForceCorrection && c <= kMaxForceCorrection)) {
+      learning.report("path_learning.place_correction[" + std::to_string(i) + "]",
+                      "= " + shortest_number_text(c) + ": must be in [" + shortest_number_text(kMinForceCorrection) +
+                          ", " + shortest_number_text(kMaxForceCorrection) + "]");
+    }
+  }
+  for (std::size_t i = 0; i < context.path_measurements.size(); ++i) {
+    for (std::size_t j = 0; j < 4; ++j) {
+      if (context.path_measurements[i][j] < 0.0) {
+        learning.report("path_learning.measurements[" + std::to_string(i) + "][" + std::to_string(j) + "]",
+                        "= " + shortest_number_text(context.path_measurements[i][j]) + ": must be ≥ 0");
+      }
+    }
+  }
+}
+
+// Learning along the path, when the report has it (`samples`: the force_correction entries).
+void read_path_learning(const Node& root, std::size_t samples, PlanReportContext& context) {
+  if (!root.has("path_learning")) return;
+  const Node learning = root.object("path_learning");
+  context.path_place_correction = learning.numbers("place_correction", JsonPresence::kOptional);
+  context.path_measurements = learning.number_rows<4>("measurements");
+  check_path_learning_lengths(learning, context, samples);
+  check_path_learning_values(learning, context);
+}
+
+// The program written: its path, dialect and count of blocks.
+void read_program(const Node& root, PlanReport& report) {
+  const Node program = root.object("program");
+  report.context.program_path = program.text("path");
+  report.context.dialect = program.text("dialect");
+  report.program_blocks = program.count("blocks");
+}
+
+// Well-formed numbers may still be out of range: the planner's own checks name the same paths.
+void check_settings(const PlanReport& report) {
+  std::vector<InputProblem> settings_problems = validate(report.settings, report.context.tool);
+  if (!settings_problems.empty()) throw InputError(std::move(settings_problems));
 }
 
 }  // namespace
@@ -510,123 +418,25 @@ std::string write_plan_samples_csv(const std::filesystem::path& path, const Plan
 }
 
 PlanReport parse_plan_report(std::string_view json_text, const std::string& source_name) {
-  Json document;
-  try {
-    document = Json::parse(json_text.begin(), json_text.end());
-  } catch (const Json::parse_error& error) {
-    throw InputError(source_name, std::string("is not valid JSON: ") + error.what());
-  }
-  std::vector<InputProblem> problems;
-  const auto fail_if_any = [&problems]() {
-    if (!problems.empty()) throw InputError(std::move(problems));
-  };
-  if (!document.is_object()) {
-    throw InputError(source_name, "= " + shown(document) + ": is not a feedplan plan report (expected a JSON object)");
-  }
-  const Node root(&document, "", problems);
-
-  // The format first: another document's fields would only give confusing problems.
-  const std::string format = root.text("format");
-  fail_if_any();
-  if (format != kFormatTag) {
-    throw InputError("format", "= '" + format + "': must be '" + kFormatTag + "' (" + source_name +
-                                   " is not a feedplan plan report)");
-  }
+  const Json document = parse_report_text(json_text, source_name);
+  Reader reader;
+  const Node root = reader.node(document, "");
   PlanReport report;
-  report.format_version = static_cast<int>(root.integer("format_version", 1, std::numeric_limits<int>::max()));
-  fail_if_any();
-  if (report.format_version > kPlanReportFormatVersion) {
-    throw InputError("format_version", "= " + std::to_string(report.format_version) + ": " + source_name +
-                                           " was written by a newer feedplan (this one reads up to " +
-                                           std::to_string(kPlanReportFormatVersion) + ")");
-  }
-
+  report.format_version = read_format_version(reader, root, source_name);
   report.status = enum_from_text(root, "status",
                                  std::array{PlanStatus::kOk, PlanStatus::kExtrapolated, PlanStatus::kTargetNotMet},
                                  PlanStatus::kOk);
   report.messages = root.texts("messages");
-
-  PlanReportContext& context = report.context;
-  context.spec_path = root.text("spec");
-  context.cycle = root.text("cycle");
-  const Node tool = root.object("tool");
-  context.tool.name = tool.text("name");
-  context.tool.diameter_mm = tool.number("diameter_mm");
-  context.tool.flutes = tool.count("flutes", 1);
-  context.tool.helix_deg = tool.number("helix_deg");
-  context.material = root.text("material");
-
+  read_origin(root, report.context);
   const Node model = root.object("model");
-  context.model_id = model.integer("id", 0, std::numeric_limits<std::int64_t>::max());
-  context.model_version = model.count("version");
-  context.database_path = model.text("database");
-  context.model_tool = model.text("tool");
-  context.model_material = model.text("material");
-  context.model_match = model.text("match");
-
-  PlanSettings& settings = report.settings;
-  settings.model = read_model(model);
-  settings.target_force_n = root.number("target_force_n");
-  settings.spindle_rpm = root.number("spindle_rpm");
-  const Node machine = root.object("machine");
-  settings.machine.max_feed_mm_per_min = machine.number("max_feed_mm_per_min");
-  settings.machine.min_feed_mm_per_min = machine.number("min_feed_mm_per_min");
-  settings.machine.max_accel_mm_per_s2 = machine.number("max_accel_mm_per_s2");
-  settings.machine.rapid_feed_mm_per_min = machine.number("rapid_feed_mm_per_min");
-  settings.machine.block_time_min_s = machine.number("block_time_min_s");
-  const Node options = root.object("options");
-  settings.options.mode = enum_from_text(options, "mode", std::array{PlanMode::kSafe, PlanMode::kRegulate},
-                                         PlanMode::kSafe);
-  settings.options.air_feed_mm_per_min = options.number("air_feed_mm_per_min");
-  settings.options.merge_tolerance = options.number("merge_tolerance");
-  settings.options.feed_resolution_mm_per_min = options.number("feed_resolution_mm_per_min");
-  settings.options.jerk_limit_mm_per_s3 = options.number("jerk_limit_mm_per_s3");
-  settings.options.ds_mm = options.number("ds_mm");
-  settings.force_correction = root.optional_numbers("force_correction");
-  if (root.has("path_learning")) {
-    const Node learning = root.object("path_learning");
-    context.path_place_correction = learning.optional_numbers("place_correction");
-    context.path_measurements = learning.number_rows<4>("measurements");
-    const std::size_t n = settings.force_correction.size();
-    if (context.path_place_correction.size() != n) {
-      learning.report("path_learning.place_correction", "has " + std::to_string(context.path_place_correction.size()) +
-                                                            " values: must have " + std::to_string(n) +
-                                                            ", one per plan sample as force_correction");
-    }
-    if (context.path_measurements.size() != n) {
-      learning.report("path_learning.measurements", "has " + std::to_string(context.path_measurements.size()) +
-                                                        " rows: must have " + std::to_string(n) +
-                                                        ", one per plan sample as force_correction");
-    }
-    for (std::size_t i = 0; i < context.path_place_correction.size(); ++i) {
-      const double c = context.path_place_correction[i];
-      if (!(c >= kMinForceCorrection && c <= kMaxForceCorrection)) {
-        learning.report("path_learning.place_correction[" + std::to_string(i) + "]",
-                        "= " + shortest_number_text(c) + ": must be in [" + shortest_number_text(kMinForceCorrection) +
-                            ", " + shortest_number_text(kMaxForceCorrection) + "]");
-      }
-    }
-    for (std::size_t i = 0; i < context.path_measurements.size(); ++i) {
-      for (std::size_t j = 0; j < 4; ++j) {
-        if (context.path_measurements[i][j] < 0.0) {
-          learning.report("path_learning.measurements[" + std::to_string(i) + "][" + std::to_string(j) + "]",
-                          "= " + shortest_number_text(context.path_measurements[i][j]) + ": must be ≥ 0");
-        }
-      }
-    }
-  }
-
+  read_model_identity(model, report.context);
+  read_settings(root, model, report.settings);
+  read_path_learning(root, report.settings.force_correction.size(), report.context);
   report.summary = read_summary(root.object("summary"));
-  const Node program = root.object("program");
-  context.program_path = program.text("path");
-  context.dialect = program.text("dialect");
-  report.program_blocks = program.count("blocks");
+  read_program(root, report);
   report.blocks = read_blocks(root.array("blocks"));
-  fail_if_any();
-
-  // Well-formed numbers may still be out of range: the planner's own checks name the same paths.
-  std::vector<InputProblem> settings_problems = validate(settings, context.tool);
-  if (!settings_problems.empty()) throw InputError(std::move(settings_problems));
+  reader.throw_if_any();
+  check_settings(report);
   return report;
 }
 

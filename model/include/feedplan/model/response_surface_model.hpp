@@ -37,10 +37,25 @@ struct ResponseSurfaceModel {
   std::string quantity = "peak_xy_force_per_revolution_n";
 };
 
+//! Which quantities validate() accepts as what F̂ stands for.
+enum class QuantityRule {
+  kThisProjects,  //!< only the one this project models: "= 'mean_force_n': must be 'peak_xy_force_per_revolution_n'"
+  kAnyNamed,      //!< any non-empty name: "= '': must name what the model predicts" (the model database)
+};
+
+//! How validate() names the fields it reports and which quantities it accepts. The defaults are the
+//! planner's; the model database names them after its table ("models.beta[2]", bounds without it).
+struct ModelCheckOptions {
+  std::string field_prefix = "model.";                    //!< before each field: "model.beta[3]"
+  std::string bound_prefix = "model.";                    //!< before the bound in "must be ≤ model.range.chip_max_mm = 0.08"
+  QuantityRule quantity = QuantityRule::kThisProjects;  //!< the quantities accepted
+};
+
 //! Every problem with a model's numbers, each naming its field ("model.beta[3] = nan: must be finite"):
 //! finite β; finite centres; finite scales > 0; a finite range with non-negative values and min ≤ max for
 //! t_m and for L; finite, non-negative axial depth and spindle speed; and the quantity F̂ stands for must
-//! be the one this project models ("peak_xy_force_per_revolution_n"). Empty when the model is usable.
-std::vector<InputProblem> validate(const ResponseSurfaceModel& model);
+//! be the one this project models ("peak_xy_force_per_revolution_n"), or any name as `options` say.
+//! Empty when the model is usable.
+std::vector<InputProblem> validate(const ResponseSurfaceModel& model, const ModelCheckOptions& options = {});
 
 }  // namespace feedplan::model
