@@ -15,6 +15,7 @@
 
 #include "common_checks.hpp"
 #include "feedplan/core/input_error.hpp"
+#include "feedplan/core/joined_text.hpp"
 #include "feedplan/core/yaml_fields.hpp"
 #include "feedplan/core/yaml_text.hpp"
 #include "feedplan/cycles/cycle.hpp"
@@ -30,15 +31,6 @@ constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 const std::vector<std::string> kCycleNames = {"corner", "trochoid", "spiral", "helical_boring", "pocket"};
 
-std::string join(const std::vector<std::string>& items, const std::string& separator) {
-  std::string text;
-  for (const auto& item : items) {
-    if (!text.empty()) text += separator;
-    text += item;
-  }
-  return text;
-}
-
 // Reads one document into a CycleSpec, collecting structural problems (types, unknown and missing
 // fields) and the YAML line of every field it visits. The field rules are core's YamlFieldReader.
 class SpecReader : public YamlFieldReader<YAML::Node> {
@@ -47,7 +39,7 @@ class SpecReader : public YamlFieldReader<YAML::Node> {
 
   // Checks that `node` (the value of `path`) is a mapping with known keys only; records key lines.
   bool mapping(const YAML::Node& node, const std::string& path, const std::vector<std::string>& allowed) {
-    return check_mapping(node, path, allowed, "must be a mapping of fields (" + join(allowed, ", ") + ")");
+    return check_mapping(node, path, allowed, "must be a mapping of fields (" + joined_text(allowed, ", ") + ")");
   }
 
   // A number; absent: `fallback` (or, when required, a problem and NaN).
@@ -304,11 +296,11 @@ std::vector<std::string> top_level_fields() {
 
 // spec.cycle; true when it names a known cycle (an unknown name is a problem).
 bool read_cycle_name(SpecReader& in, const YAML::Node& root, CycleSpec& spec) {
-  spec.cycle = in.text(root, "", "cycle", true, "one of " + join(kCycleNames, ", "));
+  spec.cycle = in.text(root, "", "cycle", true, "one of " + joined_text(kCycleNames, ", "));
   const bool cycle_known = std::find(kCycleNames.begin(), kCycleNames.end(), spec.cycle) != kCycleNames.end();
   if (!cycle_known && in.reported.count("cycle") == 0) {
     in.add("cycle", yaml_line(root["cycle"]),
-           "= " + yaml_value_text(root["cycle"]) + ": unknown cycle; expected one of " + join(kCycleNames, ", "));
+           "= " + yaml_value_text(root["cycle"]) + ": unknown cycle; expected one of " + joined_text(kCycleNames, ", "));
   }
   return cycle_known;
 }

@@ -128,17 +128,6 @@ bool robust_minimum(const Data& data, const std::array<double, 6>& prior, const 
   return summary.termination_type == ceres::CONVERGENCE;
 }
 
-//! √(Σ w (F − F̂)² / Σ w) over the samples.
-double weighted_rms_error(const model::ResponseSurfaceModel& model, const std::vector<LearningSample>& samples) {
-  double sum = 0.0, weight = 0.0;
-  for (const LearningSample& s : samples) {
-    const double e = s.force_n - model::predict(model, s.chip_mm, s.contact_length_mm).force_n;
-    sum += s.weight * e * e;
-    weight += s.weight;
-  }
-  return weight > 0.0 ? std::sqrt(sum / weight) : 0.0;
-}
-
 std::string list_names(const std::array<bool, 6>& mask, bool wanted) {
   std::string names;
   for (int j = 0; j < 6; ++j) {

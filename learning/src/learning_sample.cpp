@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "feedplan/core/number_text.hpp"
+#include "feedplan/model/model_prediction.hpp"
 
 namespace feedplan::learning {
 
@@ -24,6 +25,17 @@ void validate(const model::ResponseSurfaceModel& model, const std::vector<Learni
               std::vector<InputProblem>& problems) {
   for (InputProblem& p : model::validate(model)) problems.push_back(std::move(p));
   for (std::size_t i = 0; i < samples.size(); ++i) validate(samples[i], "samples[" + std::to_string(i) + "].", problems);
+}
+
+// √(Σ w (F − F̂)² / Σ w) over the samples; 0 for none.
+double weighted_rms_error(const model::ResponseSurfaceModel& model, const std::vector<LearningSample>& samples) {
+  double sum = 0.0, weight = 0.0;
+  for (const LearningSample& s : samples) {
+    const double e = s.force_n - model::predict(model, s.chip_mm, s.contact_length_mm).force_n;
+    sum += s.weight * e * e;
+    weight += s.weight;
+  }
+  return weight > 0.0 ? std::sqrt(sum / weight) : 0.0;
 }
 
 }  // namespace feedplan::learning

@@ -34,17 +34,6 @@ void extend_range(model::FittedRange& range, const LearningSample& s) {
   range.contact_length_max_mm = std::max(range.contact_length_max_mm, s.contact_length_mm);
 }
 
-//! √(Σ w (F − F̂)² / Σ w) over the samples; 0 for none.
-double weighted_rms_error(const model::ResponseSurfaceModel& model, const std::vector<LearningSample>& samples) {
-  double sum = 0.0, weight = 0.0;
-  for (const LearningSample& s : samples) {
-    const double e = s.force_n - model::predict(model, s.chip_mm, s.contact_length_mm).force_n;
-    sum += s.weight * e * e;
-    weight += s.weight;
-  }
-  return weight > 0.0 ? std::sqrt(sum / weight) : 0.0;
-}
-
 }  // namespace
 
 std::vector<InputProblem> validate(const RlsOptions& options) {

@@ -14,6 +14,7 @@
 #include <system_error>
 
 #include "feedplan/core/did_you_mean.hpp"
+#include "feedplan/core/joined_text.hpp"
 #include "feedplan/core/number_text.hpp"
 #include "feedplan/core/yaml_fields.hpp"
 #include "feedplan/core/yaml_text.hpp"
@@ -59,15 +60,6 @@ std::string trim(const std::string& text) {
   return text.substr(first, last - first + 1);
 }
 
-std::string join(const std::vector<std::string>& items, const std::string& separator) {
-  std::string text;
-  for (const auto& item : items) {
-    if (!text.empty()) text += separator;
-    text += item;
-  }
-  return text;
-}
-
 std::string child(const std::string& path, const std::string& key) { return path.empty() ? key : path + "." + key; }
 
 // Collects structural and value problems while walking the YAML tree. The field rules are core's
@@ -79,7 +71,7 @@ class Reader : public YamlFieldReader<YAML::Node> {
   // Checks that `node` (the value of `path`) is a mapping with known keys only.
   bool mapping(const YAML::Node& node, const std::string& path, const std::vector<std::string>& allowed,
                const std::string& what) {
-    return check_mapping(node, path, allowed, "must be a mapping — " + what + " with fields " + join(allowed, ", "));
+    return check_mapping(node, path, allowed, "must be a mapping — " + what + " with fields " + joined_text(allowed, ", "));
   }
 
   // A number at map[key]; nullopt (and a problem) when missing or not a number. ".nan" and ".inf" are
@@ -275,7 +267,7 @@ Material read_material(Reader& in, const YAML::Node& node, const std::string& pa
 
 std::string material_names(const Material& m) {
   if (m.aliases.empty()) return m.name;
-  return m.name + " (" + join(m.aliases, ", ") + ")";
+  return m.name + " (" + joined_text(m.aliases, ", ") + ")";
 }
 
 }  // namespace
@@ -308,7 +300,7 @@ InputProblem unknown_material_problem(const MaterialLibrary& library, const std:
   }
   std::string message = "= \"" + name + "\": unknown material; known";
   if (!library.source_name.empty()) message += " in " + library.source_name;
-  message += ": " + (known.empty() ? std::string("none") : join(known, ", "));
+  message += ": " + (known.empty() ? std::string("none") : joined_text(known, ", "));
   std::string best = closest_name(trim(name), all_names, LetterCase::kIgnored);
   if (best.empty() && !trim(name).empty()) {
     // "s50" → "S50C": a prefix is as good a hint as a typo.

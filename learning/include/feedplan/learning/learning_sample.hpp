@@ -29,4 +29,7 @@ void validate(const LearningSample& sample, const std::string& prefix, std::vect
 void validate(const model::ResponseSurfaceModel& model, const std::vector<LearningSample>& samples,
               std::vector<InputProblem>& problems);
 
+//! √(Σ w (F − F̂)² / Σ w), the weighted RMS error of `model` over `samples`, N; 0 for none.
+double weighted_rms_error(const model::ResponseSurfaceModel& model, const std::vector<LearningSample>& samples);
+
 }  // namespace feedplan::learning
