@@ -5,41 +5,20 @@
 #include <string>
 
 #include "feedplan/core/number_text.hpp"
+#include "feedplan/core/problem_list.hpp"
 
 namespace feedplan::model_db {
 namespace {
 
 std::string quoted(const std::string& text) { return "'" + text + "'"; }
 
-//! Collects problems as "<table>.<field> = <value>: <rule>".
-class Problems {
- public:
-  explicit Problems(std::string table) : table_(std::move(table)) {}
-
-  void add(const std::string& field, const std::string& value_text, const std::string& rule) {
-    list_.push_back({table_ + "." + field, "= " + value_text + ": " + rule});
+//! A problem unless `value` is a non-empty name without leading or trailing blanks.
+void check_name(ProblemList& problems, const std::string& field, const std::string& value) {
+  if (value.empty() || std::isspace(static_cast<unsigned char>(value.front())) != 0 ||
+      std::isspace(static_cast<unsigned char>(value.back())) != 0) {
+    problems.add_value(field, quoted(value), "must be a non-empty name without leading or trailing blanks");
   }
-  void finite(const std::string& field, double value) {
-    if (!std::isfinite(value)) add(field, shortest_number_text(value), "must be finite");
-  }
-  void positive(const std::string& field, double value) {
-    if (!std::isfinite(value) || value <= 0.0) add(field, shortest_number_text(value), "must be finite and > 0");
-  }
-  void non_negative(const std::string& field, double value) {
-    if (!std::isfinite(value) || value < 0.0) add(field, shortest_number_text(value), "must be finite and ≥ 0");
-  }
-  void name(const std::string& field, const std::string& value) {
-    if (value.empty() || std::isspace(static_cast<unsigned char>(value.front())) != 0 ||
-        std::isspace(static_cast<unsigned char>(value.back())) != 0) {
-      add(field, quoted(value), "must be a non-empty name without leading or trailing blanks");
-    }
-  }
-  std::vector<InputProblem> take() { return std::move(list_); }
-
- private:
-  std::string table_;
-  std::vector<InputProblem> list_;
-};
+}
 
 }  // namespace
 
@@ -85,35 +64,35 @@ std::optional<ModelSource> parse_model_source(std::string_view text) {
 }
 
 std::vector<InputProblem> validate(const ToolRecord& tool) {
-  Problems problems("tools");
-  problems.name("name", tool.name);
+  ProblemList problems("tools.");
+  check_name(problems, "name", tool.name);
   problems.positive("diameter_mm", tool.diameter_mm);
-  if (tool.flutes < 1) problems.add("flutes", std::to_string(tool.flutes), "must be ≥ 1");
+  if (tool.flutes < 1) problems.add_value("flutes", std::to_string(tool.flutes), "must be ≥ 1");
   if (!std::isfinite(tool.helix_deg) || tool.helix_deg < 0.0 || tool.helix_deg >= 90.0) {
-    problems.add("helix_deg", shortest_number_text(tool.helix_deg), "must be in [0, 90)");
+    problems.add_value("helix_deg", shortest_number_text(tool.helix_deg), "must be in [0, 90)");
   }
   return problems.take();
 }
 
 std::vector<InputProblem> validate(const MaterialRecord& material) {
-  Problems problems("materials");
-  problems.name("name", material.name);
+  ProblemList problems("materials.");
+  check_name(problems, "name", material.name);
   problems.positive("hardness_value", material.hardness_value);
   const std::string& scale = material.hardness_scale;
   if (scale != "HB" && scale != "HV" && scale != "HRC" && scale != "HRB") {
-    problems.add("hardness_scale", quoted(scale), "must be one of HB, HV, HRC, HRB");
+    problems.add_value("hardness_scale", quoted(scale), "must be one of HB, HV, HRC, HRB");
   }
   return problems.take();
 }
 
 std::vector<InputProblem> validate(const ModelRecord& record) {
-  Problems problems("models");
+  ProblemList problems("models.");
   // The model's own numbers as the planner checks them, named after the table; any named quantity is
   // stored (the planner accepts only its own).
   const model::ModelCheckOptions model_checks{"models.", "", model::QuantityRule::kAnyNamed};
   std::vector<InputProblem> list = model::validate(record.model, model_checks);
   const ModelFitStatistics& fit = record.fit;
-  if (fit.n < 0) problems.add("fit.n", std::to_string(fit.n), "must be ≥ 0");
+  if (fit.n < 0) problems.add_value("fit.n", std::to_string(fit.n), "must be ≥ 0");
   problems.non_negative("fit.rmse_n", fit.rmse_n);
   problems.finite("fit.r_squared", fit.r_squared);
   problems.non_negative("fit.loo_rmse_n", fit.loo_rmse_n);
@@ -128,10 +107,10 @@ std::vector<InputProblem> validate(const ModelRecord& record) {
 }
 
 std::vector<InputProblem> validate(const CuttingTestRecord& test) {
-  Problems problems("cutting_tests");
+  ProblemList problems("cutting_tests.");
   const CuttingTestConditions& conditions = test.conditions;
-  problems.name("tool_name", conditions.tool_name);
-  problems.name("material_name", conditions.material_name);
+  check_name(problems, "tool_name", conditions.tool_name);
+  check_name(problems, "material_name", conditions.material_name);
   problems.positive("spindle_rpm", conditions.spindle_rpm);
   problems.positive("feed_mm_per_min", conditions.feed_mm_per_min);
   problems.positive("radial_depth_mm", conditions.radial_depth_mm);
@@ -143,9 +122,9 @@ std::vector<InputProblem> validate(const CuttingTestRecord& test) {
   problems.non_negative("peak_std_n", test.peak_std_n);
   problems.non_negative("peak_min_n", test.peak_min_n);
   problems.non_negative("peak_max_n", test.peak_max_n);
-  if (test.revolutions_total < 0) problems.add("revolutions_total", std::to_string(test.revolutions_total), "must be ≥ 0");
+  if (test.revolutions_total < 0) problems.add_value("revolutions_total", std::to_string(test.revolutions_total), "must be ≥ 0");
   if (test.revolutions_used < 0 || test.revolutions_used > test.revolutions_total) {
-    problems.add("revolutions_used", std::to_string(test.revolutions_used),
+    problems.add_value("revolutions_used", std::to_string(test.revolutions_used),
                  "must be in [0, revolutions_total = " + std::to_string(test.revolutions_total) + "]");
   }
   for (std::size_t i = 0; i < test.steady_peaks_n.size(); ++i) {
@@ -155,12 +134,12 @@ std::vector<InputProblem> validate(const CuttingTestRecord& test) {
 }
 
 std::vector<InputProblem> validate(const LearningEntry& entry) {
-  Problems problems("learning_history");
+  ProblemList problems("learning_history.");
   if (entry.model_id_before <= 0) {
-    problems.add("model_id_before", std::to_string(entry.model_id_before), "must name a stored model version");
+    problems.add_value("model_id_before", std::to_string(entry.model_id_before), "must name a stored model version");
   }
-  if (entry.model_id_after < 0) problems.add("model_id_after", std::to_string(entry.model_id_after), "must be ≥ 0");
-  if (entry.n_samples < 0) problems.add("n_samples", std::to_string(entry.n_samples), "must be ≥ 0");
+  if (entry.model_id_after < 0) problems.add_value("model_id_after", std::to_string(entry.model_id_after), "must be ≥ 0");
+  if (entry.n_samples < 0) problems.add_value("n_samples", std::to_string(entry.n_samples), "must be ≥ 0");
   problems.non_negative("error_before_n", entry.error_before_n);
   problems.non_negative("error_after_n", entry.error_after_n);
   return problems.take();
