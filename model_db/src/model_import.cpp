@@ -221,7 +221,8 @@ Json parse_exchange_text(std::string_view text, const std::string& source_name) 
   } catch (const Json::parse_error& error) {
     throw InputError(source_name, std::string("is not valid JSON: ") + error.what());
   }
-  if (!root.is_object() || root.value("format", "") != "feedplan-model-db") {
+  const auto format = root.is_object() ? root.find("format") : root.end();
+  if (format == root.end() || !format->is_string() || format->get<std::string>() != "feedplan-model-db") {
     throw InputError(source_name, "is not a feedplan model database export (expected \"format\": \"feedplan-model-db\")");
   }
   return root;

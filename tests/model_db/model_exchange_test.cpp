@@ -245,6 +245,18 @@ TEST_F(BadDocumentTest, NotThisFormat) {
             "other.json is not a feedplan model database export (expected \"format\": \"feedplan-model-db\")");
 }
 
+TEST_F(BadDocumentTest, AFormatThatIsNotTextIsNotThisFormat) {
+  EXPECT_EQ(error_after([](auto& d) { d["format"] = 5; }),
+            "other.json is not a feedplan model database export (expected \"format\": \"feedplan-model-db\")");
+}
+
+TEST_F(BadDocumentTest, AnIntegerBeyondAnIntIsNamedNotWrapped) {
+  const std::string message = error_after([](auto& d) { d["tools"][0]["flutes"] = 3000000000LL; });
+  EXPECT_NE(message.find("tools[0].flutes = 3000000000: must be an integer in [-2147483648, 2147483647]"),
+            std::string::npos)
+      << message;
+}
+
 TEST_F(BadDocumentTest, NewerFormatVersionAsksToUpgrade) {
   EXPECT_EQ(error_after([](auto& d) { d["format_version"] = 2; }),
             "other.json has format_version 2, newer than this feedplan reads (1): upgrade feedplan");

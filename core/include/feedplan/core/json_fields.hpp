@@ -231,12 +231,22 @@ class JsonNode {
     return std::numeric_limits<double>::quiet_NaN();
   }
 
-  //! An integer (0 when it is not), as an int.
+  //! An integer (0 when it is not), as an int; one beyond an int's range is a problem too.
   int integer(const std::string& key) const {
     const Json* value = member(key);
     if (value == nullptr) return 0;
-    if (value->is_number_integer()) return value->template get<int>();
-    report(child_path(key), "= " + shown(*value) + ": must be an integer");
+    if (!value->is_number_integer()) {
+      report(child_path(key), "= " + shown(*value) + ": must be an integer");
+      return 0;
+    }
+    constexpr auto kMax = static_cast<std::uint64_t>(std::numeric_limits<int>::max());
+    const bool fits = value->is_number_unsigned() ? value->template get<std::uint64_t>() <= kMax
+                                                  : value->template get<std::int64_t>() >= std::numeric_limits<int>::min() &&
+                                                        value->template get<std::int64_t>() <= std::numeric_limits<int>::max();
+    if (fits) return static_cast<int>(value->template get<std::int64_t>());
+    report(child_path(key), "= " + shown(*value) + ": must be an integer in [" +
+                                std::to_string(std::numeric_limits<int>::min()) + ", " +
+                                std::to_string(std::numeric_limits<int>::max()) + "]");
     return 0;
   }
 
