@@ -17,8 +17,8 @@
 //      two at the acceleration limit (the controller model below).
 //   4. Prediction (controller_model.hpp): how a look-ahead controller runs the blocks, the force the
 //      model predicts at the feed actually run, and the cycle time.
-//   5. Baseline (constant_feed_baseline.hpp): the one feed with the same predicted peak force, its
-//      cycle time and the time saved.
+//   5. Baseline (PlanSummary::baseline; the program itself: constant_feed.hpp): the one feed with the
+//      same predicted peak force, its cycle time and the time saved.
 //
 // Controller model (what "the machine runs" means in every prediction and test):
 //   - each feed block runs at most at its F (and at most at √(a·R) on arcs of radius R), rapids at the
