@@ -8,6 +8,7 @@
 #include <iostream>
 #include <sstream>
 
+#include "output_path.hpp"
 #include "feedplan/core/atomic_file.hpp"
 #include "feedplan/core/input_error.hpp"
 #include "feedplan/core/number_text.hpp"
@@ -34,6 +35,9 @@ void add_calibration_command(CLI::App& app, CalibrationOptions& options) {
 }
 
 int run_calibration_command(const CalibrationOptions& o) {
+  std::vector<InputProblem> path_problems;
+  check_outputs({{"LOG", o.log_path}}, {{"-o", o.output_path}}, path_problems);
+  if (!path_problems.empty()) throw InputError(std::move(path_problems));
   const force_log::ForceLog log = force_log::load_force_log(o.log_path);
   const learning::CurrentCalibration calibration = learning::fit_current_calibration(log);
   nlohmann::json out{{"format", kFormat}, {"format_version", 1}, {"log", o.log_path},

@@ -8,6 +8,7 @@
 #include <iostream>
 #include <sstream>
 
+#include "output_path.hpp"
 #include "feedplan/core/angle.hpp"
 #include "feedplan/core/atomic_file.hpp"
 #include "feedplan/core/input_error.hpp"
@@ -28,6 +29,9 @@ void add_cycle_command(CLI::App& app, CycleOptions& options) {
 }
 
 int run_cycle_command(const CycleOptions& options) {
+  std::vector<InputProblem> path_problems;
+  check_outputs({{"SPEC", options.spec_path}}, {{"--engagement", options.engagement_path}}, path_problems);
+  if (!path_problems.empty()) throw InputError(std::move(path_problems));
   const cycles::CycleSpec spec = cycles::load_cycle_spec(options.spec_path);
   const double tool_radius_mm = spec.tool.radius_mm();
   if (!(options.ds_mm >= 0.001 && options.ds_mm <= tool_radius_mm)) {
@@ -46,7 +50,7 @@ int run_cycle_command(const CycleOptions& options) {
   if (!options.engagement_path.empty()) {
     const std::string error = write_file_atomically(options.engagement_path, geometry::engagement_csv(profile));
     if (!error.empty()) {
-      std::cerr << "feedplan: " << error << "\n";
+      std::cerr << "feedplan: failed: " << error << "\n";
       return 1;
     }
   }

@@ -1,6 +1,7 @@
 #include "db_command.hpp"
 
 #include "database_path.hpp"
+#include "output_path.hpp"
 
 #include <nlohmann/json.hpp>
 
@@ -423,13 +424,27 @@ int run_rollback(const DbOptions& o) {
   return 0;
 }
 
+// FILE and the database must be two files: export would overwrite the database, import read it as JSON.
+void check_exchange_file(const DbOptions& o, bool exporting) {
+  std::vector<InputProblem> problems;
+  const NamedPath file{"FILE", o.file};
+  const NamedPath db{"--db", database_path(o.db_path)};
+  if (exporting) {
+    check_outputs({db}, {file}, problems);
+  } else {
+    check_outputs({file}, {db}, problems);
+  }
+  if (!problems.empty()) throw InputError(std::move(problems));
+}
+
 int run_export(const DbOptions& o) {
+  check_exchange_file(o, true);
   const mdb::Store store = open_store(o, mdb::OpenMode::kReadOnly);
   mdb::ExportOptions options;
   options.active_models_only = !o.all_versions;
   const std::string text = mdb::export_json(store, options);
   if (const std::string error = write_file_atomically(o.file, text); !error.empty()) {
-    std::cerr << "feedplan: " << error << "\n";
+    std::cerr << "feedplan: failed: " << error << "\n";
     return 1;
   }
   if (!o.json) std::printf("exported %s to %s\n", store.path().string().c_str(), o.file.c_str());
@@ -437,6 +452,7 @@ int run_export(const DbOptions& o) {
 }
 
 int run_import(const DbOptions& o) {
+  check_exchange_file(o, false);
   mdb::Store store = open_store(o, mdb::OpenMode::kCreate);
   const mdb::ImportSummary s = mdb::import_from_file(store, o.file);
   std::ostringstream text;

@@ -8,7 +8,8 @@
 
 #include "calibration_command.hpp"
 #include "database_path.hpp"
-#include "feedplan/core/atomic_file.hpp"
+#include "output_files.hpp"
+#include "output_path.hpp"
 #include "feedplan/core/input_error.hpp"
 #include "feedplan/cycles/cycle.hpp"
 #include "feedplan/cycles/spec_reader.hpp"
@@ -16,6 +17,7 @@
 #include "feedplan/learning/current_calibration.hpp"
 #include "feedplan/learning/model_update.hpp"
 #include "feedplan/learning/path_correction.hpp"
+#include "feedplan/model_db/stale_model_error.hpp"
 #include "feedplan/model_db/store.hpp"
 #include "feedplan/planner/plan_plot.hpp"
 #include "feedplan/planner/plan_report.hpp"
@@ -43,9 +45,10 @@ void print_errors(const char* what, const learning::PredictionErrors& e) {
 // The plan the parts were cut with, their logs and the database to learn into.
 struct LearnInputs {
   planner::PlanReport report;            // the plan report
-  cycles::CycleSpec spec;                // the cycle spec it came from
+  std::string spec_path;                 // the cycle spec it came from, where it was found
+  cycles::CycleSpec spec;                // that spec
   std::vector<learning::NamedLog> logs;  // the logs, with forces (from currents when calibrated)
-  std::string db_path;                   // --db, else the report's, else $FEEDPLAN_DB, else the sample
+  std::string db_path;                   // --db, else the report's (found from here), else $FEEDPLAN_DB, else the sample
 };
 
 // The model version planned with, and the one learned from it.
@@ -87,24 +90,63 @@ std::vector<learning::NamedLog> read_logs(const LearnOptions& o) {
   return logs;
 }
 
+// --db, else the database the report names (found from here), else $FEEDPLAN_DB, else the sample.
+std::string learn_database_path(const LearnOptions& o, const planner::PlanReport& report) {
+  if (!o.db_path.empty()) return o.db_path;
+  if (!report.context.database_path.empty()) return report_database_path(report.context.database_path, o.plan_path);
+  return database_path("");
+}
+
+// No output may be one of the inputs (the report, the spec it names, the logs, the database) or another output.
+void check_learn_outputs(const LearnOptions& o, const LearnInputs& in) {
+  std::vector<NamedPath> inputs{{"PLAN", o.plan_path},
+                                {"the plan's spec", in.spec_path},
+                                {o.db_path.empty() ? "the model database" : "--db", in.db_path},
+                                {"--calibration", o.calibration_path}};
+  for (const std::string& log : o.log_paths) inputs.push_back({"LOG", log});
+  std::vector<InputProblem> problems;
+  check_outputs(inputs, {{"-o", o.program_path}, {"--report", o.report_path}, {"--plot", o.plot_path}}, problems);
+  if (!problems.empty()) throw InputError(std::move(problems));
+}
+
 // Inputs, all read and checked before anything is written.
 LearnInputs read_learn_inputs(const LearnOptions& o) {
   LearnInputs in;
   in.report = planner::read_plan_report(o.plan_path);
-  in.spec = cycles::load_cycle_spec(resolve_spec(in.report.context.spec_path, o.plan_path));
+  in.spec_path = resolve_spec(in.report.context.spec_path, o.plan_path);
+  in.spec = cycles::load_cycle_spec(in.spec_path);
   in.logs = read_logs(o);
-  in.db_path = !o.db_path.empty() ? o.db_path
-               : !in.report.context.database_path.empty() ? in.report.context.database_path
-                                                          : database_path("");
+  in.db_path = learn_database_path(o, in.report);
+  check_learn_outputs(o, in);
   return in;
 }
 
-model_db::ModelRecord planned_model(const model_db::Store& store, const LearnInputs& in) {
-  const auto before = store.model_by_id(in.report.context.model_id);
-  if (!before) {
-    throw InputError("model.id", "= " + std::to_string(in.report.context.model_id) + ": the plan's model is not in " + in.db_path);
+// The plan's model, by the report's id; its version, tool and material must be the report's too, or the
+// file is not the database the plan was made with (another one, or rebuilt since).
+model_db::ModelRecord planned_model(const model_db::Store& store, const LearnOptions& o, const LearnInputs& in) {
+  const planner::PlanReportContext& c = in.report.context;
+  const auto before = store.model_by_id(c.model_id);
+  if (before && before->version == c.model_version && before->tool_name == c.model_tool &&
+      before->material_name == c.model_material) {
+    return *before;
   }
-  return *before;
+  const std::string there = before ? "; id " + std::to_string(c.model_id) + " there is " + before->tool_name + " in " +
+                                         before->material_name + " v" + std::to_string(before->version)
+                                   : "; it has no model with that id";
+  const bool other_file = !o.db_path.empty() && !c.database_path.empty() && stored_path(o.db_path) != c.database_path;
+  const std::string advice = other_file ? "the plan was made with " + c.database_path + ": give that one with --db (or leave --db out)"
+                                        : "the file there was replaced or rebuilt since the plan was made: give the database the plan "
+                                          "was made with, with --db";
+  throw InputError("model.id", "= " + std::to_string(c.model_id) + ": the plan's model (" + c.model_tool + " in " +
+                                   c.model_material + " v" + std::to_string(c.model_version) + ") is not in " + in.db_path +
+                                   there + " — " + advice);
+}
+
+// The plan's model must still be the active version, since the learned version is filed as its child:
+// said before learning, and checked again when storing (Store::add_learned_model).
+void require_planned_model_active(const model_db::Store& store, const model_db::ModelRecord& before) {
+  const auto active = store.active_model(before.tool_name, before.material_name);
+  if (active && active->id != before.id) throw model_db::StaleModelError(before, *active);
 }
 
 // The plan again (deterministic from the spec and the report's settings); it must be the one cut.
@@ -208,7 +250,8 @@ planner::PlanReportContext next_context(const LearnOptions& o, const LearnInputs
   context.model_id = stored.id;
   context.model_version = stored.version;
   context.program_path = o.program_path;
-  context.database_path = in.db_path;
+  context.spec_path = stored_path(in.spec_path);  // absolute: the next learn finds both from any folder
+  context.database_path = stored_path(in.db_path);
   context.path_place_correction = along_path.place_correction;
   context.path_measurements.clear();
   for (const auto& m : along_path.measurement) {
@@ -217,16 +260,11 @@ planner::PlanReportContext next_context(const LearnOptions& o, const LearnInputs
   return context;
 }
 
-// The program, --report and --plot (with the measured peaks). Returns the first error, or empty.
-std::string write_learn_outputs(const LearnOptions& o, const LearnInputs& in, const model_db::ModelRecord& stored,
-                                const learning::ModelUpdate& update, const Replanned& next) {
-  if (auto error = write_file_atomically(o.program_path, next.program_text); !error.empty()) return error;
+// Stages --report and --plot (with the measured peaks), which name the stored version.
+void stage_learn_reports(const LearnOptions& o, const LearnInputs& in, const model_db::ModelRecord& stored,
+                         const learning::ModelUpdate& update, const Replanned& next, OutputFiles& files) {
   const planner::PlanReportContext context = next_context(o, in, stored, next.along_path);
-  if (!o.report_path.empty()) {
-    if (auto error = planner::write_plan_report(o.report_path, next.plan, next.settings, context); !error.empty()) {
-      return error;
-    }
-  }
+  if (!o.report_path.empty()) files.add(o.report_path, planner::plan_report_json(next.plan, next.settings, context));
   if (!o.plot_path.empty()) {
     planner::PlanPlotOptions plot;
     plot.title = in.spec.cycle + " re-planned with model v" + std::to_string(stored.version) + " (markers: measured peaks)";
@@ -235,11 +273,8 @@ std::string write_learn_outputs(const LearnOptions& o, const LearnInputs& in, co
       for (const auto& r : log.revolutions.revolutions) peaks.emplace_back(0.5 * (r.s_start_mm + r.s_end_mm), r.peak_n);
     }
     plot.measured_peaks = peaks;
-    if (auto error = planner::write_plan_plot(o.plot_path, next.plan, next.settings.target_force_n, plot); !error.empty()) {
-      return error;
-    }
+    files.add(o.plot_path, planner::plan_plot_svg(next.plan, next.settings.target_force_n, plot));
   }
-  return "";
 }
 
 void print_learn_json(const LearnInputs& in, const ModelVersions& models, const learning::ModelUpdate& update,
@@ -298,7 +333,8 @@ int run_learn_command(const LearnOptions& o) {
   const LearnInputs in = read_learn_inputs(o);
   model_db::Store store = model_db::Store::open(in.db_path, model_db::OpenMode::kExisting);
   ModelVersions models;
-  models.before = planned_model(store, in);
+  models.before = planned_model(store, o, in);
+  require_planned_model_active(store, models.before);
   const RemadePlan remade = remake_plan(in);
   const learning::ModelUpdate update = learn_from_logs(o, in, store, models.before, remade.plan);
   for (const std::string& message : update.messages) std::cerr << "feedplan: " << message << "\n";
@@ -308,9 +344,18 @@ int run_learn_command(const LearnOptions& o) {
   }
   // Re-plan with the learned model before storing anything, so that a plan problem stores nothing.
   const Replanned next = replan(in, remade, update);
+  // The outputs are staged around the store write: one that cannot be written stops the run before
+  // anything is stored, and none is put in place unless the learned version was stored.
+  OutputFiles files;
+  if (!files.add(o.program_path, next.program_text)) {
+    std::cerr << "feedplan: failed: " << files.error() << "; the database is unchanged\n";
+    return 1;
+  }
   models.after = store_learned_model(o, in, store, models.before, update);
-  if (auto error = write_learn_outputs(o, in, models.after, update, next); !error.empty()) {
-    std::cerr << "feedplan: failed: " << error << "\n";
+  stage_learn_reports(o, in, models.after, update, next, files);
+  if (auto error = files.commit(); !error.empty()) {
+    std::cerr << "feedplan: failed: " << error << "; the learned version v" << models.after.version << " (id "
+              << models.after.id << ") is stored (feedplan db history)\n";
     return 1;
   }
   if (o.json) {

@@ -87,7 +87,10 @@ LoopInputs read_loop_inputs(const LoopOptions& o) {
                         "= " + shortest_number_text(in.target_force_n) + ": a target force > 0 N is required"});
   }
   if (!(spec.spindle_rpm > 0.0)) problems.push_back({"spindle_rpm", "is required (rev/min > 0)"});
-  check_output_path("--revolutions", o.revolutions_path, problems);
+  check_outputs({{"SPEC", o.spec_path},
+                 {"--db", database_path(o.db_path)},
+                 {"--materials", o.materials_path.empty() ? bundled_materials_path() : o.materials_path}},
+                {{"--revolutions", o.revolutions_path}}, problems);
   if (!problems.empty()) throw InputError(std::move(problems));
   return in;
 }
@@ -192,7 +195,8 @@ int run_loop_command(const LoopOptions& o) {
   if (!o.revolutions_path.empty()) {
     if (const std::string error = write_file_atomically(o.revolutions_path, revolutions_csv(result, in.target_force_n));
         !error.empty()) {
-      throw InputError("--revolutions", "= '" + o.revolutions_path + "': " + error);
+      std::cerr << "feedplan: failed: " << error << "\n";  // a write error is not bad input: exit 1
+      return 1;
     }
   }
   if (o.json) {

@@ -13,6 +13,7 @@
 #include "data_path.hpp"
 #include "database_path.hpp"
 #include "model_choice.hpp"
+#include "output_files.hpp"
 #include "output_path.hpp"
 #include "feedplan/trial/plan_check.hpp"
 #include "feedplan/core/atomic_file.hpp"
@@ -46,7 +47,7 @@ struct PlanInputs {
 
 // The model to plan with and the database it came from.
 struct PlanModel {
-  std::string db_path;  // --db, else $FEEDPLAN_DB, else the sample database
+  std::string db_path;  // --db, else $FEEDPLAN_DB, else the sample database: absolute, canonical
   ChosenModel chosen;   // the model and why
 };
 
@@ -71,6 +72,7 @@ struct PlanOutputs {
   ProgramChoice program;                  // which program was written
   std::optional<trial::PlanCheck> check;  // --simulate: the program run on the virtual machine
   std::vector<std::string> written;       // the files written, in order
+  std::vector<std::string> kept;          // existing files a failed plan left as they were
 };
 
 planner::PlanMode plan_mode(const std::string& mode, std::vector<InputProblem>& problems) {
@@ -130,10 +132,11 @@ PlanInputs read_plan_inputs(const PlanCommandOptions& o) {
   }
   in.writer = writer_options(o, dialect, problems);
   check_constant_feed(o, spec, problems);
-  check_output_path("-o", o.program_path, problems);
-  check_output_path("--report", o.report_path, problems);
-  check_output_path("--csv", o.csv_path, problems);
-  check_output_path("--plot", o.plot_path, problems);
+  check_outputs({{"SPEC", o.spec_path},
+                 {"--db", database_path(o.db_path)},
+                 {"--materials", o.materials_path.empty() ? bundled_materials_path() : o.materials_path}},
+                {{"-o", o.program_path}, {"--report", o.report_path}, {"--csv", o.csv_path}, {"--plot", o.plot_path}},
+                problems);
   if (!problems.empty()) throw InputError(std::move(problems));
   return in;
 }
@@ -144,7 +147,7 @@ std::optional<PlanModel> choose_plan_model(const PlanCommandOptions& o, const cy
   const mdb::Store store = mdb::Store::open(db_path, mdb::OpenMode::kReadOnly);
   std::optional<ChosenModel> chosen = choose_model(store, spec, o.model_id);
   if (!chosen) return std::nullopt;
-  return PlanModel{db_path, std::move(*chosen)};
+  return PlanModel{stored_path(db_path), std::move(*chosen)};
 }
 
 planner::PlanSettings plan_settings(const PlanCommandOptions& o, const PlanInputs& in, const ChosenModel& chosen) {
@@ -228,7 +231,7 @@ planner::PlanReportContext report_context(const PlanCommandOptions& o, const Pla
                                           const ProgramChoice& program, const gcode::WriterOptions& writer) {
   const mdb::ModelRecord& record = model.chosen.record;
   planner::PlanReportContext context;
-  context.spec_path = o.spec_path;
+  context.spec_path = stored_path(o.spec_path);  // absolute, as the database: learn finds both from any folder
   context.cycle = in.spec.cycle;
   context.tool = in.spec.tool;
   context.material = in.spec.material;
@@ -260,42 +263,45 @@ planner::PlanPlotOptions plot_options(const PlanInputs& in, const std::optional<
   return plot;
 }
 
-// --report, --csv, --plot; the first error, or empty.
-std::string write_plan_files(const PlanCommandOptions& o, const PlanInputs& in, const PlannedCycle& planned,
-                             const planner::PlanReportContext& context, PlanOutputs& out) {
+// Stages --report, --csv, --plot.
+void stage_plan_files(const PlanCommandOptions& o, const PlanInputs& in, const PlannedCycle& planned,
+                      const planner::PlanReportContext& context, const PlanOutputs& out, OutputFiles& files) {
   const planner::PlanResult& result = planned.result;
-  if (!o.report_path.empty()) {
-    if (auto error = planner::write_plan_report(o.report_path, result, planned.settings, context); !error.empty()) return error;
-    out.written.push_back(o.report_path);
-  }
-  if (!o.csv_path.empty()) {
-    if (auto error = planner::write_plan_samples_csv(o.csv_path, result); !error.empty()) return error;
-    out.written.push_back(o.csv_path);
-  }
+  if (!o.report_path.empty()) files.add(o.report_path, planner::plan_report_json(result, planned.settings, context));
+  if (!o.csv_path.empty()) files.add(o.csv_path, planner::plan_samples_csv(result));
   if (!o.plot_path.empty()) {
-    const planner::PlanPlotOptions plot = plot_options(in, out.check);
-    if (auto error = planner::write_plan_plot(o.plot_path, result, in.target_force_n, plot); !error.empty()) return error;
-    out.written.push_back(o.plot_path);
+    files.add(o.plot_path, planner::plan_plot_svg(result, in.target_force_n, plot_options(in, out.check)));
   }
-  return "";
 }
 
 // Outputs: the program (only when the target can be met everywhere, or the constant-feed one), its run on
-// the virtual machine, the report, CSV and plot. Returns the first error, or empty.
+// the virtual machine, the report, CSV and plot — all staged first, then put in place together, so that an
+// error leaves every existing output as it was. A plan that failed writes its report, CSV and plot to
+// show where, but only to files that do not exist yet (out.kept lists the others). Returns the first
+// error, or empty.
 std::string write_plan_outputs(const PlanCommandOptions& o, const PlanInputs& in, const PlanModel& model,
                                const PlannedCycle& planned, PlanOutputs& out) {
   out.program = choose_program(o, planned.result);
   const gcode::WriterOptions writer = program_writer(o, in, model.chosen, out.program, planned.result);
   const std::string text = program_text(o, in, planned, out.program, writer);
-  if (out.program.any()) {
-    if (auto error = write_file_atomically(o.program_path, text); !error.empty()) return error;
-    out.written.push_back(o.program_path);
-  }
+  OutputFiles files;
+  if (out.program.any() && !files.add(o.program_path, text)) return files.error();
   if (o.simulate && out.program.any()) {
     out.check = trial::check_on_virtual_machine(text, in.spec, planned.cycle, planned.result, in.target_force_n,
                                                 o.materials_path.empty() ? bundled_materials_path() : o.materials_path);
   }
-  return write_plan_files(o, in, planned, report_context(o, in, model, out.program, writer), out);
+  stage_plan_files(o, in, planned, report_context(o, in, model, out.program, writer), out, files);
+  const std::string error = files.commit(out.program.any() ? ExistingFile::kReplace : ExistingFile::kKeep);
+  out.written = files.written();
+  out.kept = files.kept();
+  return error;
+}
+
+// The outputs a failed plan left as they were, on stderr.
+void print_kept_outputs(const PlanOutputs& out) {
+  for (const std::string& path : out.kept) {
+    std::cerr << "feedplan: note: " << path << " exists: left as it was (a plan that fails writes only new files)\n";
+  }
 }
 
 void print_plan_json(const PlanCommandOptions& o, const PlanInputs& in, const PlanModel& model,
@@ -427,6 +433,7 @@ int run_plan_command(const PlanCommandOptions& o) {
     print_plan_text(o, in, *model, planned, out);
   }
   print_plan_notes(planned.result, out);
+  print_kept_outputs(out);
   if (!out.program.any()) {
     std::cerr << "feedplan: failed: the target cannot be met everywhere (see the note above); no program written to "
               << o.program_path << " — raise the target, or lower the machine's min_feed_mm_per_min\n";

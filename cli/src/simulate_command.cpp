@@ -1,6 +1,8 @@
 #include "simulate_command.hpp"
 
 #include "data_path.hpp"
+#include "output_files.hpp"
+#include "output_path.hpp"
 
 #include <nlohmann/json.hpp>
 #include <unistd.h>
@@ -214,6 +216,11 @@ SimulateInputs read_simulate_inputs(const SimulateOptions& options) {
       (options.radial_depth_mm != 0.0 || options.axial_depth_mm != 0.0 || options.feed_mm_per_min != 0.0 || options.up_milling)) {
     problems.push_back({"--radial-depth-mm/--axial-depth-mm/--feed-mm-per-min/--up", "only apply with --cutting-test"});
   }
+  check_outputs({{"PROGRAM", options.program_path},
+                 {"--spec", options.spec_path},
+                 {"--stock", options.stock_path},
+                 {"--materials", options.materials_path.empty() ? bundled_materials_path() : options.materials_path}},
+                {{"--log", options.log_path}, {"--peaks", options.peaks_path}, {"--plot", options.plot_path}}, problems);
   if (!problems.empty()) throw InputError(std::move(problems));
   return in;
 }
@@ -297,20 +304,17 @@ SimulationRun run_simulation(sim::SimulationRequest request) {
   return run;
 }
 
-// Outputs, each complete or untouched: the log, --peaks, --plot. Returns the first error, or empty.
+// Outputs: the log, --peaks, --plot, all staged and then put in place together (none when one cannot be
+// written). Returns the first error, or empty.
 std::string write_simulation_outputs(const SimulateOptions& options, const sim::SimulationResult& result,
                                      const std::string& job) {
-  if (const std::string error = force_log::write_force_log(options.log_path, result.log); !error.empty()) return error;
-  if (!options.peaks_path.empty()) {
-    if (const std::string error = force_log::write_revolution_peaks(options.peaks_path, result.revolutions); !error.empty()) {
-      return error;
-    }
-  }
+  OutputFiles files;
+  files.add(options.log_path, force_log::format_force_log(result.log));
+  if (!options.peaks_path.empty()) files.add(options.peaks_path, force_log::format_revolution_peaks(result.revolutions));
   if (!options.plot_path.empty()) {
-    const sim::ForcePlotData plot = sim::force_plot_data(result.log, job, result.revolutions);
-    if (const std::string error = sim::write_force_plot(options.plot_path, plot); !error.empty()) return error;
+    files.add(options.plot_path, sim::force_plot_svg(sim::force_plot_data(result.log, job, result.revolutions)));
   }
-  return "";
+  return files.commit();
 }
 
 void print_simulation_json(const SimulateOptions& options, const geometry::Tool& tool, const std::string& material,
@@ -420,7 +424,7 @@ int run_simulate_command(const SimulateOptions& options) {
   request.log_metadata.push_back({"material", material.name});
   const SimulationRun run = run_simulation(std::move(request));
   if (const std::string error = write_simulation_outputs(options, run.result, job.name); !error.empty()) {
-    std::cerr << "feedplan: " << error << "\n";
+    std::cerr << "feedplan: failed: " << error << "\n";
     return 1;
   }
   if (options.json) {

@@ -193,7 +193,9 @@ int prepare_schema(Connection& connection, OpenMode mode, bool quick_check) {
   const int version = pragma_int(connection, "user_version");
   const bool empty = application_id == 0 && version == 0 && user_table_count(connection) == 0;
   if (empty && mode != OpenMode::kCreate) {
-    throw InputError(connection.path(), "is empty, not a model database (create one first: feedplan db init)");
+    throw InputError(connection.path(), "is empty (no tables), not a model database: check the path of the model "
+                                        "database (--db, $FEEDPLAN_DB); `feedplan db init` would make this file a "
+                                        "new database with no models");
   }
   if (!empty && application_id != kApplicationId) {
     throw InputError(connection.path(), "is a SQLite database but not a feedplan model database (application_id " +

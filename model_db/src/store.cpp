@@ -8,6 +8,8 @@
 #include <cmath>
 #include <system_error>
 
+#include "feedplan/model_db/stale_model_error.hpp"
+
 #include "catalog_rows.hpp"
 #include "cutting_test_rows.hpp"
 #include "learning_rows.hpp"
@@ -36,7 +38,12 @@ Store Store::open(const std::filesystem::path& path, OpenMode mode, const StoreO
   std::error_code ec;
   const bool exists = std::filesystem::exists(path, ec);
   if (!exists && mode != OpenMode::kCreate) {
-    throw InputError(path.string(), "cannot be opened: no such model database (create one first: feedplan db init)");
+    // The caller meant an existing database (kCreate is the mode for a new one): say where it was looked
+    // for, not how to make an empty one.
+    std::string where;
+    if (path.is_relative()) where = " (looked for " + (std::filesystem::current_path(ec) / path).lexically_normal().string() + ")";
+    throw InputError(path.string(), "cannot be opened: no such file" + where +
+                                        ": check the path of the model database (--db, $FEEDPLAN_DB)");
   }
   if (exists && std::filesystem::is_directory(path, ec)) {
     throw InputError(path.string(), "cannot be opened: it is a directory, not a model database");
@@ -137,6 +144,19 @@ RowId insert_and_activate_model(detail::Connection& db, const ModelRecord& model
   return id;
 }
 
+// A learned version is filed as the child of the version it was fitted from, which must therefore still
+// be the active one of its pair when the transaction (BEGIN IMMEDIATE: no other writer between this read
+// and the commit) stores it: otherwise another learning step or a rollback came in between.
+void require_fitted_from_active(const detail::Connection& db, const ModelRecord& model, RowId fitted_from_id) {
+  const auto fitted_from = detail::select_model_by_id(db, fitted_from_id);
+  if (!fitted_from) return;  // insert_learning names the missing id
+  std::vector<InputProblem> problems;
+  const auto ids = detail::pair_ids(db, model.tool_name, model.material_name, "models.", problems);
+  if (!problems.empty()) return;  // insert_and_activate_model names them
+  const auto active = detail::select_active_model(db, ids.tool_id, ids.material_id);
+  if (active && active->id != fitted_from_id) throw StaleModelError(*fitted_from, *active);
+}
+
 // The checks and insert of add_learning_entry inside a transaction the caller holds.
 LearningEntry insert_learning(detail::Connection& db, const LearningEntry& entry, const std::function<void(const char*)>& after_step) {
   auto problems = validate(entry);
@@ -184,6 +204,7 @@ std::pair<ModelRecord, LearningEntry> Store::add_learned_model(const ModelRecord
   auto& db = impl_->db;
   WriteTransaction transaction(db);
   const auto after_step = [this](const char* step) { impl_->after_step(step); };
+  require_fitted_from_active(db, model, entry.model_id_before);
   const RowId id = insert_and_activate_model(db, model, after_step);
   LearningEntry linked = entry;
   linked.model_id_after = id;

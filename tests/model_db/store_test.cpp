@@ -472,7 +472,9 @@ TEST_F(StoreWithCatalog, AReadOnlyStoreReadsButDoesNotWrite) {
 TEST(StoreOpen, MissingFileIsAnInputErrorForExistingAndReadOnly) {
   ScratchDir dir;
   const auto path = dir / "none.db";
-  const std::string expected = path.string() + " cannot be opened: no such model database (create one first: feedplan db init)";
+  // The caller meant an existing database: no advice to create an empty one.
+  const std::string expected =
+      path.string() + " cannot be opened: no such file: check the path of the model database (--db, $FEEDPLAN_DB)";
   EXPECT_EQ(input_error_of([&] { Store::open(path, OpenMode::kExisting); }), expected);
   EXPECT_EQ(input_error_of([&] { Store::open(path, OpenMode::kReadOnly); }), expected);
   EXPECT_FALSE(std::filesystem::exists(path));
@@ -520,7 +522,8 @@ TEST(StoreOpen, EmptyFileIsNotADatabaseUnlessCreating) {
   const auto path = dir / "empty.db";
   std::ofstream(path).close();
   EXPECT_EQ(input_error_of([&] { Store::open(path, OpenMode::kExisting); }),
-            path.string() + " is empty, not a model database (create one first: feedplan db init)");
+            path.string() + " is empty (no tables), not a model database: check the path of the model database (--db, "
+                            "$FEEDPLAN_DB); `feedplan db init` would make this file a new database with no models");
   EXPECT_EQ(Store::open(path, OpenMode::kCreate).schema_version(), kStoreSchemaVersion);
 }
 

@@ -119,8 +119,12 @@ class Store {
   //! A learned version, the learning entry that explains it and the per-revolution samples it was learned
   //! from, in one transaction: add_model(model), then add_learning_entry(entry) with model_id_after = the
   //! new version's id, then the samples. All are stored or none (the database is unchanged on any error).
-  //! Throws as those two do, and InputError naming "learning_samples[i].<field>" for a sample with a
-  //! non-finite number or a weight ≤ 0.
+  //! The version the step was fitted from (entry.model_id_before) must still be the active version of the
+  //! pair when the write transaction holds the lock, so that it is the new version's true parent; when
+  //! another learning step or a rollback changed the active version since, throws StaleModelError
+  //! (stale_model_error.hpp) and stores nothing — two learners racing on one database never both land on
+  //! the same parent. Throws as add_model and add_learning_entry do, and InputError naming
+  //! "learning_samples[i].<field>" for a sample with a non-finite number or a weight ≤ 0.
   std::pair<ModelRecord, LearningEntry> add_learned_model(const ModelRecord& model, const LearningEntry& entry,
                                                           const std::vector<LearnedSample>& samples = {});
 
