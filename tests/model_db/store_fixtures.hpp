@@ -3,13 +3,17 @@
 // plausible numbers, a store filled with every kind of row, and direct SQLite access for looking at a
 // file behind the store's back.
 
+#include <gtest/gtest.h>
 #include <sqlite3.h>
 #include <stdlib.h>
 
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <iterator>
+#include <map>
 #include <string>
+#include <vector>
 
 #include "feedplan/core/input_error.hpp"
 #include "feedplan/model_db/store.hpp"
@@ -159,6 +163,59 @@ inline std::string raw_sql(const std::filesystem::path& path, const std::string&
   sqlite3_finalize(statement);
   sqlite3_close(db);
   return result;
+}
+
+//! One learning-style write, as `feedplan learn` makes it: the pair's active version is read, `between`
+//! runs (the fitting would, in learn), and a learned version "fitted from" it is stored with its learning
+//! entry and `samples` learning samples, in one transaction. Throws StaleModelError when another writer
+//! changed the active version in between. Returns the stored version.
+inline ModelRecord learn_step(Store& store, const std::string& tool_name, const std::string& material_name,
+                              int samples, const std::function<void()>& between = {}) {
+  const ModelRecord before = *store.active_model(tool_name, material_name);
+  if (between) between();
+  ModelRecord learned = model(tool_name, material_name, 1.0 + 0.001 * before.version);
+  learned.source = ModelSource::kLearned;
+  LearningEntry entry;
+  entry.model_id_before = before.id;
+  entry.part_name = "part after v" + std::to_string(before.version);
+  entry.n_samples = samples;
+  std::vector<LearnedSample> learned_samples;
+  for (int i = 0; i < samples; ++i) learned_samples.push_back({0.02 + 1e-5 * i, 4.0, 350.0 + i, 1.0, 0.1 * i});
+  return store.add_learned_model(learned, entry, learned_samples).first;
+}
+
+//! Expects the pair's history to be a true lineage of learning steps (learn_step with `samples` samples
+//! each) on one first version: every later version learned, with one learning entry whose model before is
+//! the version's parent, that parent the version just before it (so no two versions share a parent: no
+//! update was lost or filed under a version it was not fitted from), the last version active, and every
+//! step's samples all stored (each transaction whole). Reads the rows from the file directly too.
+inline void expect_true_lineage(const std::filesystem::path& path, const std::string& tool_name,
+                                const std::string& material_name, int samples) {
+  const Store store = Store::open(path, OpenMode::kReadOnly);
+  const std::vector<ModelRecord> versions = store.models_for(tool_name, material_name);
+  ASSERT_FALSE(versions.empty());
+  std::map<RowId, RowId> fitted_from;  // learning entry: model after → model before
+  for (const LearningEntry& entry : store.learning_history(tool_name, material_name)) {
+    EXPECT_TRUE(fitted_from.emplace(entry.model_id_after, entry.model_id_before).second)
+        << "two learning entries for model id " << entry.model_id_after;
+  }
+  EXPECT_EQ(fitted_from.size(), versions.size() - 1);
+  for (std::size_t i = 0; i < versions.size(); ++i) {
+    const ModelRecord& v = versions[i];
+    EXPECT_EQ(v.version, static_cast<int>(i) + 1);
+    EXPECT_EQ(v.active, i + 1 == versions.size()) << "version " << v.version;
+    if (i == 0) continue;
+    EXPECT_EQ(v.source, ModelSource::kLearned) << "version " << v.version;
+    ASSERT_TRUE(v.parent_id.has_value()) << "version " << v.version;
+    EXPECT_EQ(*v.parent_id, versions[i - 1].id) << "version " << v.version << ": parent is not the version before it";
+    ASSERT_EQ(fitted_from.count(v.id), 1u) << "version " << v.version << " has no learning entry";
+    EXPECT_EQ(fitted_from[v.id], *v.parent_id) << "version " << v.version << " is filed under a version it was not fitted from";
+  }
+  EXPECT_EQ(raw_sql(path, "SELECT count(*) FROM learning_samples"),
+            std::to_string(static_cast<int>(versions.size() - 1) * samples));
+  EXPECT_EQ(raw_sql(path, "SELECT count(*) FROM (SELECT learning_entry_id FROM learning_samples GROUP BY "
+                          "learning_entry_id HAVING count(*) != " + std::to_string(samples) + ")"),
+            "0");
 }
 
 //! The InputError message thrown by `action`, or "(no InputError)".
