@@ -114,10 +114,10 @@ LearnInputs read_learn_inputs(const LearnOptions& o) {
   LearnInputs in;
   in.report = planner::read_plan_report(o.plan_path);
   in.spec_path = resolve_spec(in.report.context.spec_path, o.plan_path);
-  in.spec = cycles::load_cycle_spec(in.spec_path);
-  in.logs = read_logs(o);
   in.db_path = learn_database_path(o, in.report);
   check_learn_outputs(o, in);
+  in.spec = cycles::load_cycle_spec(in.spec_path);
+  in.logs = read_logs(o);
   return in;
 }
 

@@ -30,23 +30,22 @@ class OutputFiles {
   //! The first staging error, or "".
   const std::string& error() const { return error_; }
 
-  //! Puts every staged file in place, in the order added. With ExistingFile::kKeep a file that exists is
+  //! Puts every staged file in place: first the devices and pipes (/dev/stdout, /dev/full), whose writes
+  //! can fail, then the files, renamed in the order added. With ExistingFile::kKeep a file that exists is
   //! left as it is and listed in kept(). Returns the first error, or "" (or the staging error, writing
-  //! nothing). Renames do not fail once the files are staged beside their targets, short of the disk
-  //! itself failing; should one fail, the files before it are in place and the rest are not.
+  //! nothing); after an error nothing more is put in place. Renames do not fail once the files are staged
+  //! beside their targets, short of the disk itself failing.
   std::string commit(ExistingFile existing = ExistingFile::kReplace) {
-    if (!error_.empty()) {
-      staged_.clear();
-      return error_;
+    std::string first_error = error_;
+    for (const bool devices : {true, false}) {
+      for (StagedFile& staged : staged_) {
+        if (!first_error.empty() || staged.in_place() != devices) continue;
+        bool kept = false;
+        first_error = staged.commit(existing, &kept);
+        if (first_error.empty()) (kept ? kept_ : written_).push_back(staged.path().string());
+      }
     }
-    std::string first_error;
-    for (StagedFile& staged : staged_) {
-      if (!first_error.empty()) break;
-      bool kept = false;
-      first_error = staged.commit(existing, &kept);
-      if (first_error.empty()) (kept ? kept_ : written_).push_back(staged.path().string());
-    }
-    staged_.clear();
+    staged_.clear();  // removes what was not put in place
     return first_error;
   }
 

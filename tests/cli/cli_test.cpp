@@ -89,10 +89,13 @@ TEST_F(CliTest, UnknownFlagOrNoCommandIsBadInput) {
   EXPECT_EQ(run_feedplan("plan-everything").exit_code, 2);
 }
 
-TEST_F(CliTest, UnwritableOutputFailsWithExitOne) {
+// Checked with the flags, before the engagement is computed (as plan does); a write that fails is exit 1
+// (tests/cli/paths_cli_test.cpp).
+TEST_F(CliTest, AnOutputInAMissingDirectoryIsBadInput) {
   const RunResult r = run_feedplan("cycle " + kSamples + "/trochoid.yaml --engagement " + (dir_ / "no_such_dir" / "x.csv").string());
-  EXPECT_EQ(r.exit_code, 1) << r.output;
-  EXPECT_NE(r.output.find("no_such_dir"), std::string::npos) << r.output;
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("--engagement"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("no_such_dir' does not exist"), std::string::npos) << r.output;
 }
 
 }  // namespace

@@ -20,8 +20,10 @@ struct RunResult {
   std::string output;  // stdout and stderr together
 };
 
-inline RunResult run_feedplan(const std::string& arguments) {
-  const std::string command = std::string(FEEDPLAN_BINARY) + " " + arguments + " 2>&1";
+//! Runs the binary with `arguments` in `directory` (the test's own folder when empty).
+inline RunResult run_feedplan(const std::string& arguments, const fs::path& directory = {}) {
+  const std::string command = (directory.empty() ? "" : "cd '" + directory.string() + "' && ") +
+                              std::string(FEEDPLAN_BINARY) + " " + arguments + " 2>&1";
   RunResult result;
   FILE* pipe = popen(command.c_str(), "r");
   if (!pipe) return result;

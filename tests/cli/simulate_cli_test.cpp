@@ -131,11 +131,19 @@ TEST_F(SimulateCliTest, BadMaterialsStocksAndFlagsNameTheField) {
                    "cutting_test.radial_depth_mm");
 }
 
-TEST_F(SimulateCliTest, UnwritableLogFailsWithExitOne) {
-  const RunResult r = run_feedplan("simulate --cutting-test " + kTool +
-                                   " --material S50C --radial-depth-mm 1 --axial-depth-mm 5 --feed-mm-per-min 500"
-                                   " --spindle-rpm 3000 --log /nonexistent-dir/x.csv");
-  EXPECT_EQ(r.exit_code, 1) << r.output;
+// Checked with the flags, before the simulation runs; a write that fails is exit 1.
+TEST_F(SimulateCliTest, ALogInAMissingDirectoryIsBadInputAndAFullDeviceAFailure) {
+  const std::string cut = "simulate --cutting-test " + kTool +
+                          " --material S50C --radial-depth-mm 1 --axial-depth-mm 5 --feed-mm-per-min 500 --spindle-rpm 3000";
+  const RunResult r = run_feedplan(cut + " --log /nonexistent-dir/x.csv");
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("--log = '/nonexistent-dir/x.csv': directory '/nonexistent-dir' does not exist"), std::string::npos)
+      << r.output;
+  if (!std::filesystem::is_character_file("/dev/full")) return;
+  const RunResult full = run_feedplan(cut + " --log /dev/full");
+  EXPECT_EQ(full.exit_code, 1) << full.output;
+  EXPECT_NE(full.output.find("cannot write /dev/full: No space left on device"), std::string::npos) << full.output;
+  EXPECT_EQ(full.output.find("written to"), std::string::npos) << full.output;
 }
 
 }  // namespace

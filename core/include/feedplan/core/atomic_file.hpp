@@ -110,6 +110,9 @@ class StagedFile {
   //! The path as given.
   const std::filesystem::path& path() const { return path_; }
 
+  //! Whether the target is a device or pipe, written in place at commit (no rename: it can fail halfway).
+  bool in_place() const { return in_place_; }
+
   //! Puts the staged content in place: renames the temporary file onto the target (or, for a device or
   //! pipe, writes the content to it). With ExistingFile::kKeep an existing target is left as it is: the
   //! temporary file is removed and `kept` (when given) set to true. Returns "" on success, otherwise a
