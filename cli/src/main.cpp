@@ -3,8 +3,11 @@
 
 #include <CLI/CLI.hpp>
 
+#include <cerrno>
+#include <cstdio>
 #include <exception>
 #include <iostream>
+#include <system_error>
 
 #include "cycle_command.hpp"
 #include "db_command.hpp"
@@ -20,9 +23,8 @@ namespace {
 constexpr int kExitFailed = 1;
 constexpr int kExitBadInput = 2;
 
-}  // namespace
-
-int main(int argc, char** argv) {
+// Parses and runs one command; its exit code.
+int run_command_line(int argc, char** argv) {
   CLI::App app{"feedplan " FEEDPLAN_VERSION
                " — feedforward feedrate planning for canned milling cycles (corner rounding, trochoid,\n"
                "spiral, helical boring, pocket): tool path, cutter engagement, and feeds that hold the\n"
@@ -75,4 +77,23 @@ int main(int argc, char** argv) {
     return kExitFailed;
   }
   return kExitFailed;
+}
+
+// Standard output is an output too: a summary that could not be written (a full disk, a closed pipe) is a
+// failure, not a silent success. Exit 0 when everything printed reached it, else 1 with the reason.
+int standard_output_written() {
+  std::cout.flush();
+  errno = 0;
+  if (std::fflush(stdout) == 0 && !std::ferror(stdout) && std::cout.good()) return 0;
+  const int error = errno;  // 0 when an earlier write failed and the reason is gone
+  std::cerr << "feedplan: failed: cannot write to standard output: "
+            << (error != 0 ? std::generic_category().message(error) : "a write failed") << "\n";
+  return kExitFailed;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const int exit_code = run_command_line(argc, argv);
+  return exit_code == 0 ? standard_output_written() : exit_code;
 }

@@ -152,6 +152,9 @@ TEST_F(PathsCliTest, AWriteErrorIsAnErrorAndARunWritesAllOutputsOrNone) {
   EXPECT_TRUE(contains(exported.output, "No space left on device")) << exported.output;
   // /dev/null takes the text: that is a success.
   EXPECT_EQ(run_feedplan("plan corner.yaml --db t.db -o /dev/null", dir_).exit_code, 0);
+  // Standard output is an output too: a summary that cannot be printed is a failure.
+  EXPECT_EQ(run_feedplan("db list --db t.db > /dev/full", dir_).exit_code, 1);
+  EXPECT_EQ(run_feedplan("db list --db t.db > /dev/null", dir_).exit_code, 0);
   for (const auto& entry : fs::directory_iterator(dir_)) {
     EXPECT_NE(entry.path().filename().string()[0], '.') << "a temporary file was left behind: " << entry.path();
   }

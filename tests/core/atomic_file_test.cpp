@@ -15,6 +15,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <random>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -160,6 +161,48 @@ TEST_F(AtomicFileTest, KeepingAnExistingFileWritesOnlyNewOnes) {
   EXPECT_FALSE(kept);
   EXPECT_EQ(read_text(dir_ / "new.svg"), "new\n");
   EXPECT_EQ(entries(), (std::vector<std::string>{"new.svg", "plot.svg"}));
+}
+
+// A child rewrites one file over and over, alternating two large contents, and is killed with SIGKILL at
+// random points: the file is always one of the two, whole. A killed writer may leave its temporary
+// (".name.tmp<pid>.<n>") behind — never a half-written target.
+TEST_F(AtomicFileTest, AWriterKilledAtRandomPointsLeavesTheOldOrTheNewContent) {
+  const fs::path path = dir_ / "program.nc";
+  const std::string a(3'000'000, 'a');
+  const std::string b = std::string(2'000'000, 'b') + "\n";
+  ASSERT_EQ(write_file_atomically(path, a), "");
+  const unsigned seed = 424242u;
+  std::mt19937 random(seed);
+  for (int trial = 0; trial < 20; ++trial) {
+    const int writes_first = std::uniform_int_distribution<int>(0, 2)(random);
+    const int delay_us = std::uniform_int_distribution<int>(0, 20000)(random);
+    SCOPED_TRACE("seed " + std::to_string(seed) + ", trial " + std::to_string(trial));
+    int fds[2];
+    ASSERT_EQ(::pipe(fds), 0);
+    const pid_t child = ::fork();
+    if (child == 0) {
+      ::close(fds[0]);
+      for (int i = 0;; ++i) {
+        if (!write_file_atomically(path, i % 2 == 0 ? b : a).empty()) ::_exit(3);
+        if (::write(fds[1], "x", 1) != 1) ::_exit(3);
+      }
+    }
+    ::close(fds[1]);
+    char byte = 0;
+    for (int i = 0; i < writes_first && ::read(fds[0], &byte, 1) == 1; ++i) {
+    }
+    ::usleep(static_cast<useconds_t>(delay_us));
+    ::kill(child, SIGKILL);
+    int status = 0;
+    ASSERT_EQ(::waitpid(child, &status, 0), child);
+    ::close(fds[0]);
+    ASSERT_TRUE(WIFSIGNALED(status)) << "the writer ended otherwise: status " << status;
+    const std::string content = read_text(path);
+    EXPECT_TRUE(content == a || content == b) << "a half-written file of " << content.size() << " bytes";
+  }
+  for (const std::string& name : entries()) {
+    EXPECT_TRUE(name == "program.nc" || name.rfind(".program.nc.tmp", 0) == 0) << name;
+  }
 }
 
 }  // namespace
