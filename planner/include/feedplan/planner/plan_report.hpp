@@ -57,7 +57,7 @@ inline constexpr int kPlanReportFormatVersion = 1;
 
 //! What the caller (the CLI) knows about a plan besides the PlanResult and its settings.
 struct PlanReportContext {
-  std::string spec_path;          //!< the cycle spec the plan came from (as given)
+  std::string spec_path;          //!< the cycle spec the plan came from (the CLI stores it absolute)
   std::string cycle;              //!< cycle name, e.g. "trochoid"
   geometry::Tool tool;            //!< the end mill: name, diameter, flutes, helix
   std::string material;           //!< workpiece material name, e.g. "S50C"
@@ -66,7 +66,7 @@ struct PlanReportContext {
   std::string model_tool;         //!< tool name the model was fitted for
   std::string model_material;     //!< material name the model was fitted for
   std::string model_match;        //!< one sentence on how the model was chosen
-  std::string database_path;      //!< the model database (as given; "" when none)
+  std::string database_path;      //!< the model database ("" when none; the CLI stores it absolute and canonical)
   std::string program_path;       //!< the G-code file written ("" when none)
   std::string dialect;            //!< G-code dialect of that file, e.g. "linuxcnc"
   //! Learning along the path carried from part to part (learning/path_correction.hpp), one entry per
