@@ -65,4 +65,8 @@ std::optional<ChosenModel> choose_model(const mdb::Store& store, const cycles::C
   return ChosenModel{*closest.model, mdb::to_string(closest.match), closest.explanation, std::move(borrowing)};
 }
 
+double planning_uncertainty(const ChosenModel& chosen, std::optional<double> requested) {
+  return requested ? *requested : chosen.borrowing.borrowed_fraction / kBorrowedModelSigmas;
+}
+
 }  // namespace feedplan::cli

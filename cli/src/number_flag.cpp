@@ -6,6 +6,7 @@
 #include <limits>
 
 #include "feedplan/core/input_error.hpp"
+#include "feedplan/core/number_text.hpp"
 
 namespace feedplan::cli {
 namespace {
@@ -63,7 +64,53 @@ CLI::Option* add_whole_flag(CLI::App* command, const std::string& names, Target&
   });
 }
 
+// "(0, 0.5]", "> 0", "≥ 1".
+std::string range_text(const FlagRange& r) {
+  const bool has_low = std::isfinite(r.low);
+  const bool has_high = std::isfinite(r.high);
+  if (has_low && has_high) {
+    return std::string(r.low_closed ? "[" : "(") + shortest_number_text(r.low) + ", " + shortest_number_text(r.high) +
+           (r.high_closed ? "]" : ")");
+  }
+  if (has_low) return (r.low_closed ? "≥ " : "> ") + shortest_number_text(r.low);
+  if (has_high) return (r.high_closed ? "≤ " : "< ") + shortest_number_text(r.high);
+  return "finite";
+}
+
+bool in_range(double value, const FlagRange& r) {
+  if (!std::isfinite(value)) return false;
+  const bool above_low = r.low_closed ? value >= r.low : value > r.low;
+  const bool below_high = r.high_closed ? value <= r.high : value < r.high;
+  return above_low && below_high;
+}
+
 }  // namespace
+
+void check_flag(std::vector<InputProblem>& problems, const std::string& flag, double value, const FlagRange& range,
+                const std::string& why) {
+  if (in_range(value, range)) return;
+  const std::string bound = range_text(range);
+  const bool interval = bound.front() == '[' || bound.front() == '(';
+  problems.push_back({flag, "= " + shortest_number_text(value) + ": must be " + (interval ? "in " : "") + bound +
+                                (why.empty() ? "" : " — " + why)});
+}
+
+void check_flag(std::vector<InputProblem>& problems, const std::string& flag, const std::optional<double>& value,
+                const FlagRange& range, const std::string& why) {
+  if (value) check_flag(problems, flag, *value, range, why);
+}
+
+void with_flag_names(const std::map<std::string, std::string>& flag_of_field, const std::function<void()>& action) {
+  try {
+    action();
+  } catch (const InputError& e) {
+    std::vector<InputProblem> problems = e.problems();
+    for (InputProblem& p : problems) {
+      if (const auto flag = flag_of_field.find(p.field); flag != flag_of_field.end()) p.field = flag->second;
+    }
+    throw InputError(std::move(problems));
+  }
+}
 
 CLI::Option* add_number_flag(CLI::App* command, const std::string& names, std::optional<double>& value,
                              const std::string& description) {

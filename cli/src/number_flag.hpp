@@ -9,7 +9,13 @@
 
 #include <cstdint>
 #include <optional>
+#include <functional>
+#include <limits>
+#include <map>
 #include <string>
+#include <vector>
+
+#include "feedplan/core/input_error.hpp"
 
 namespace feedplan::cli {
 
@@ -27,5 +33,25 @@ CLI::Option* add_integer_flag(CLI::App* command, const std::string& names, int& 
                               const std::string& description);  //!< see above
 CLI::Option* add_integer_flag(CLI::App* command, const std::string& names, std::uint64_t& value,
                               const std::string& description);  //!< see above (≥ 0)
+
+//! An interval of allowed flag values; an infinite bound is no bound.
+struct FlagRange {
+  double low = -std::numeric_limits<double>::infinity();  //!< lower bound
+  bool low_closed = true;                                 //!< the lower bound itself is allowed
+  double high = std::numeric_limits<double>::infinity();  //!< upper bound
+  bool high_closed = true;                                //!< the upper bound itself is allowed
+};
+
+//! Appends "<flag> = <value>: must be in <range>[ — <why>]" unless `value` is finite and in `range`.
+void check_flag(std::vector<InputProblem>& problems, const std::string& flag, double value, const FlagRange& range,
+                const std::string& why = "");
+
+//! The same for a flag that may be left out: nothing to check when it was not given.
+void check_flag(std::vector<InputProblem>& problems, const std::string& flag, const std::optional<double>& value,
+                const FlagRange& range, const std::string& why = "");
+
+//! Runs `action`; an InputError it throws is thrown again with the fields in `flag_of_field` (a
+//! library's field path, e.g. "tools.diameter_mm") named by the flag that set them ("--diameter-mm").
+void with_flag_names(const std::map<std::string, std::string>& flag_of_field, const std::function<void()>& action);
 
 }  // namespace feedplan::cli
