@@ -72,9 +72,9 @@ std::string method_text(const EqualPeakFeed& found, int made, bool at_range_end,
                   found.run.feed_mm_per_min, found.run.max_peak_n, peak_n, made);
   } else {
     std::snprintf(text, sizeof text,
-                  "secant search on log peak vs log F, %d runs of the constant-feed program on the virtual machine "
-                  "(%s within %.0f %% of %.1f N)",
-                  made, found.converged ? "peak" : "NOT", 100.0 * kEqualPeakTolerance, peak_n);
+                  "found in %d runs of the constant-feed program on the virtual machine by a secant search on log peak "
+                  "vs log F; %s within %.0f %% of %.1f N",
+                  made, found.converged ? "its peak is" : "its peak is NOT", 100.0 * kEqualPeakTolerance, peak_n);
   }
   return text;
 }
