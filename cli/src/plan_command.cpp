@@ -283,6 +283,14 @@ std::string write_plan_outputs(const PlanCommandOptions& o, const PlanInputs& in
   return write_plan_files(o, in, planned, report_context(o, in, model, out.program, writer), out);
 }
 
+// When a borrowed model's cautious bound is what the target cannot meet, a model of its own removes it.
+std::string borrowed_model_advice(const PlanModel& model) {
+  if (model.chosen.borrowing.status != model_db::ModelMatchStatus::kBorrowed || model.relative_uncertainty <= 0.0) return "";
+  return "; or fit a model for this tool and material (feedplan db import-test, feedplan db fit): the borrowed "
+         "model is planned with a bound " + shortest_number_text(std::round(100.0 * kBorrowedModelSigmas * model.relative_uncertainty)) +
+         " % above its force";
+}
+
 }  // namespace
 
 void add_plan_command(CLI::App& app, PlanCommandOptions& options) {
@@ -342,7 +350,7 @@ int run_plan_command(const PlanCommandOptions& o) {
   if (!out.program.any()) {
     const planner::TargetAdvice advice = planner::target_advice(planned.geometry, planned.settings, planned.result);
     std::cerr << "feedplan: failed: the target cannot be met everywhere (see the note above); no program written to "
-              << o.program_path << " — " << advice.text << "\n";
+              << o.program_path << " — " << advice.text << borrowed_model_advice(*model) << "\n";
     return kExitFailed;
   }
   return 0;

@@ -149,7 +149,7 @@ TEST_F(DbCliTest, BrokenLogsAndContradictingConditions) {
   std::ofstream(missing) << no_fy;
   expect_bad_input(import_args(missing), "fy_n");
   // Conditions that contradict the log.
-  expect_bad_input(import_args(log, "3000"), "conditions.spindle_rpm");
+  expect_bad_input(import_args(log, "3000"), "--spindle-rpm = 3000");
   expect_bad_input(import_args(log) + " --mode slot", "slot");
   expect_bad_input("db import-test " + log.string() + " --db " + db_ + " --tool Nope --material S50C --spindle-rpm 2546"
                    " --feed-mm-per-min 400 --radial-depth-mm 1.5 --axial-depth-mm 10", "--tool");
