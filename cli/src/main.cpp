@@ -20,6 +20,12 @@ namespace {
 constexpr int kExitFailed = 1;
 constexpr int kExitBadInput = 2;
 
+int bad_input(const feedplan::InputError& e) {
+  std::cerr << "feedplan: bad input:\n";
+  for (const auto& problem : e.problems()) std::cerr << "  " << feedplan::to_string(problem) << "\n";
+  return kExitBadInput;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -56,6 +62,8 @@ int main(int argc, char** argv) {
   } catch (const CLI::ParseError& e) {
     app.exit(e);
     return kExitBadInput;
+  } catch (const feedplan::InputError& e) {  // a numeric flag that is not a number (number_flag.hpp)
+    return bad_input(e);
   }
 
   try {
@@ -67,9 +75,7 @@ int main(int argc, char** argv) {
     if (app.got_subcommand("loop")) return feedplan::cli::run_loop_command(loop_options);
     if (app.got_subcommand("db")) return feedplan::cli::run_db_command(app, db_options);
   } catch (const feedplan::InputError& e) {
-    std::cerr << "feedplan: bad input:\n";
-    for (const auto& problem : e.problems()) std::cerr << "  " << feedplan::to_string(problem) << "\n";
-    return kExitBadInput;
+    return bad_input(e);
   } catch (const std::exception& e) {
     std::cerr << "feedplan: failed: " << e.what() << "\n";
     return kExitFailed;
