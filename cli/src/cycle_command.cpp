@@ -8,6 +8,7 @@
 #include <iostream>
 #include <sstream>
 
+#include "number_flag.hpp"
 #include "output_path.hpp"
 #include "feedplan/core/angle.hpp"
 #include "feedplan/core/atomic_file.hpp"
@@ -23,7 +24,7 @@ namespace feedplan::cli {
 void add_cycle_command(CLI::App& app, CycleOptions& options) {
   CLI::App* cmd = app.add_subcommand("cycle", "Generate a canned cycle from its spec and profile the cutter engagement");
   cmd->add_option("spec", options.spec_path, "Cycle spec (YAML), e.g. samples/trochoid.yaml")->required();
-  cmd->add_option("--ds", options.ds_mm, "Engagement sample spacing along the path, mm (default 0.05)");
+  add_number_flag(cmd, "--ds", options.ds_mm, "Engagement sample spacing along the path, mm (default 0.05)");
   cmd->add_option("--engagement", options.engagement_path, "Write the engagement profile as CSV to this file");
   cmd->add_flag("--json", options.json, "Print the summary as JSON");
 }

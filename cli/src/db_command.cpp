@@ -1,6 +1,7 @@
 #include "db_command.hpp"
 
 #include "database_path.hpp"
+#include "number_flag.hpp"
 #include "output_path.hpp"
 
 #include <nlohmann/json.hpp>
@@ -16,6 +17,7 @@
 #include "feedplan/core/angle.hpp"
 #include "feedplan/core/atomic_file.hpp"
 #include "feedplan/core/input_error.hpp"
+#include "feedplan/core/number_text.hpp"
 #include "feedplan/geometry/analytic_engagement.hpp"
 #include "feedplan/model_db/closest_model.hpp"
 #include "feedplan/model_db/cutting_test_import.hpp"
@@ -173,11 +175,11 @@ int run_show(const DbOptions& o) {
   const auto versions = store.models_for(o.tool, o.material);
   const mdb::ModelRecord* chosen = nullptr;
   for (const auto& m : versions) {
-    if ((o.version == 0 && m.active) || (o.version != 0 && m.version == o.version)) chosen = &m;
+    if ((!o.version && m.active) || (o.version && m.version == *o.version)) chosen = &m;
   }
   if (!chosen) {
     throw InputError(o.version ? "--version" : "--tool/--material",
-                     o.version ? "= " + std::to_string(o.version) + ": no such version of " + o.tool + " in " + o.material
+                     o.version ? "= " + std::to_string(*o.version) + ": no such version of " + o.tool + " in " + o.material
                                : "no model for " + o.tool + " in " + o.material + " (fit one: feedplan db fit)");
   }
   const auto tests = store.cutting_tests(o.tool, o.material);
@@ -203,7 +205,9 @@ int run_add_tool(const DbOptions& o) {
   tool.tool_material = o.tool_material;
   tool.coating = o.coating;
   tool.notes = o.notes;
-  const auto added = store.add_tool(tool);
+  mdb::ToolRecord added;
+  with_flag_names({{"tools.diameter_mm", "--diameter-mm"}, {"tools.flutes", "--flutes"}, {"tools.helix_deg", "--helix-deg"}},
+                  [&] { added = store.add_tool(tool); });
   if (o.json) {
     std::cout << json{{"tool", added.name}, {"id", added.id}}.dump(2) << "\n";
   } else {
@@ -226,7 +230,9 @@ int run_add_material(const DbOptions& o) {
   hardness >> material.hardness_scale;
   if (material.hardness_scale.empty()) material.hardness_scale = "HB";
   material.notes = o.notes;
-  const auto added = store.add_material(material);
+  mdb::MaterialRecord added;
+  with_flag_names({{"materials.hardness_value", "--hardness"}, {"materials.hardness_scale", "--hardness"}},
+                  [&] { added = store.add_material(material); });
   if (o.json) {
     std::cout << json{{"material", added.name}, {"id", added.id}}.dump(2) << "\n";
   } else {
@@ -247,7 +253,12 @@ int run_import_test(const DbOptions& o) {
   conditions.radial_depth_mm = o.radial_depth_mm;
   conditions.axial_depth_mm = o.axial_depth_mm;
   conditions.mode = parse_mode(o.mode);
-  const mdb::CuttingTestRecord record = mdb::import_cutting_test(o.log_path, conditions, geometry_tool(tool));
+  mdb::CuttingTestRecord record;
+  with_flag_names({{"conditions.spindle_rpm", "--spindle-rpm"},
+                   {"conditions.feed_mm_per_min", "--feed-mm-per-min"},
+                   {"conditions.radial_depth_mm", "--radial-depth-mm"},
+                   {"conditions.axial_depth_mm", "--axial-depth-mm"}},
+                  [&] { record = mdb::import_cutting_test(o.log_path, conditions, geometry_tool(tool)); });
   if (!o.no_store) store.add_cutting_test(record);
   if (o.json) {
     std::cout << json{{"log", o.log_path},
@@ -346,10 +357,11 @@ int run_predict(const DbOptions& o) {
   const mdb::ClosestModel closest = mdb::closest_model(store, o.tool, o.material);
   if (closest.status != mdb::ClosestModelStatus::kFound || !closest.model) throw InputError("--tool/--material", "no model in " + store.path().string() + ": " + closest.explanation);
   if (!(std::isfinite(o.radial_depth_mm) && o.radial_depth_mm > 0 && o.radial_depth_mm <= tool.diameter_mm)) {
-    throw InputError("--radial-depth-mm", "= " + std::to_string(o.radial_depth_mm) + ": must be in (0, tool diameter]");
+    throw InputError("--radial-depth-mm", "= " + shortest_number_text(o.radial_depth_mm) + ": must be in (0, tool diameter " +
+                                              shortest_number_text(tool.diameter_mm) + "]");
   }
   if (!(std::isfinite(o.feed_per_tooth_mm) && o.feed_per_tooth_mm > 0)) {
-    throw InputError("--feed-per-tooth-mm", "= " + std::to_string(o.feed_per_tooth_mm) + ": must be a finite number > 0");
+    throw InputError("--feed-per-tooth-mm", "= " + shortest_number_text(o.feed_per_tooth_mm) + ": must be a finite number > 0");
   }
   if (closest.match != mdb::ModelMatch::kExact) {
     std::cerr << "feedplan: warning: no model for " << o.tool << " in " << o.material << "; " << closest.explanation << "\n";
@@ -415,7 +427,8 @@ int run_rollback(const DbOptions& o) {
   mdb::Store store = open_store(o);
   require_tool(store, o.tool);
   require_material(store, o.material);
-  const mdb::ModelRecord active = store.rollback(o.tool, o.material, o.version);
+  mdb::ModelRecord active;
+  with_flag_names({{"rollback.version", "--version"}}, [&] { active = store.rollback(o.tool, o.material, *o.version); });
   if (o.json) {
     std::cout << model_json(active).dump(2) << "\n";
   } else {
@@ -487,13 +500,13 @@ void add_db_command(CLI::App& app, DbOptions& o) {
   auto* show = db->add_subcommand("show", "Show a model: coefficients with standard errors, range, fit statistics");
   common(show);
   tool_material(show);
-  show->add_option("--version", o.version, "Model version (default: the active one)");
+  add_integer_flag(show, "--version", o.version, "Model version (default: the active one)");
   auto* add_tool = db->add_subcommand("add-tool", "Register a tool");
   common(add_tool);
   add_tool->add_option("name", o.name, "Unique tool name")->required();
-  add_tool->add_option("--diameter-mm", o.diameter_mm, "Cutting diameter, mm")->required();
-  add_tool->add_option("--flutes", o.flutes, "Number of flutes")->required();
-  add_tool->add_option("--helix-deg", o.helix_deg, "Helix angle, deg");
+  add_number_flag(add_tool, "--diameter-mm", o.diameter_mm, "Cutting diameter, mm")->required();
+  add_integer_flag(add_tool, "--flutes", o.flutes, "Number of flutes")->required();
+  add_number_flag(add_tool, "--helix-deg", o.helix_deg, "Helix angle, deg");
   add_tool->add_option("--tool-material", o.tool_material, "Substrate, e.g. \"solid carbide\"");
   add_tool->add_option("--coating", o.coating, "Coating, e.g. TiAlN");
   add_tool->add_option("--notes", o.notes, "Free text");
@@ -507,10 +520,10 @@ void add_db_command(CLI::App& app, DbOptions& o) {
   common(import_test);
   import_test->add_option("log", o.log_path, "Force log (feedplan CSV or Kistler DynoWare export)")->required();
   tool_material(import_test);
-  import_test->add_option("--spindle-rpm", o.spindle_rpm, "Spindle speed, rev/min")->required();
-  import_test->add_option("--feed-mm-per-min", o.feed_mm_per_min, "Feed, mm/min")->required();
-  import_test->add_option("--radial-depth-mm", o.radial_depth_mm, "Radial depth a_e, mm")->required();
-  import_test->add_option("--axial-depth-mm", o.axial_depth_mm, "Axial depth a_p, mm")->required();
+  add_number_flag(import_test, "--spindle-rpm", o.spindle_rpm, "Spindle speed, rev/min")->required();
+  add_number_flag(import_test, "--feed-mm-per-min", o.feed_mm_per_min, "Feed, mm/min")->required();
+  add_number_flag(import_test, "--radial-depth-mm", o.radial_depth_mm, "Radial depth a_e, mm")->required();
+  add_number_flag(import_test, "--axial-depth-mm", o.axial_depth_mm, "Axial depth a_p, mm")->required();
   import_test->add_option("--mode", o.mode, "down, up or slot");
   import_test->add_flag("--no-store", o.no_store, "Only measure the steady peak; do not store the test");
   auto* fit = db->add_subcommand("fit", "Fit a new model version from the stored cutting tests (Ceres, robust loss)");
@@ -523,8 +536,8 @@ void add_db_command(CLI::App& app, DbOptions& o) {
   auto* predict = db->add_subcommand("predict", "Predict the per-revolution peak force of a straight cut");
   common(predict);
   tool_material(predict);
-  predict->add_option("--radial-depth-mm", o.radial_depth_mm, "Radial depth a_e, mm")->required();
-  predict->add_option("--feed-per-tooth-mm", o.feed_per_tooth_mm, "Feed per tooth f_z, mm")->required();
+  add_number_flag(predict, "--radial-depth-mm", o.radial_depth_mm, "Radial depth a_e, mm")->required();
+  add_number_flag(predict, "--feed-per-tooth-mm", o.feed_per_tooth_mm, "Feed per tooth f_z, mm")->required();
   auto* export_cmd = db->add_subcommand("export", "Export tools, materials, models and cutting tests as JSON");
   common(export_cmd);
   export_cmd->add_option("file", o.file, "JSON file to write")->required();
@@ -538,7 +551,7 @@ void add_db_command(CLI::App& app, DbOptions& o) {
   auto* rollback = db->add_subcommand("rollback", "Make an older model version active again");
   common(rollback);
   tool_material(rollback);
-  rollback->add_option("--version", o.version, "Version to make active")->required();
+  add_integer_flag(rollback, "--version", o.version, "Version to make active")->required();
 }
 
 int run_db_command(const CLI::App& app, const DbOptions& o) {

@@ -4,6 +4,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include <optional>
 #include <string>
 
 namespace feedplan::cli {
@@ -35,7 +36,7 @@ struct DbOptions {
   double feed_per_tooth_mm = 0.0;  //!< predict
   std::string file;             //!< export / import
   bool all_versions = false;    //!< export
-  int version = 0;              //!< show / rollback
+  std::optional<int> version;   //!< show (unset: the active version) / rollback (required)
 };
 
 //! Registers `db` and its subcommands.

@@ -10,6 +10,7 @@
 #include "data_path.hpp"
 #include "database_path.hpp"
 #include "model_choice.hpp"
+#include "number_flag.hpp"
 #include "output_path.hpp"
 #include "feedplan/core/atomic_file.hpp"
 #include "feedplan/core/input_error.hpp"
@@ -27,15 +28,16 @@ void add_loop_command(CLI::App& app, LoopOptions& options) {
       "Plan → cut on the virtual machine → learn from its force log → re-plan, N times, from a model that is\n"
       "deliberately wrong for the machine; prints the per-revolution force error and cycle time per cycle");
   cmd->add_option("spec", options.spec_path, "Cycle spec (YAML)")->required();
-  cmd->add_option("--cycles", options.cycles, "Repetitions (default 3)");
+  add_integer_flag(cmd, "--cycles", options.cycles, "Repetitions (default 3)");
   cmd->add_option("--db", options.db_path, "Model database (default: $FEEDPLAN_DB, else the bundled sample database)");
-  cmd->add_option("--machine-scale", options.machine_scale,
+  add_number_flag(cmd, "--machine-scale", options.machine_scale,
                   "The virtual machine's cutting coefficients × this: its forces ≈ this × the model's (default 1.4)");
-  cmd->add_option("--target-force", options.target_force_n, "Per-revolution peak force to hold, N (default: the spec's)");
-  cmd->add_option("--cautious", options.cautious,
-                  "Cautious first cut: plan on F̂ + z·σ with this relative uncertainty of the starting model (e.g. 0.25)");
-  cmd->add_option("--sigmas", options.sigmas, "z of the cautious bound (default 2)");
-  cmd->add_option("--model-id", options.model_id, "Start from this model instead of the closest");
+  add_number_flag(cmd, "--target-force", options.target_force_n, "Per-revolution peak force to hold, N (default: the spec's)");
+  add_number_flag(cmd, "--cautious", options.cautious,
+                  "Cautious first cut: plan on F̂ + z·σ with this relative uncertainty of the starting model (e.g. 0.25;\n"
+                  "0: off; default: from how far the model is borrowed, off for an exact one)");
+  add_number_flag(cmd, "--sigmas", options.sigmas, "z of the cautious bound (default 2)");
+  add_integer_flag(cmd, "--model-id", options.model_id, "Start from this model instead of the closest");
   cmd->add_option("--materials", options.materials_path, "Materials file of the virtual machine (default: the bundled one)");
   cmd->add_flag("--json", options.json, "Print the table as JSON");
   cmd->add_option("--revolutions", options.revolutions_path,
@@ -64,6 +66,7 @@ std::string revolutions_csv(const trial::LoopResult& result, double target_force
 struct LoopInputs {
   cycles::CycleSpec spec;       // the cycle spec
   double target_force_n = 0.0;  // --target-force, else the spec's, N
+  double cautious = 0.0;        // r of the first cut's bound: --cautious, else from the borrowing (set with the model)
 };
 
 LoopInputs read_loop_inputs(const LoopOptions& o) {
@@ -75,16 +78,16 @@ LoopInputs read_loop_inputs(const LoopOptions& o) {
   if (!(std::isfinite(o.machine_scale) && o.machine_scale > 0.1 && o.machine_scale < 10.0)) {
     problems.push_back({"--machine-scale", "= " + shortest_number_text(o.machine_scale) + ": must be in (0.1, 10)"});
   }
-  if (!(std::isfinite(o.cautious) && o.cautious >= 0.0 && o.cautious <= 2.0)) {
-    problems.push_back({"--cautious", "= " + shortest_number_text(o.cautious) + ": must be in [0, 2] (a relative uncertainty)"});
+  check_flag(problems, "--cautious", o.cautious, {0.0, true, 2.0, true}, "a relative uncertainty (0: off)");
+  check_flag(problems, "--sigmas", o.sigmas, {0.0, true, 10.0, true});
+  check_flag(problems, "--target-force", o.target_force_n, {0.0, false}, "the per-revolution peak force to hold, N");
+  if (o.model_id && *o.model_id < 1) {
+    problems.push_back({"--model-id", "= " + std::to_string(*o.model_id) + ": must be ≥ 1 (see feedplan db list)"});
   }
-  if (!(std::isfinite(o.sigmas) && o.sigmas >= 0.0 && o.sigmas <= 10.0)) {
-    problems.push_back({"--sigmas", "= " + shortest_number_text(o.sigmas) + ": must be in [0, 10]"});
-  }
-  in.target_force_n = o.target_force_n != 0.0 ? o.target_force_n : spec.target_force_n;
-  if (!(std::isfinite(in.target_force_n) && in.target_force_n > 0.0)) {
-    problems.push_back({o.target_force_n != 0.0 ? "--target-force" : "target_force_n",
-                        "= " + shortest_number_text(in.target_force_n) + ": a target force > 0 N is required"});
+  in.target_force_n = o.target_force_n.value_or(spec.target_force_n);
+  if (!o.target_force_n && !(spec.target_force_n > 0.0)) {
+    problems.push_back({"target_force_n", "is not in the spec: a target force > 0 N is required (in the spec or with "
+                                          "--target-force)"});
   }
   if (!(spec.spindle_rpm > 0.0)) problems.push_back({"spindle_rpm", "is required (rev/min > 0)"});
   check_outputs({{"SPEC", o.spec_path},
@@ -114,7 +117,7 @@ trial::LoopRequest loop_request(const LoopOptions& o, const LoopInputs& in, cons
   request.machine.machine = spec.machine;
   request.machine.spindle_rpm = spec.spindle_rpm;
   request.cycles = o.cycles;
-  request.first_cut_uncertainty = o.cautious;
+  request.first_cut_uncertainty = in.cautious;
   request.sigmas = o.sigmas;
   request.start_fit_covariance = chosen.record.fit.covariance;
   return request;
@@ -143,8 +146,10 @@ void print_loop_json(const LoopOptions& o, const LoopInputs& in, const ChosenMod
   out["spec"] = o.spec_path;
   out["target_force_n"] = in.target_force_n;
   out["machine_scale"] = o.machine_scale;
-  out["cautious"] = o.cautious;
-  out["start_model"] = {{"id", chosen.record.id}, {"version", chosen.record.version}};
+  out["cautious"] = in.cautious;
+  out["start_model"] = {{"id", chosen.record.id}, {"version", chosen.record.version},
+                        {"match_status", model_db::to_string(chosen.borrowing.status)},
+                        {"match", model_db::describe(chosen.borrowing)}};
   out["cycles"] = nlohmann::json::array();
   for (const auto& c : result.cycles) {
     out["cycles"].push_back({{"cycle", c.cycle},
@@ -170,9 +175,11 @@ void print_loop_text(const LoopOptions& o, const LoopInputs& in, const ChosenMod
   std::printf("%s: %s, target %s N, virtual machine forces × %s of the material's, start model id %lld v%d%s\n",
               o.spec_path.c_str(), in.spec.cycle.c_str(), shortest_number_text(in.target_force_n).c_str(),
               shortest_number_text(o.machine_scale).c_str(), static_cast<long long>(chosen.record.id),
-              chosen.record.version, o.cautious > 0 ? (", cautious first cut (r " + shortest_number_text(o.cautious) +
-                                                       ", z " + shortest_number_text(o.sigmas) + ")").c_str()
-                                                    : "");
+              chosen.record.version, in.cautious > 0 ? (", cautious first cut (r " + shortest_number_text(in.cautious) +
+                                                        ", z " + shortest_number_text(o.sigmas) + ")").c_str()
+                                                     : "");
+  std::printf("model match: %s%s\n", model_db::describe(chosen.borrowing).c_str(),
+              !o.cautious && in.cautious > 0 ? " — the first cut is cautious because the model is borrowed (--cautious R to change)" : "");
   std::printf("%5s %9s %9s | %8s %7s %7s | %8s %7s %7s | %9s | %15s\n", "cycle", "plan_s", "vm_s", "steady", "max%",
               "rms%", "held", "max%", "rms%", "overshoot", "model p95% b→a");
   for (const auto& c : result.cycles) {
@@ -187,10 +194,11 @@ void print_loop_text(const LoopOptions& o, const LoopInputs& in, const ChosenMod
 }  // namespace
 
 int run_loop_command(const LoopOptions& o) {
-  const LoopInputs in = read_loop_inputs(o);
+  LoopInputs in = read_loop_inputs(o);
   const model_db::Store store = model_db::Store::open(database_path(o.db_path), model_db::OpenMode::kReadOnly);
   const std::optional<ChosenModel> chosen = choose_model(store, in.spec, o.model_id);
   if (!chosen) return 1;
+  in.cautious = planning_uncertainty(*chosen, o.cautious);
   const trial::LoopResult result = run_loop_with_progress(loop_request(o, in, *chosen), o.cycles);
   if (!o.revolutions_path.empty()) {
     if (const std::string error = write_file_atomically(o.revolutions_path, revolutions_csv(result, in.target_force_n));

@@ -7,6 +7,7 @@
 #include <CLI/CLI.hpp>
 
 #include <cstdint>
+#include <optional>
 #include <string>
 
 namespace feedplan::cli {
@@ -16,10 +17,12 @@ struct LoopOptions {
   std::string db_path;              //!< --db
   int cycles = 3;                   //!< --cycles
   double machine_scale = 1.4;       //!< --machine-scale: the virtual machine's true forces ≈ this × the model's
-  double target_force_n = 0.0;      //!< --target-force; 0: the spec's
-  double cautious = 0.0;            //!< --cautious R: first cut on F̂ + z·σ with relative uncertainty R; 0: off
+  std::optional<double> target_force_n;  //!< --target-force; unset: the spec's
+  //! --cautious R: first cut on F̂ + z·σ with relative uncertainty R (0: off); unset: from how far the
+  //! starting model is borrowed (0, off, for an exact one)
+  std::optional<double> cautious;
   double sigmas = 2.0;              //!< --sigmas z
-  std::int64_t model_id = 0;        //!< --model-id
+  std::optional<std::int64_t> model_id;  //!< --model-id; unset: the closest active model
   std::string materials_path;       //!< --materials
   bool json = false;                //!< --json
   std::string revolutions_path;     //!< --revolutions: per-revolution CSV of every cycle

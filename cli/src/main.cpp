@@ -23,6 +23,12 @@ namespace {
 constexpr int kExitFailed = 1;
 constexpr int kExitBadInput = 2;
 
+int bad_input(const feedplan::InputError& e) {
+  std::cerr << "feedplan: bad input:\n";
+  for (const auto& problem : e.problems()) std::cerr << "  " << feedplan::to_string(problem) << "\n";
+  return kExitBadInput;
+}
+
 // Parses and runs one command; its exit code.
 int run_command_line(int argc, char** argv) {
   CLI::App app{"feedplan " FEEDPLAN_VERSION
@@ -58,6 +64,8 @@ int run_command_line(int argc, char** argv) {
   } catch (const CLI::ParseError& e) {
     app.exit(e);
     return kExitBadInput;
+  } catch (const feedplan::InputError& e) {  // a numeric flag that is not a number (number_flag.hpp)
+    return bad_input(e);
   }
 
   try {
@@ -69,9 +77,7 @@ int run_command_line(int argc, char** argv) {
     if (app.got_subcommand("loop")) return feedplan::cli::run_loop_command(loop_options);
     if (app.got_subcommand("db")) return feedplan::cli::run_db_command(app, db_options);
   } catch (const feedplan::InputError& e) {
-    std::cerr << "feedplan: bad input:\n";
-    for (const auto& problem : e.problems()) std::cerr << "  " << feedplan::to_string(problem) << "\n";
-    return kExitBadInput;
+    return bad_input(e);
   } catch (const std::exception& e) {
     std::cerr << "feedplan: failed: " << e.what() << "\n";
     return kExitFailed;

@@ -9,15 +9,44 @@ namespace feedplan::cli {
 
 namespace mdb = model_db;
 
-std::optional<ChosenModel> choose_model(const mdb::Store& store, const cycles::CycleSpec& spec, std::int64_t model_id) {
-  if (model_id != 0) {
-    auto record = store.model_by_id(model_id);
-    if (!record) {
-      throw InputError("--model-id", "= " + std::to_string(model_id) + ": no model with this id in " +
-                                         store.path().string() + " (see feedplan db list)");
-    }
-    return ChosenModel{*record, "by id", "model id " + std::to_string(model_id) + " as asked (--model-id)"};
+namespace {
+
+// The tool as the spec gives it: the model must fit these values, whatever the tool is called.
+mdb::ToolRecord spec_tool(const cycles::CycleSpec& spec) {
+  mdb::ToolRecord tool;
+  tool.name = spec.tool.name;
+  tool.diameter_mm = spec.tool.diameter_mm;
+  tool.flutes = spec.tool.flutes;
+  tool.helix_deg = spec.tool.helix_deg;
+  return tool;
+}
+
+// How the model `record` fits the spec's tool (its values) and material (from the store, when known).
+mdb::ModelBorrowing borrowing_of(const mdb::Store& store, const cycles::CycleSpec& spec, const mdb::ModelRecord& record) {
+  const mdb::ToolRecord model_tool = *store.find_tool(record.tool_name);
+  const mdb::MaterialRecord model_material = *store.find_material(record.material_name);
+  if (const auto material = store.find_material(spec.material)) {
+    return mdb::model_borrowing(spec_tool(spec), *material, model_tool, model_material);
   }
+  return mdb::model_borrowing(spec_tool(spec), mdb::UnknownMaterial{spec.material}, model_tool, model_material);
+}
+
+std::optional<ChosenModel> model_by_id(const mdb::Store& store, const cycles::CycleSpec& spec, std::int64_t model_id) {
+  auto record = store.model_by_id(model_id);
+  if (!record) {
+    throw InputError("--model-id", "= " + std::to_string(model_id) + ": no model with this id in " +
+                                       store.path().string() + " (see feedplan db list)");
+  }
+  mdb::ModelBorrowing borrowing = borrowing_of(store, spec, *record);
+  return ChosenModel{*record, "by id", "model id " + std::to_string(model_id) + " as asked (--model-id)",
+                     std::move(borrowing)};
+}
+
+}  // namespace
+
+std::optional<ChosenModel> choose_model(const mdb::Store& store, const cycles::CycleSpec& spec,
+                                        std::optional<std::int64_t> model_id) {
+  if (model_id) return model_by_id(store, spec, *model_id);
   if (spec.material.empty()) throw InputError("material", "is required to choose a force model, e.g. material: S50C");
   const auto material = store.find_material(spec.material);
   if (!material) {
@@ -26,23 +55,18 @@ std::optional<ChosenModel> choose_model(const mdb::Store& store, const cycles::C
     throw InputError("material", "= '" + spec.material + "': not in the model database " + store.path().string() +
                                      " (known: " + (known.empty() ? "none" : known) + ")");
   }
-  mdb::ToolRecord tool;
-  if (auto stored = store.find_tool(spec.tool.name)) {
-    tool = *stored;
-  } else {
-    tool.name = spec.tool.name;
-    tool.diameter_mm = spec.tool.diameter_mm;
-    tool.flutes = spec.tool.flutes;
-    tool.helix_deg = spec.tool.helix_deg;
-  }
-  const mdb::ClosestModel closest = mdb::closest_model(store, tool, *material);
+  const mdb::ClosestModel closest = mdb::closest_model(store, spec_tool(spec), *material);
   if (closest.status != mdb::ClosestModelStatus::kFound) {
     std::cerr << "feedplan: failed: no force model to plan with: " << closest.explanation << "\n"
               << "  add cutting tests and fit one (feedplan db import-test, feedplan db fit), or pass --model-id\n";
     return std::nullopt;
   }
-  return ChosenModel{*closest.model, mdb::to_string(closest.match), closest.explanation};
+  mdb::ModelBorrowing borrowing = mdb::model_borrowing(spec_tool(spec), *material, closest.model_tool, closest.model_material);
+  return ChosenModel{*closest.model, mdb::to_string(closest.match), closest.explanation, std::move(borrowing)};
 }
 
+double planning_uncertainty(const ChosenModel& chosen, std::optional<double> requested) {
+  return requested ? *requested : chosen.borrowing.borrowed_fraction / kBorrowedModelSigmas;
+}
 
 }  // namespace feedplan::cli

@@ -7,6 +7,7 @@
 #include <string>
 
 #include "feedplan/cycles/spec.hpp"
+#include "feedplan/model_db/model_borrowing.hpp"
 #include "feedplan/model_db/store.hpp"
 #include "feedplan/model_db/store_records.hpp"
 
@@ -17,11 +18,22 @@ struct ChosenModel {
   model_db::ModelRecord record;  //!< the version used
   std::string match;             //!< to_string(ModelMatch) or "by id"
   std::string explanation;       //!< for people
+  model_db::ModelBorrowing borrowing;  //!< exact or borrowed: what differs from the spec's tool and material
 };
 
-//! The model for `spec`: the version with `model_id` when it is not 0, else the closest active one.
+//! The model for `spec`: the version with `model_id` when given, else the closest active one (chosen for
+//! the spec's tool values: a stored tool of the same name but another diameter is not an exact match).
 //! Throws InputError for an unknown id or material (with the known names); returns nothing, after
 //! printing why on stderr, when the database has no model that qualifies.
-std::optional<ChosenModel> choose_model(const model_db::Store& store, const cycles::CycleSpec& spec, std::int64_t model_id);
+std::optional<ChosenModel> choose_model(const model_db::Store& store, const cycles::CycleSpec& spec, std::optional<std::int64_t> model_id);
+
+//! z of the cautious bound F̂ + z·σ a borrowed model is planned on.
+inline constexpr double kBorrowedModelSigmas = 2.0;
+
+//! The relative uncertainty r a plan holds F̂ + z·σ at the target with (planner/force_bound.hpp, z =
+//! kBorrowedModelSigmas): `requested` (--model-uncertainty) when given, else δ / z with δ the fraction
+//! the chosen model is borrowed by (model_db/model_borrowing.hpp; 0 for an exact model) — so the bound
+//! is at least F̂·(1 + δ) and a model borrowed by δ cannot overshoot by more unseen.
+double planning_uncertainty(const ChosenModel& chosen, std::optional<double> requested);
 
 }  // namespace feedplan::cli

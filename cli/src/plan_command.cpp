@@ -13,8 +13,12 @@
 #include "data_path.hpp"
 #include "database_path.hpp"
 #include "model_choice.hpp"
+#include "number_flag.hpp"
 #include "output_files.hpp"
 #include "output_path.hpp"
+#include "plan_baselines.hpp"
+#include "plan_outcome.hpp"
+#include "plan_summary.hpp"
 #include "feedplan/trial/plan_check.hpp"
 #include "feedplan/core/atomic_file.hpp"
 #include "feedplan/core/input_error.hpp"
@@ -36,44 +40,6 @@ namespace fs = std::filesystem;
 namespace mdb = model_db;
 
 constexpr int kExitFailed = 1;
-
-// What the user asked for, every flag checked.
-struct PlanInputs {
-  cycles::CycleSpec spec;                             // the cycle spec
-  planner::PlanMode mode = planner::PlanMode::kSafe;  // --mode
-  double target_force_n = 0.0;                        // --target-force, else the spec's, N
-  gcode::WriterOptions writer;                        // --dialect and the format flags (no header yet)
-};
-
-// The model to plan with and the database it came from.
-struct PlanModel {
-  std::string db_path;  // --db, else $FEEDPLAN_DB, else the sample database: absolute, canonical
-  ChosenModel chosen;   // the model and why
-};
-
-// The cycle, its plan and how long engagement and planning took.
-struct PlannedCycle {
-  cycles::Cycle cycle;              // path and stock
-  planner::PlanSettings settings;   // what the plan was asked to do
-  planner::PlanResult result;       // the plan
-  double analyse_s = 0.0;           // wall time of the engagement analysis, s
-  double plan_s = 0.0;              // wall time of the planning, s
-};
-
-// Which program is written: the plan's when the target can be met everywhere, or the constant-feed one.
-struct ProgramChoice {
-  bool planned = false;   // the plan's program
-  bool constant = false;  // --constant-feed: the constant-feed program instead
-  bool any() const { return planned || constant; }
-};
-
-// What the outputs step did.
-struct PlanOutputs {
-  ProgramChoice program;                  // which program was written
-  std::optional<trial::PlanCheck> check;  // --simulate: the program run on the virtual machine
-  std::vector<std::string> written;       // the files written, in order
-  std::vector<std::string> kept;          // existing files a failed plan left as they were
-};
 
 planner::PlanMode plan_mode(const std::string& mode, std::vector<InputProblem>& problems) {
   if (mode == "regulate") return planner::PlanMode::kRegulate;
@@ -99,14 +65,22 @@ gcode::WriterOptions writer_options(const PlanCommandOptions& o, const std::opti
   return writer;
 }
 
-void check_constant_feed(const PlanCommandOptions& o, const cycles::CycleSpec& spec, std::vector<InputProblem>& problems) {
-  if (o.constant_feed_mm_per_min != 0.0 &&
-      !(o.constant_feed_mm_per_min >= spec.machine.min_feed_mm_per_min &&
-        o.constant_feed_mm_per_min <= spec.machine.max_feed_mm_per_min)) {
-    problems.push_back({"--constant-feed", "= " + shortest_number_text(o.constant_feed_mm_per_min) +
-                                               ": must lie in the machine's feed range [" +
-                                               shortest_number_text(spec.machine.min_feed_mm_per_min) + ", " +
-                                               shortest_number_text(spec.machine.max_feed_mm_per_min) + "] mm/min"});
+// Every numeric flag against its range (the planner's and the machine's), named after the flag.
+void check_plan_numbers(const PlanCommandOptions& o, const cycles::CycleSpec& spec, std::vector<InputProblem>& problems) {
+  const geometry::MachineLimits& m = spec.machine;
+  const FlagRange feed_range{m.min_feed_mm_per_min, true, m.max_feed_mm_per_min, true};
+  const std::string machine_range = "the machine's feed range, mm/min";
+  check_flag(problems, "--target-force", o.target_force_n, {0.0, false}, "the per-revolution peak force to hold, N");
+  check_flag(problems, "--air-feed", o.air_feed_mm_per_min, feed_range, machine_range + " (leave it out for the maximum)");
+  check_flag(problems, "--merge-tolerance", o.merge_tolerance, {0.0, true, 0.5, true}, "a relative feed spread");
+  check_flag(problems, "--feed-resolution", o.feed_resolution_mm_per_min, {0.0, false, 100.0, true}, "mm/min");
+  check_flag(problems, "--jerk", o.jerk_limit_mm_per_s3, {0.0, false}, "mm/s³ (leave it out for no jerk limit)");
+  check_flag(problems, "--ds", o.ds_mm, {0.001, true, spec.tool.radius_mm(), true}, "mm, at most the tool radius");
+  check_flag(problems, "--constant-feed", o.constant_feed_mm_per_min, feed_range, machine_range);
+  check_flag(problems, "--model-uncertainty", o.model_uncertainty, {0.0, true, 2.0, true},
+             "a relative standard deviation of the model's force (0: plan on the model alone)");
+  if (o.model_id && *o.model_id < 1) {
+    problems.push_back({"--model-id", "= " + std::to_string(*o.model_id) + ": must be ≥ 1 (see feedplan db list)"});
   }
 }
 
@@ -119,19 +93,14 @@ PlanInputs read_plan_inputs(const PlanCommandOptions& o) {
   const auto dialect = gcode::dialect_from_string(o.dialect);
   if (!dialect) problems.push_back({"--dialect", "= '" + o.dialect + "': expected linuxcnc, fanuc or haas"});
   in.mode = plan_mode(o.mode, problems);
-  in.target_force_n = o.target_force_n != 0.0 ? o.target_force_n : spec.target_force_n;
-  if (!(std::isfinite(in.target_force_n) && in.target_force_n > 0.0)) {
-    problems.push_back({o.target_force_n != 0.0 ? "--target-force" : "target_force_n",
-                        "= " + shortest_number_text(in.target_force_n) +
-                            ": a target force > 0 N is required (in the spec or with --target-force)"});
+  in.target_force_n = o.target_force_n.value_or(spec.target_force_n);
+  if (!o.target_force_n && !(spec.target_force_n > 0.0)) {
+    problems.push_back({"target_force_n", "is not in the spec: a target force > 0 N is required (in the spec or "
+                                          "with --target-force)"});
   }
   if (!(spec.spindle_rpm > 0.0)) problems.push_back({"spindle_rpm", "is required to plan feeds (rev/min > 0)"});
-  if (!(o.ds_mm >= 0.001 && o.ds_mm <= spec.tool.radius_mm())) {
-    problems.push_back({"--ds", "= " + shortest_number_text(o.ds_mm) + ": must be in [0.001, tool radius " +
-                                    shortest_number_text(spec.tool.radius_mm()) + "] mm"});
-  }
+  check_plan_numbers(o, spec, problems);
   in.writer = writer_options(o, dialect, problems);
-  check_constant_feed(o, spec, problems);
   check_outputs({{"SPEC", o.spec_path},
                  {"--db", database_path(o.db_path)},
                  {"--materials", o.materials_path.empty() ? bundled_materials_path() : o.materials_path}},
@@ -147,34 +116,43 @@ std::optional<PlanModel> choose_plan_model(const PlanCommandOptions& o, const cy
   const mdb::Store store = mdb::Store::open(db_path, mdb::OpenMode::kReadOnly);
   std::optional<ChosenModel> chosen = choose_model(store, spec, o.model_id);
   if (!chosen) return std::nullopt;
-  return PlanModel{stored_path(db_path), std::move(*chosen)};
+  const double r = planning_uncertainty(*chosen, o.model_uncertainty);
+  return PlanModel{stored_path(db_path), std::move(*chosen), r, o.model_uncertainty.has_value()};
 }
 
-planner::PlanSettings plan_settings(const PlanCommandOptions& o, const PlanInputs& in, const ChosenModel& chosen) {
+// The plan's settings; a borrowed model (or --model-uncertainty) plans on the cautious bound F̂ + z·σ.
+planner::PlanSettings plan_settings(const PlanCommandOptions& o, const PlanInputs& in, const PlanModel& model) {
+  const ChosenModel& chosen = model.chosen;
   planner::PlanSettings settings;
   settings.model = chosen.record.model;
+  if (model.relative_uncertainty > 0.0) {
+    planner::ForceUncertainty uncertainty;
+    uncertainty.covariance = chosen.record.fit.covariance;
+    uncertainty.sigmas = kBorrowedModelSigmas;
+    uncertainty.relative = model.relative_uncertainty;
+    settings.uncertainty = uncertainty;
+  }
   settings.target_force_n = in.target_force_n;
   settings.spindle_rpm = in.spec.spindle_rpm;
   settings.machine = in.spec.machine;
   settings.options.mode = in.mode;
-  settings.options.air_feed_mm_per_min = o.air_feed_mm_per_min;
+  settings.options.air_feed_mm_per_min = o.air_feed_mm_per_min.value_or(0.0);  // 0: the machine's maximum
   settings.options.merge_tolerance = o.merge_tolerance;
   settings.options.feed_resolution_mm_per_min = o.feed_resolution_mm_per_min;
-  settings.options.jerk_limit_mm_per_s3 = o.jerk_limit_mm_per_s3;
+  settings.options.jerk_limit_mm_per_s3 = o.jerk_limit_mm_per_s3.value_or(0.0);  // 0: none
   settings.options.ds_mm = o.ds_mm;
   return settings;
 }
 
 // Path, engagement, plan.
-PlannedCycle plan_cycle(const PlanCommandOptions& o, const PlanInputs& in, const ChosenModel& chosen) {
+PlannedCycle plan_cycle(const PlanCommandOptions& o, const PlanInputs& in, const PlanModel& model) {
   PlannedCycle planned;
   const auto started = std::chrono::steady_clock::now();
   planned.cycle = cycles::generate(in.spec);
-  const planner::PlanGeometry geometry =
-      planner::analyse(planned.cycle.path, planned.cycle.stock, in.spec.tool, o.ds_mm);  // = options.ds_mm
+  planned.geometry = planner::analyse(planned.cycle.path, planned.cycle.stock, in.spec.tool, o.ds_mm);  // = options.ds_mm
   const auto analysed = std::chrono::steady_clock::now();
-  planned.settings = plan_settings(o, in, chosen);
-  planned.result = planner::plan(geometry, planned.settings);
+  planned.settings = plan_settings(o, in, model);
+  planned.result = planner::plan(planned.geometry, planned.settings);
   const auto finished = std::chrono::steady_clock::now();
   planned.analyse_s = std::chrono::duration<double>(analysed - started).count();
   planned.plan_s = std::chrono::duration<double>(finished - analysed).count();
@@ -184,8 +162,8 @@ PlannedCycle plan_cycle(const PlanCommandOptions& o, const PlanInputs& in, const
 // The program only when the target can be met everywhere, or the constant-feed one when asked for.
 ProgramChoice choose_program(const PlanCommandOptions& o, const planner::PlanResult& result) {
   ProgramChoice choice;
-  choice.planned = result.status != planner::PlanStatus::kTargetNotMet && o.constant_feed_mm_per_min == 0.0;
-  choice.constant = o.constant_feed_mm_per_min > 0.0;
+  choice.planned = result.status != planner::PlanStatus::kTargetNotMet && !o.constant_feed_mm_per_min;
+  choice.constant = o.constant_feed_mm_per_min.has_value();
   return choice;
 }
 
@@ -201,7 +179,7 @@ gcode::WriterOptions program_writer(const PlanCommandOptions& o, const PlanInput
       {"tool", spec.tool.name + " D" + shortest_number_text(spec.tool.diameter_mm) + " Z" + std::to_string(spec.tool.flutes)},
       {"material", spec.material}};
   if (program.constant) {
-    writer.header_comments.push_back({"constant feed mm/min", shortest_number_text(o.constant_feed_mm_per_min)});
+    writer.header_comments.push_back({"constant feed mm/min", shortest_number_text(*o.constant_feed_mm_per_min)});
   } else {
     writer.header_comments.push_back(
         {"model", "id " + std::to_string(record.id) + " v" + std::to_string(record.version) + " " + record.tool_name +
@@ -222,7 +200,7 @@ std::string program_text(const PlanCommandOptions& o, const PlanInputs& in, cons
   if (program.constant) {
     // --constant-feed: the cycle's own moves, one F on every feed move (what the baseline is).
     return gcode::write_gcode(
-        planner::constant_feed_program(planned.cycle.path, o.constant_feed_mm_per_min, in.spec.spindle_rpm), writer);
+        planner::constant_feed_program(planned.cycle.path, *o.constant_feed_mm_per_min, in.spec.spindle_rpm), writer);
   }
   return gcode::write_gcode(planned.result.program, writer);
 }
@@ -240,6 +218,11 @@ planner::PlanReportContext report_context(const PlanCommandOptions& o, const Pla
   context.model_tool = record.tool_name;
   context.model_material = record.material_name;
   context.model_match = model.chosen.explanation;
+  context.model_match_status = model_db::to_string(model.chosen.borrowing.status);
+  for (const model_db::ModelDifference& d : model.chosen.borrowing.differences) {
+    context.model_differences.push_back(d.property + " " + d.used + " for " + d.wanted);
+  }
+  context.model_relative_uncertainty = model.relative_uncertainty;
   context.database_path = model.db_path;
   context.program_path = program.any() ? o.program_path : "";
   context.dialect = gcode::to_string(writer.dialect);
@@ -286,10 +269,11 @@ std::string write_plan_outputs(const PlanCommandOptions& o, const PlanInputs& in
   const std::string text = program_text(o, in, planned, out.program, writer);
   OutputFiles files;
   if (out.program.any() && !files.add(o.program_path, text)) return files.error();
+  const std::string materials = o.materials_path.empty() ? bundled_materials_path() : o.materials_path;
   if (o.simulate && out.program.any()) {
-    out.check = trial::check_on_virtual_machine(text, in.spec, planned.cycle, planned.result, in.target_force_n,
-                                                o.materials_path.empty() ? bundled_materials_path() : o.materials_path);
+    out.check = trial::check_on_virtual_machine(text, in.spec, planned.cycle, planned.result, in.target_force_n, materials);
   }
+  out.baselines = plan_baselines(in, planned, out.program.planned ? out.check : std::nullopt, materials);
   stage_plan_files(o, in, planned, report_context(o, in, model, out.program, writer), out, files);
   const std::string error = files.commit(out.program.any() ? ExistingFile::kReplace : ExistingFile::kKeep);
   out.written = files.written();
@@ -304,81 +288,12 @@ void print_kept_outputs(const PlanOutputs& out) {
   }
 }
 
-void print_plan_json(const PlanCommandOptions& o, const PlanInputs& in, const PlanModel& model,
-                     const PlannedCycle& planned, const PlanOutputs& outputs) {
-  const planner::PlanResult& result = planned.result;
-  const planner::PlanSummary& s = result.summary;
-  const mdb::ModelRecord& record = model.chosen.record;
-  const std::optional<trial::PlanCheck>& check = outputs.check;
-  nlohmann::json out;
-  out["status"] = planner::to_string(result.status);
-  out["messages"] = result.messages;
-  out["spec"] = o.spec_path;
-  out["model"] = {{"id", record.id}, {"version", record.version}, {"tool", record.tool_name},
-                  {"material", record.material_name}, {"match", model.chosen.match}, {"explanation", model.chosen.explanation}};
-  out["target_force_n"] = in.target_force_n;
-  out["blocks"] = result.blocks.size();
-  out["samples"] = result.samples.size();
-  out["feed_min_mm_per_min"] = s.min_feed_mm_per_min;
-  out["feed_max_mm_per_min"] = s.max_feed_mm_per_min;
-  out["cycle_time_s"] = s.cycle_time_s;
-  out["cutting_time_s"] = s.cutting_time_s;
-  out["max_predicted_force_n"] = s.max_predicted_force_n;
-  out["baseline"] = {{"feed_mm_per_min", s.baseline.feed_mm_per_min}, {"cycle_time_s", s.baseline.cycle_time_s},
-                     {"peak_force_n", s.baseline.peak_force_n}};
-  out["time_saved_percent"] = s.time_saved_percent;
-  out["engagement_time_s"] = planned.analyse_s;
-  out["plan_time_s"] = planned.plan_s;
-  out["written"] = outputs.written;
-  if (check) {
-    const auto& c = check->comparison;
-    out["virtual_machine"] = {{"cycle_time_s", check->cycle_time_s},
-                              {"max_peak_n", check->max_peak_n},
-                              {"revolutions", c.revolutions.size()},
-                              {"in_cut", c.in_cut},
-                              {"held", c.held},
-                              {"steady", c.steady},
-                              {"steady_max_abs_error_percent", c.steady_max_abs_error_percent},
-                              {"steady_rms_error_percent", c.steady_rms_error_percent},
-                              {"max_abs_error_percent", c.max_abs_error_percent},
-                              {"rms_error_percent", c.rms_error_percent},
-                              {"max_overshoot_percent", c.max_overshoot_percent},
-                              {"warnings", check->warnings}};
-  }
-  std::cout << out.dump(2) << "\n";
-}
-
-void print_plan_text(const PlanCommandOptions& o, const PlanInputs& in, const PlanModel& model,
-                     const PlannedCycle& planned, const PlanOutputs& outputs) {
-  const cycles::CycleSpec& spec = in.spec;
-  const planner::PlanResult& result = planned.result;
-  const planner::PlanSummary& s = result.summary;
-  const mdb::ModelRecord& record = model.chosen.record;
-  const std::optional<trial::PlanCheck>& check = outputs.check;
-  std::printf("%s: %s, tool %s, %s, target %s N\n", o.spec_path.c_str(), spec.cycle.c_str(), spec.tool.name.c_str(),
-              spec.material.c_str(), shortest_number_text(in.target_force_n).c_str());
-  std::printf("model: id %lld v%d (%s in %s) — %s\n", static_cast<long long>(record.id), record.version,
-              record.tool_name.c_str(), record.material_name.c_str(), model.chosen.explanation.c_str());
-  std::printf("status: %s\n", planner::to_string(result.status).c_str());
-  std::printf("plan: %zu samples, %zu blocks, F %.0f–%.0f mm/min, predicted peak %.1f N (engagement %.3f s, plan %.3f s)\n",
-              result.samples.size(), result.blocks.size(), s.min_feed_mm_per_min, s.max_feed_mm_per_min,
-              s.max_predicted_force_n, planned.analyse_s, planned.plan_s);
-  std::printf("cycle time: planned %.2f s (cutting %.2f s) vs constant F%.0f %.2f s: %.1f %% saved\n", s.cycle_time_s,
-              s.cutting_time_s, s.baseline.feed_mm_per_min, s.baseline.cycle_time_s, s.time_saved_percent);
-  if (check) {
-    std::printf("virtual machine: cycle time %.2f s, largest per-revolution peak %.1f N\n", check->cycle_time_s,
-                check->max_peak_n);
-    std::printf("%s", planner::describe(check->comparison).c_str());
-  }
-  for (const std::string& path : outputs.written) std::printf("wrote %s\n", path.c_str());
-}
-
-// The virtual machine's warnings and the plan's notes, on stderr.
-void print_plan_notes(const planner::PlanResult& result, const PlanOutputs& out) {
-  if (out.check) {
-    for (const std::string& warning : out.check->warnings) std::cerr << "feedplan: virtual machine: " << warning << "\n";
-  }
-  for (const std::string& message : result.messages) std::cerr << "feedplan: note: " << message << "\n";
+// When a borrowed model's cautious bound is what the target cannot meet, a model of its own removes it.
+std::string borrowed_model_advice(const PlanModel& model) {
+  if (model.chosen.borrowing.status != model_db::ModelMatchStatus::kBorrowed || model.relative_uncertainty <= 0.0) return "";
+  return "; or fit a model for this tool and material (feedplan db import-test, feedplan db fit): the borrowed "
+         "model is planned with a bound " + shortest_number_text(std::round(100.0 * kBorrowedModelSigmas * model.relative_uncertainty)) +
+         " % above its force";
 }
 
 }  // namespace
@@ -391,28 +306,32 @@ void add_plan_command(CLI::App& app, PlanCommandOptions& options) {
   cmd->add_option("spec", options.spec_path, "Cycle spec (YAML), e.g. samples/trochoid.yaml")->required();
   cmd->add_option("-o,--output", options.program_path, "G-code program to write")->required();
   cmd->add_option("--db", options.db_path, "Model database (default: $FEEDPLAN_DB, else the bundled sample database)");
-  cmd->add_option("--target-force", options.target_force_n, "Per-revolution peak force to hold, N (default: the spec's)");
+  add_number_flag(cmd, "--target-force", options.target_force_n, "Per-revolution peak force to hold, N (default: the spec's)");
   cmd->add_option("--dialect", options.dialect, "G-code dialect: linuxcnc, fanuc or haas (default linuxcnc)");
   cmd->add_option("--report", options.report_path, "Write the plan report (JSON)");
   cmd->add_option("--csv", options.csv_path, "Write the plan per sample (CSV)");
   cmd->add_option("--plot", options.plot_path, "Write a plot of engagement, feed and predicted force (SVG)");
   cmd->add_option("--mode", options.mode, "safe (F never above any limit inside its block) or regulate (default safe)");
-  cmd->add_option("--air-feed", options.air_feed_mm_per_min, "Feed through air, mm/min (default: the machine's maximum)");
-  cmd->add_option("--merge-tolerance", options.merge_tolerance, "Relative feed spread merged into one block (default 0.02)");
-  cmd->add_option("--feed-resolution", options.feed_resolution_mm_per_min, "F resolution, mm/min (default 1)");
-  cmd->add_option("--jerk", options.jerk_limit_mm_per_s3, "Path jerk limit, mm/s³ (default: none)");
-  cmd->add_option("--ds", options.ds_mm, "Engagement sample spacing, mm (default 0.05)");
-  cmd->add_option("--model-id", options.model_id, "Plan with this model (id from feedplan db list) instead of the closest");
-  cmd->add_option("--decimals", options.decimals, "Digits after the point in X Y Z I J (default 3)");
+  add_number_flag(cmd, "--air-feed", options.air_feed_mm_per_min, "Feed through air, mm/min (default: the machine's maximum)");
+  add_number_flag(cmd, "--merge-tolerance", options.merge_tolerance, "Relative feed spread merged into one block (default 0.02)");
+  add_number_flag(cmd, "--feed-resolution", options.feed_resolution_mm_per_min, "F resolution, mm/min (default 1)");
+  add_number_flag(cmd, "--jerk", options.jerk_limit_mm_per_s3, "Path jerk limit, mm/s³ (default: none)");
+  add_number_flag(cmd, "--ds", options.ds_mm, "Engagement sample spacing, mm (default 0.05)");
+  add_integer_flag(cmd, "--model-id", options.model_id, "Plan with this model (id from feedplan db list) instead of the closest");
+  add_number_flag(cmd, "--model-uncertainty", options.model_uncertainty,
+                  "Relative uncertainty r of the model's force: plan on F̂ + 2σ (default: from how far the model is\n"
+                  "borrowed, 0 for an exact one; 0 plans on the model alone)");
+  add_integer_flag(cmd, "--decimals", options.decimals, "Digits after the point in X Y Z I J (default 3)");
   cmd->add_flag("--line-numbers", options.line_numbers, "Number the blocks (N words)");
   cmd->add_flag("--coolant", options.coolant, "Flood coolant on (M8) while cutting");
-  cmd->add_option("--tool-number", options.tool_number, "Tool number for T and H (default 1)");
-  cmd->add_option("--program-number", options.program_number, "Program number for the O word of Fanuc/Haas (default 1000)");
+  add_integer_flag(cmd, "--tool-number", options.tool_number, "Tool number for T and H (default 1)");
+  add_integer_flag(cmd, "--program-number", options.program_number, "Program number for the O word of Fanuc/Haas (default 1000)");
   cmd->add_flag("--json", options.json, "Print the summary as JSON");
   cmd->add_flag("--simulate", options.simulate,
-                "Run the written program on the virtual machine (mechanistic forces for the spec's material) and\n"
-                "compare its per-revolution peak forces with the target");
-  cmd->add_option("--constant-feed", options.constant_feed_mm_per_min,
+                "Run the written program on the virtual machine (mechanistic forces for the spec's material),\n"
+                "compare its per-revolution peak forces with the target, and find the constant feed with the same\n"
+                "largest peak there (a few more runs)");
+  add_number_flag(cmd, "--constant-feed", options.constant_feed_mm_per_min,
                   "Write the constant-feed program instead: this F (mm/min) on every feed move (a baseline to compare)");
   cmd->add_option("--materials", options.materials_path, "Materials file of the virtual machine (default: the bundled one)");
 }
@@ -421,7 +340,7 @@ int run_plan_command(const PlanCommandOptions& o) {
   const PlanInputs in = read_plan_inputs(o);
   const std::optional<PlanModel> model = choose_plan_model(o, in.spec);
   if (!model) return kExitFailed;
-  const PlannedCycle planned = plan_cycle(o, in, model->chosen);
+  const PlannedCycle planned = plan_cycle(o, in, *model);
   PlanOutputs out;
   if (auto error = write_plan_outputs(o, in, *model, planned, out); !error.empty()) {
     std::cerr << "feedplan: failed: " << error << "\n";
@@ -435,8 +354,9 @@ int run_plan_command(const PlanCommandOptions& o) {
   print_plan_notes(planned.result, out);
   print_kept_outputs(out);
   if (!out.program.any()) {
+    const planner::TargetAdvice advice = planner::target_advice(planned.geometry, planned.settings, planned.result);
     std::cerr << "feedplan: failed: the target cannot be met everywhere (see the note above); no program written to "
-              << o.program_path << " — raise the target, or lower the machine's min_feed_mm_per_min\n";
+              << o.program_path << " — " << advice.text << borrowed_model_advice(*model) << "\n";
     return kExitFailed;
   }
   return 0;

@@ -6,6 +6,7 @@
 #include <CLI/CLI.hpp>
 
 #include <cstdint>
+#include <optional>
 #include <string>
 
 namespace feedplan::cli {
@@ -14,18 +15,19 @@ struct PlanCommandOptions {
   std::string spec_path;              //!< the cycle spec (YAML)
   std::string program_path;           //!< -o: the G-code program to write
   std::string db_path;                //!< --db; empty: $FEEDPLAN_DB, else the sample database
-  double target_force_n = 0.0;        //!< --target-force; 0: the spec's target_force_n
+  std::optional<double> target_force_n;  //!< --target-force; unset: the spec's target_force_n
   std::string dialect = "linuxcnc";   //!< --dialect linuxcnc | fanuc | haas
   std::string report_path;            //!< --report: JSON summary
   std::string csv_path;               //!< --csv: per-sample CSV
   std::string plot_path;              //!< --plot: SVG
   std::string mode = "safe";          //!< --mode safe | regulate
-  double air_feed_mm_per_min = 0.0;   //!< --air-feed; 0: the machine's maximum feed
+  std::optional<double> air_feed_mm_per_min;  //!< --air-feed; unset: the machine's maximum feed
   double merge_tolerance = 0.02;      //!< --merge-tolerance
   double feed_resolution_mm_per_min = 1.0;  //!< --feed-resolution
-  double jerk_limit_mm_per_s3 = 0.0;  //!< --jerk; 0: none
+  std::optional<double> jerk_limit_mm_per_s3;  //!< --jerk; unset: no jerk limit
   double ds_mm = 0.05;                //!< --ds: engagement sample spacing
-  std::int64_t model_id = 0;          //!< --model-id; 0: the closest active model
+  std::optional<std::int64_t> model_id;  //!< --model-id; unset: the closest active model
+  std::optional<double> model_uncertainty;  //!< --model-uncertainty r; unset: from how far the model is borrowed
   int decimals = 3;                   //!< --decimals
   bool line_numbers = false;          //!< --line-numbers
   bool coolant = false;               //!< --coolant
@@ -33,7 +35,7 @@ struct PlanCommandOptions {
   int program_number = 1000;          //!< --program-number (Fanuc/Haas O word)
   bool json = false;                  //!< --json: summary as JSON on stdout
   bool simulate = false;              //!< --simulate: run the program on the virtual machine and compare
-  double constant_feed_mm_per_min = 0.0;  //!< --constant-feed: write this one F on every feed move instead
+  std::optional<double> constant_feed_mm_per_min;  //!< --constant-feed: write this one F on every feed move instead
   std::string materials_path;         //!< --materials: the virtual machine's materials file
 };
 

@@ -1,6 +1,7 @@
 #include "simulate_command.hpp"
 
 #include "data_path.hpp"
+#include "number_flag.hpp"
 #include "output_files.hpp"
 #include "output_path.hpp"
 
@@ -168,19 +169,31 @@ struct SimulationRun {
   double wall_s = 0.0;           // wall time of the simulation, s
 };
 
-void check_machine_flags(const SimulateOptions& options, std::vector<InputProblem>& problems) {
-  auto check_flag = [&](const char* flag, double value, bool zero_allowed) {
-    if (!(std::isfinite(value) && (value > 0.0 || (zero_allowed && value == 0.0)))) {
-      problems.push_back({flag, "= " + six_digit_number_text(value) + ": must be a finite number > 0"});
-    }
-  };
-  check_flag("--max-accel", options.max_accel_mm_per_s2, true);
-  check_flag("--rapid", options.rapid_feed_mm_per_min, true);
-  check_flag("--max-feed", options.max_feed_mm_per_min, true);
-  check_flag("--log-rate", options.log_rate_hz, false);
-  if (!(std::isfinite(options.noise_n) && options.noise_n >= 0.0)) {
-    problems.push_back({"--noise-n", "= " + six_digit_number_text(options.noise_n) + ": must be a finite number ≥ 0"});
+// Every numeric flag against its range (the virtual machine's), named after the flag.
+void check_number_flags(const SimulateOptions& o, std::vector<InputProblem>& problems) {
+  check_flag(problems, "--spindle-rpm", o.spindle_rpm, {0.0, false}, "rev/min (leave it out to use the spec's)");
+  check_flag(problems, "--max-accel", o.max_accel_mm_per_s2, {0.0, false}, "mm/s² (leave it out for the spec's or the default)");
+  check_flag(problems, "--rapid", o.rapid_feed_mm_per_min, {0.0, false}, "mm/min (leave it out for the spec's or the default)");
+  check_flag(problems, "--max-feed", o.max_feed_mm_per_min, {0.0, false}, "mm/min (leave it out for the spec's or the default)");
+  check_flag(problems, "--noise-n", o.noise_n, {0.0, true}, "RMS N");
+  check_flag(problems, "--log-rate", o.log_rate_hz, {0.0, false}, "Hz");
+  check_flag(problems, "--angle-step", o.angle_step_deg, {0.0, false, 10.0, true}, "deg of spindle rotation per step");
+  check_flag(problems, "--layer-mm", o.layer_mm, {0.005, true}, "mm");
+  check_flag(problems, "--cut-length-mm", o.cut_length_mm, {0.0, false}, "mm");
+  check_flag(problems, "--radial-depth-mm", o.radial_depth_mm, {0.0, false}, "mm");
+  check_flag(problems, "--axial-depth-mm", o.axial_depth_mm, {0.0, false}, "mm");
+  check_flag(problems, "--feed-mm-per-min", o.feed_mm_per_min, {0.0, false}, "mm/min");
+}
+
+// The cutting test's flags: each required with --cutting-test, none without.
+void check_cutting_test_flags(const SimulateOptions& o, std::vector<InputProblem>& problems) {
+  const std::pair<const char*, const std::optional<double>*> flags[] = {
+      {"--radial-depth-mm", &o.radial_depth_mm}, {"--axial-depth-mm", &o.axial_depth_mm}, {"--feed-mm-per-min", &o.feed_mm_per_min}};
+  for (const auto& [flag, value] : flags) {
+    if (o.cutting_test && !value->has_value()) problems.push_back({flag, "is required with --cutting-test"});
+    if (!o.cutting_test && value->has_value()) problems.push_back({flag, "only applies with --cutting-test"});
   }
+  if (!o.cutting_test && o.up_milling) problems.push_back({"--up", "only applies with --cutting-test"});
 }
 
 // Where the tool, material, machine and stock come from: flags, else the spec; every flag checked.
@@ -204,18 +217,10 @@ SimulateInputs read_simulate_inputs(const SimulateOptions& options) {
   in.material_name = options.material_name;
   if (in.material_name.empty() && spec) in.material_name = spec->material;
   if (in.material_name.empty()) problems.push_back({"--material", "is required (or a --spec with material:), e.g. --material S50C"});
-  in.rpm = options.spindle_rpm;
-  if (in.rpm == 0.0 && spec) in.rpm = spec->spindle_rpm;
-  if (!(std::isfinite(in.rpm) && in.rpm >= 0.0)) {
-    problems.push_back(
-        {"--spindle-rpm", "= " + six_digit_number_text(options.spindle_rpm) + ": must be a finite number ≥ 0"});
-  }
-  check_machine_flags(options, problems);
+  in.rpm = options.spindle_rpm.value_or(spec ? spec->spindle_rpm : 0.0);  // 0: the program's S words only
+  check_number_flags(options, problems);
+  check_cutting_test_flags(options, problems);
   if (!options.runout_text.empty()) in.runout = parse_runout(options.runout_text, problems);
-  if (!options.cutting_test &&
-      (options.radial_depth_mm != 0.0 || options.axial_depth_mm != 0.0 || options.feed_mm_per_min != 0.0 || options.up_milling)) {
-    problems.push_back({"--radial-depth-mm/--axial-depth-mm/--feed-mm-per-min/--up", "only apply with --cutting-test"});
-  }
   check_outputs({{"PROGRAM", options.program_path},
                  {"--spec", options.spec_path},
                  {"--stock", options.stock_path},
@@ -234,9 +239,9 @@ sim::SimulationRequest simulation_request(const SimulateOptions& options, const 
   if (in.spec) {
     request.machine = in.spec->machine;
   }
-  if (options.max_accel_mm_per_s2 > 0.0) request.machine.max_accel_mm_per_s2 = options.max_accel_mm_per_s2;
-  if (options.rapid_feed_mm_per_min > 0.0) request.machine.rapid_feed_mm_per_min = options.rapid_feed_mm_per_min;
-  if (options.max_feed_mm_per_min > 0.0) request.machine.max_feed_mm_per_min = options.max_feed_mm_per_min;
+  if (options.max_accel_mm_per_s2) request.machine.max_accel_mm_per_s2 = *options.max_accel_mm_per_s2;
+  if (options.rapid_feed_mm_per_min) request.machine.rapid_feed_mm_per_min = *options.rapid_feed_mm_per_min;
+  if (options.max_feed_mm_per_min) request.machine.max_feed_mm_per_min = *options.max_feed_mm_per_min;
   request.sensors.dynamometer.noise_n = options.noise_n;
   request.sensors.servo_current.enabled = options.currents;
   request.sensors.seed = options.seed;
@@ -252,12 +257,19 @@ sim::SimulationRequest simulation_request(const SimulateOptions& options, const 
 SimulationJob set_cutting_test(const SimulateOptions& options, const SimulateInputs& in, sim::SimulationRequest& request) {
   const double rpm = in.rpm;
   sim::CuttingTest test;
-  test.radial_depth_mm = options.radial_depth_mm;
-  test.axial_depth_mm = options.axial_depth_mm;
-  test.feed_mm_per_min = options.feed_mm_per_min;
+  test.radial_depth_mm = *options.radial_depth_mm;  // given: check_cutting_test_flags
+  test.axial_depth_mm = *options.axial_depth_mm;
+  test.feed_mm_per_min = *options.feed_mm_per_min;
   test.spindle_rpm = rpm;
   test.cut_length_mm = options.cut_length_mm;
   test.mode = options.up_milling ? sim::MillingMode::kUp : sim::MillingMode::kDown;
+  if (auto problems = sim::validate(test, in.tool); !problems.empty()) {
+    for (InputProblem& p : problems) {  // cutting_test.radial_depth_mm → --radial-depth-mm: the flag that set it
+      p.field = p.field == "cutting_test.spindle_rpm" ? "--spindle-rpm" : "--" + p.field.substr(p.field.find('.') + 1);
+      std::replace(p.field.begin(), p.field.end(), '_', '-');
+    }
+    throw InputError(std::move(problems));
+  }
   sim::CuttingTestSetup setup = sim::make_cutting_test(test, in.tool);
   request.program = std::move(setup.program);
   request.stock = std::move(setup.stock);
@@ -394,23 +406,23 @@ void add_simulate_command(CLI::App& app, SimulateOptions& options) {
   cmd->add_option("--plot", options.plot_path, "Plot of the force to write (SVG)");
   cmd->add_option("--peaks", options.peaks_path, "Per-revolution peak and mean |F_xy| to write (CSV, true force)");
   cmd->add_flag("--json", options.json, "Print the summary as JSON");
-  cmd->add_option("--spindle-rpm", options.spindle_rpm, "Spindle speed for blocks without S; the cutting test's S");
-  cmd->add_option("--max-accel", options.max_accel_mm_per_s2, "Path acceleration limit, mm/s²");
-  cmd->add_option("--rapid", options.rapid_feed_mm_per_min, "Rapid traverse rate, mm/min");
-  cmd->add_option("--max-feed", options.max_feed_mm_per_min, "Highest feed the machine runs, mm/min");
+  add_number_flag(cmd, "--spindle-rpm", options.spindle_rpm, "Spindle speed for blocks without S; the cutting test's S");
+  add_number_flag(cmd, "--max-accel", options.max_accel_mm_per_s2, "Path acceleration limit, mm/s²");
+  add_number_flag(cmd, "--rapid", options.rapid_feed_mm_per_min, "Rapid traverse rate, mm/min");
+  add_number_flag(cmd, "--max-feed", options.max_feed_mm_per_min, "Highest feed the machine runs, mm/min");
   cmd->add_option("--runout-mm", options.runout_text, "Radial runout per tooth, mm, comma separated (one per flute)");
-  cmd->add_option("--noise-n", options.noise_n, "Dynamometer noise, RMS N");
+  add_number_flag(cmd, "--noise-n", options.noise_n, "Dynamometer noise, RMS N");
   cmd->add_flag("--currents", options.currents, "Also log feed-drive servo currents (seed 002: I = a + b·F)");
-  cmd->add_option("--log-rate", options.log_rate_hz, "Log sample rate, Hz");
-  cmd->add_option("--angle-step", options.angle_step_deg, "Spindle rotation per simulation step, deg");
-  cmd->add_option("--layer-mm", options.layer_mm, "Axial slice thickness, mm");
-  cmd->add_option("--seed", options.seed, "Sensor noise seed");
+  add_number_flag(cmd, "--log-rate", options.log_rate_hz, "Log sample rate, Hz");
+  add_number_flag(cmd, "--angle-step", options.angle_step_deg, "Spindle rotation per simulation step, deg");
+  add_number_flag(cmd, "--layer-mm", options.layer_mm, "Axial slice thickness, mm");
+  add_integer_flag(cmd, "--seed", options.seed, "Sensor noise seed");
   cmd->add_flag("--cutting-test", options.cutting_test,
                 "Simulate a straight cut (a dynamometer cutting test) instead of a program");
-  cmd->add_option("--radial-depth-mm", options.radial_depth_mm, "Cutting test: radial depth a_e, mm");
-  cmd->add_option("--axial-depth-mm", options.axial_depth_mm, "Cutting test: axial depth a_p, mm");
-  cmd->add_option("--feed-mm-per-min", options.feed_mm_per_min, "Cutting test: feed F, mm/min");
-  cmd->add_option("--cut-length-mm", options.cut_length_mm, "Cutting test: length of the block, mm");
+  add_number_flag(cmd, "--radial-depth-mm", options.radial_depth_mm, "Cutting test: radial depth a_e, mm");
+  add_number_flag(cmd, "--axial-depth-mm", options.axial_depth_mm, "Cutting test: axial depth a_p, mm");
+  add_number_flag(cmd, "--feed-mm-per-min", options.feed_mm_per_min, "Cutting test: feed F, mm/min");
+  add_number_flag(cmd, "--cut-length-mm", options.cut_length_mm, "Cutting test: length of the block, mm");
   cmd->add_flag("--up", options.up_milling, "Cutting test: up (conventional) milling instead of down (climb)");
 }
 

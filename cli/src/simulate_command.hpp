@@ -5,6 +5,7 @@
 #include <CLI/CLI.hpp>
 
 #include <cstdint>
+#include <optional>
 #include <string>
 
 namespace feedplan::cli {
@@ -20,10 +21,10 @@ struct SimulateOptions {
   std::string plot_path;           //!< SVG plot to write; empty: none
   std::string peaks_path;          //!< per-revolution peaks CSV to write; empty: none
   bool json = false;               //!< summary as JSON
-  double spindle_rpm = 0.0;        //!< spindle speed for blocks without S (and the cutting test's S)
-  double max_accel_mm_per_s2 = 0.0;     //!< 0: the spec's or the default
-  double rapid_feed_mm_per_min = 0.0;   //!< 0: the spec's or the default
-  double max_feed_mm_per_min = 0.0;     //!< 0: the spec's or the default
+  std::optional<double> spindle_rpm;          //!< spindle speed for blocks without S (and the cutting test's S); unset: the spec's
+  std::optional<double> max_accel_mm_per_s2;  //!< unset: the spec's or the default
+  std::optional<double> rapid_feed_mm_per_min;  //!< unset: the spec's or the default
+  std::optional<double> max_feed_mm_per_min;  //!< unset: the spec's or the default
   std::string runout_text;         //!< per-tooth runout in mm, comma separated
   double noise_n = 0.0;            //!< dynamometer noise RMS, N
   bool currents = false;           //!< log servo currents (seed 002's I = a + b·F)
@@ -32,9 +33,9 @@ struct SimulateOptions {
   double layer_mm = 0.25;          //!< axial slice thickness, mm
   std::uint64_t seed = 1;          //!< sensor noise seed
   bool cutting_test = false;       //!< simulate a straight cut instead of a program
-  double radial_depth_mm = 0.0;    //!< cutting test a_e
-  double axial_depth_mm = 0.0;     //!< cutting test a_p
-  double feed_mm_per_min = 0.0;    //!< cutting test F
+  std::optional<double> radial_depth_mm;  //!< cutting test a_e, mm
+  std::optional<double> axial_depth_mm;   //!< cutting test a_p, mm
+  std::optional<double> feed_mm_per_min;  //!< cutting test F, mm/min
   double cut_length_mm = 40.0;     //!< cutting test block length
   bool up_milling = false;         //!< cutting test: conventional instead of climb milling
 };

@@ -49,6 +49,11 @@ std::vector<InputProblem> validate_common(const CycleSpec& spec) {
   check(problems, "clearance_z_mm", spec.clearance_z_mm, at_least(kFeedPlaneAboveTopMm),
         "rapids stop " + six_digit_number_text(kFeedPlaneAboveTopMm) + " mm above the stock before feeding down");
   for (auto& problem : geometry::validate(spec.machine)) problems.push_back(std::move(problem));
+  if (spec.feed_mm_per_min) {
+    check(problems, "feed_mm_per_min", *spec.feed_mm_per_min,
+          {spec.machine.min_feed_mm_per_min, true, spec.machine.max_feed_mm_per_min, true},
+          "the constant feed you would program, in the machine's feed range, mm/min");
+  }
   if (spec.stock) {
     for (auto& problem : geometry::validate(*spec.stock, "stock")) problems.push_back(std::move(problem));
   }

@@ -289,7 +289,7 @@ void require_spec_mapping(const YAML::Node& root, const std::string& source_name
 
 std::vector<std::string> top_level_fields() {
   std::vector<std::string> top_fields = {"cycle", "tool", "material", "spindle_rpm", "axial_depth_mm",
-                                         "target_force_n", "machine", "clearance_z_mm", "stock"};
+                                         "target_force_n", "feed_mm_per_min", "machine", "clearance_z_mm", "stock"};
   top_fields.insert(top_fields.end(), kCycleNames.begin(), kCycleNames.end());
   return top_fields;
 }
@@ -327,6 +327,7 @@ void read_cutting_conditions(SpecReader& in, const YAML::Node& root, CycleSpec& 
   spec.material = in.text(root, "", "material", false, "workpiece material name");
   spec.spindle_rpm = in.positive_if_given(root, "", "spindle_rpm", "spindle speed in rev/min");
   spec.target_force_n = in.positive_if_given(root, "", "target_force_n", "cutting force to hold in N");
+  spec.feed_mm_per_min = in.optional_number(root, "", "feed_mm_per_min", "the constant feed you would program, mm/min");
   spec.clearance_z_mm = in.number(root, "", "clearance_z_mm", false, 5.0, "rapid height above the stock top in mm");
   const bool layered = spec.cycle == "corner" || spec.cycle == "trochoid" || spec.cycle == "spiral";
   spec.axial_depth_mm = in.number(root, "", "axial_depth_mm", layered, 0.0, "axial depth of cut A_d in mm");

@@ -26,15 +26,26 @@ struct ErrorStatistics {
   double rms() const { return count > 0 ? std::sqrt(sum_squares / count) : 0.0; }
 };
 
-// "<peak> N at s = <mid> mm, x <x> y <y>" for one revolution.
-std::string where_text(const RevolutionComparison& r) {
-  char text[160];
-  std::snprintf(text, sizeof text, "%.1f N at s = %.1f mm, x %.2f y %.2f", r.revolution.peak_n,
-                0.5 * (r.revolution.s_start_mm + r.revolution.s_end_mm), r.position.x_mm, r.position.y_mm);
-  return text;
+// The first line: the largest peak anywhere, against the target, and where.
+std::string largest_peak_line(const PeakComparison& c, double target_force_n) {
+  if (c.largest_peak < 0) return "largest per-revolution peak: none (no revolution simulated)\n";
+  const RevolutionComparison& r = c.revolutions[static_cast<std::size_t>(c.largest_peak)];
+  char line[320];
+  std::snprintf(line, sizeof line, "largest per-revolution peak: %s (%+.1f %% vs the target %.0f N%s)\n",
+                where_text(r).c_str(), r.error_percent, target_force_n,
+                r.in_cut ? "" : "; outside the plan's cut: the plan has no engagement there");
+  return line;
 }
 
 }  // namespace
+
+std::string where_text(const RevolutionComparison& r) {
+  char text[200];
+  std::snprintf(text, sizeof text, "%.1f N at s = %.1f mm, x %.2f y %.2f z %.2f", r.revolution.peak_n,
+                0.5 * (r.revolution.s_start_mm + r.revolution.s_end_mm), r.position.x_mm, r.position.y_mm,
+                r.position.z_mm);
+  return text;
+}
 
 PeakComparison compare_peaks(const PlanResult& result, double target_force_n,
                              const std::vector<MeasuredRevolution>& revolutions) {
@@ -70,6 +81,9 @@ PeakComparison compare_peaks(const PlanResult& result, double target_force_n,
                                         samples.empty() ? 0 : samples.size() - 1);
     if (!samples.empty()) c.position = samples[middle].position;
     const int index = static_cast<int>(out.revolutions.size());
+    if (out.largest_peak < 0 || revolution.peak_n > out.revolutions[static_cast<std::size_t>(out.largest_peak)].revolution.peak_n) {
+      out.largest_peak = index;
+    }
     if (c.in_cut) {
       ++out.in_cut;
       if (out.worst_overshoot < 0 || c.error_percent > out.max_overshoot_percent) {
@@ -93,9 +107,9 @@ PeakComparison compare_peaks(const PlanResult& result, double target_force_n,
 }
 
 
-std::string describe(const PeakComparison& c) {
+std::string describe(const PeakComparison& c, double target_force_n) {
   char line[512];
-  std::string text;
+  std::string text = largest_peak_line(c, target_force_n);
   std::snprintf(line, sizeof line,
                 "revolutions: %zu, in cut %d, held at the target (force-limited, inside the model's range) %d, "
                 "of them steady (constant engagement) %d\n",

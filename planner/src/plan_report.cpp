@@ -69,7 +69,10 @@ Json model_json(const model::ResponseSurfaceModel& model, const PlanReportContex
             {"database", context.database_path},
             {"tool", context.model_tool},
             {"material", context.model_material},
-            {"match", context.model_match}};
+            {"match", context.model_match},
+            {"match_status", context.model_match_status},
+            {"differences", context.model_differences},
+            {"relative_uncertainty", json_number(context.model_relative_uncertainty)}};
   json.update(model::to_json(model));
   return json;
 }
@@ -231,6 +234,11 @@ void read_model_identity(const Node& model, PlanReportContext& context) {
   context.model_tool = model.text("tool");
   context.model_material = model.text("material");
   context.model_match = model.text("match");
+  context.model_match_status = model.text("match_status", JsonPresence::kOptional);
+  context.model_differences = model.texts("differences", JsonPresence::kOptional);
+  if (model.member("relative_uncertainty", JsonPresence::kOptional)) {
+    context.model_relative_uncertainty = model.number("relative_uncertainty");
+  }
 }
 
 // The model, target, spindle speed, machine limits, options and force correction.

@@ -105,7 +105,7 @@ TEST_F(DbCliTest, BadDatabasesAreRefusedAndLeftAlone) {
 TEST_F(DbCliTest, BadRecordsNameTheField) {
   expect_bad_input("db add-tool " + kTool + " --db " + db_ + " --diameter-mm 12 --flutes 4", "already exists");
   expect_bad_input("db add-material S50C --db " + db_ + " --iso-group P --hardness \"180 HB\"", "already exists");
-  expect_bad_input("db add-tool T2 --db " + db_ + " --diameter-mm -3 --flutes 4", "diameter_mm");
+  expect_bad_input("db add-tool T2 --db " + db_ + " --diameter-mm -3 --flutes 4", "--diameter-mm = -3");
   expect_bad_input("db add-material X1 --db " + db_ + " --iso-group X --hardness \"180 HB\"", "--iso-group");
   expect_bad_input("db add-material X1 --db " + db_ + " --iso-group P --hardness hard", "--hardness");
   // A model with a NaN coefficient in an import file (JSON has no NaN: the exporter writes null).
@@ -149,7 +149,7 @@ TEST_F(DbCliTest, BrokenLogsAndContradictingConditions) {
   std::ofstream(missing) << no_fy;
   expect_bad_input(import_args(missing), "fy_n");
   // Conditions that contradict the log.
-  expect_bad_input(import_args(log, "3000"), "conditions.spindle_rpm");
+  expect_bad_input(import_args(log, "3000"), "--spindle-rpm = 3000");
   expect_bad_input(import_args(log) + " --mode slot", "slot");
   expect_bad_input("db import-test " + log.string() + " --db " + db_ + " --tool Nope --material S50C --spindle-rpm 2546"
                    " --feed-mm-per-min 400 --radial-depth-mm 1.5 --axial-depth-mm 10", "--tool");

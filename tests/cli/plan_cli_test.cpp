@@ -83,7 +83,7 @@ TEST_F(PlanCliTest, BadFlagsAreBadInputAndTouchNothing) {
   expect_bad("--mode fast", "--mode");
   expect_bad("--target-force -5", "--target-force");
   expect_bad("--decimals 12", "decimals");
-  expect_bad("--merge-tolerance 7", "options.merge_tolerance");
+  expect_bad("--merge-tolerance 7", "--merge-tolerance = 7");
   expect_bad("--constant-feed 50000", "--constant-feed");
   expect_bad("--report " + (dir_ / "no_such_dir" / "r.json").string(), "--report");
   expect_bad("--model-id 999", "--model-id");

@@ -128,7 +128,7 @@ TEST_F(SimulateCliTest, BadMaterialsStocksAndFlagsNameTheField) {
   expect_bad_input(run + " --material S50C --cutting-test", "not both");
   expect_bad_input("--cutting-test " + kTool + " --material S50C --radial-depth-mm 12 --axial-depth-mm 10"
                    " --feed-mm-per-min 500 --spindle-rpm 3000",
-                   "cutting_test.radial_depth_mm");
+                   "--radial-depth-mm = 12");
 }
 
 // Checked with the flags, before the simulation runs; a write that fails is exit 1.

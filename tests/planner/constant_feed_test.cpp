@@ -12,6 +12,7 @@
 #include "feedplan/cycles/spec_reader.hpp"
 #include "feedplan/planner/constant_feed.hpp"
 #include "feedplan/sim/motion_profile.hpp"
+#include "test_models.hpp"
 
 namespace feedplan::planner {
 namespace {
@@ -46,8 +47,8 @@ TEST(ConstantFeedProgram, EveryFeedMoveOfTheTrochoidRunsTheGivenFeed) {
   EXPECT_GT(arcs, 0);
 }
 
-TEST(ConstantFeedProgram, CycleTimeIsLengthOverFeedWithoutAccelerationLimit) {
-  // A 6 mm rapid down, a 10 mm line along +x, a quarter circle of radius 10 mm (5π mm) about the origin.
+// A 6 mm rapid down, a 10 mm line along +x, a quarter circle of radius 10 mm (5π mm) about the origin.
+geometry::ToolPath hand_path() {
   geometry::ToolPath path;
   geometry::Move rapid;
   rapid.kind = geometry::MoveKind::kRapid;
@@ -68,7 +69,11 @@ TEST(ConstantFeedProgram, CycleTimeIsLengthOverFeedWithoutAccelerationLimit) {
   arc.cutting = true;
   path.moves = {rapid, line, arc};
   path.part_names = {"all"};
+  return path;
+}
 
+TEST(ConstantFeedProgram, CycleTimeIsLengthOverFeedWithoutAccelerationLimit) {
+  const geometry::ToolPath path = hand_path();
   geometry::MachineLimits limits = sim::kVirtualMachineLimits;
   limits.max_accel_mm_per_s2 = 1e9;  // accelerating to 250 mm/s takes 0.25 µs
   limits.rapid_feed_mm_per_min = 15000.0;
@@ -77,6 +82,28 @@ TEST(ConstantFeedProgram, CycleTimeIsLengthOverFeedWithoutAccelerationLimit) {
   // 6 mm at 250 mm/s, then (10 + 5π) mm at 600 mm/min = 10 mm/s.
   EXPECT_NEAR(motion.duration_s(), 6.0 / 250.0 + (10.0 + 5.0 * kPi) / 10.0, 1e-5);
   EXPECT_NEAR(motion.time_in_cut_s(), (10.0 + 5.0 * kPi) / 10.0, 1e-5);
+}
+
+// The planner's prediction of the same program (what a spec's feed_mm_per_min is quoted with): the same
+// length over feed by hand, and no force where nothing is cut (the stock lies far from the path).
+TEST(ConstantFeedProgram, PredictedCycleTimeIsLengthOverFeedWithoutAccelerationLimit) {
+  geometry::Stock stock;
+  stock.regions.push_back({geometry::Contour::rectangle({100.0, 100.0}, {120.0, 120.0}), {}});
+  stock.z_top_mm = 0.0;
+  stock.z_bottom_mm = -20.0;
+  geometry::Tool tool;
+  const PlanGeometry geometry = analyse(hand_path(), stock, tool, 0.05);
+  PlanSettings settings;
+  settings.model = planner::testing::s50c_like_model();
+  settings.target_force_n = 300.0;
+  settings.spindle_rpm = 5000.0;
+  settings.machine = sim::kVirtualMachineLimits;
+  settings.machine.max_accel_mm_per_s2 = 1e9;
+  settings.machine.rapid_feed_mm_per_min = 15000.0;
+  const ConstantFeedPrediction p = predict_constant_feed(geometry, settings, 600.0, settings.machine.max_accel_mm_per_s2);
+  EXPECT_EQ(p.feed_mm_per_min, 600.0);
+  EXPECT_NEAR(p.cycle_time_s, 6.0 / 250.0 + (10.0 + 5.0 * kPi) / 10.0, 1e-4);
+  EXPECT_EQ(p.peak_force_n, 0.0);
 }
 
 }  // namespace

@@ -47,7 +47,23 @@ TEST(PeakComparison, ClassifiesRevolutionsAndComputesErrors) {
   EXPECT_NEAR(c.rms_error_percent, std::sqrt((9.0 + 16.0) / 2.0), 1e-12);
   EXPECT_NEAR(c.max_overshoot_percent, 20.0, 1e-12);
   EXPECT_EQ(c.worst_overshoot, 3);
-  EXPECT_NE(describe(c).find("+20.00 %"), std::string::npos);
+  EXPECT_NE(describe(c, 100.0).find("+20.00 %"), std::string::npos);
+}
+
+// The largest peak leads the description wherever it is — here in air for the plan (the plan has no
+// engagement there, the machine cut): 250 N, +150 %, at s = 2.5 mm, placed at the plan's sample 2 or 3.
+TEST(PeakComparison, TheLargestPeakAnywhereLeadsTheDescription) {
+  PlanResult plan = hand_made_plan();
+  for (auto& s : plan.samples) s.position = {s.s_mm, -1.0, -4.0};
+  const PeakComparison c = compare_peaks(plan, 100.0, {{1.0, 4.0, 250.0}, {22.0, 26.0, 120.0}});
+  EXPECT_EQ(c.largest_peak, 0);
+  EXPECT_EQ(c.worst_overshoot, 1);
+  const std::string text = describe(c, 100.0);
+  EXPECT_EQ(text.rfind("largest per-revolution peak: 250.0 N at s = 2.5 mm, x 3.00 y -1.00 z -4.00 (+150.0 % vs the "
+                       "target 100 N; outside the plan's cut",
+                       0),
+            0u)
+      << text;
 }
 
 TEST(PeakComparison, ARevolutionAcrossAChangingEngagementIsHeldButNotSteady) {

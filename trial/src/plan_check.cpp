@@ -6,16 +6,22 @@
 
 namespace feedplan::trial {
 
-PlanCheck check_on_virtual_machine(const std::string& program_text, const cycles::CycleSpec& spec,
-                                   const cycles::Cycle& cycle, const planner::PlanResult& plan, double target_force_n,
+VirtualMachine virtual_machine_for(const cycles::CycleSpec& spec, const cycles::Cycle& cycle,
                                    const std::string& materials_path) {
   const sim::MaterialLibrary materials = sim::load_materials(materials_path);
-  trial::VirtualMachine machine;
+  VirtualMachine machine;
   machine.tool = spec.tool;
   machine.coefficients = materials.get(spec.material, "material").coefficients;
   machine.stock = cycle.stock;
   machine.machine = spec.machine;
   machine.spindle_rpm = spec.spindle_rpm;
+  return machine;
+}
+
+PlanCheck check_on_virtual_machine(const std::string& program_text, const cycles::CycleSpec& spec,
+                                   const cycles::Cycle& cycle, const planner::PlanResult& plan, double target_force_n,
+                                   const std::string& materials_path) {
+  const VirtualMachine machine = virtual_machine_for(spec, cycle, materials_path);
   const trial::VirtualMachineRun run =
       trial::run_on_virtual_machine(gcode::read_program(program_text, "planned program"), machine, plan, target_force_n);
   PlanCheck check;

@@ -99,6 +99,9 @@ struct CycleSpec {
   double axial_depth_mm = 0.0;            //!< axial depth of cut A_d of corner, trochoid and spiral, mm (0 for
                                           //!< helical boring and pocket, which use their own depth_mm)
   double target_force_n = 0.0;            //!< cutting force to hold, N (0 = not given)
+  //! The constant feed a CAM programmer would program for this cycle, mm/min (unset: not given): the
+  //! baseline a plan's time saving is quoted against; in the machine's feed range.
+  std::optional<double> feed_mm_per_min;
   geometry::MachineLimits machine;        //!< machine limits
   double clearance_z_mm = 5.0;            //!< rapid height above the stock top, mm (≥ 1)
   std::optional<geometry::Stock> stock;   //!< user-given stock; unset: the stock the cycle implies

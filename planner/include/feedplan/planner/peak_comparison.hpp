@@ -41,7 +41,7 @@ struct RevolutionComparison {
   bool steady = false;                //!< held, with a constant engagement angle (straight cut, steady arc)
   double planned_force_n = 0.0;       //!< largest predicted force inside, N
   double error_percent = 0.0;         //!< (peak − target) / target × 100
-  geometry::Point3 position;          //!< tool position at the middle of the span, mm
+  geometry::Point3 position;          //!< tool position at the middle of the span (planned sample), mm
 };
 
 //! The comparison over a whole run.
@@ -58,6 +58,9 @@ struct PeakComparison {
   int worst_held = -1;                    //!< index of the held revolution with the largest |error| (−1: none)
   int worst_steady = -1;                  //!< index of the steady revolution with the largest |error| (−1: none)
   int worst_overshoot = -1;               //!< index of the in-cut revolution with the largest overshoot (−1: none)
+  //! Index of the revolution with the largest peak of all, in the plan's cut or not (−1: none): the
+  //! figure that says whether the program is safe, wherever the force came from.
+  int largest_peak = -1;
 };
 
 //! Compares `revolutions` (in path order or not) with the plan `result` at target `target_force_n` (> 0),
@@ -65,8 +68,12 @@ struct PeakComparison {
 PeakComparison compare_peaks(const PlanResult& result, double target_force_n,
                              const std::vector<MeasuredRevolution>& revolutions);
 
-//! A few lines for people: counts, max and RMS error over steady and over held revolutions with where
-//! the worst is, and the largest overshoot.
-std::string describe(const PeakComparison& comparison);
+//! A few lines for people, led by the largest per-revolution peak anywhere (N, against the target, and
+//! where: s, x, y, z, in the plan's cut or not); then counts, max and RMS error over steady and over held
+//! revolutions with where the worst is, and the largest overshoot over the in-cut revolutions.
+std::string describe(const PeakComparison& comparison, double target_force_n);
+
+//! "<peak> N at s = <mid> mm, x <x> y <y> z <z>" for one revolution.
+std::string where_text(const RevolutionComparison& revolution);
 
 }  // namespace feedplan::planner

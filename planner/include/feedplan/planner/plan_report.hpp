@@ -66,6 +66,9 @@ struct PlanReportContext {
   std::string model_tool;         //!< tool name the model was fitted for
   std::string model_material;     //!< material name the model was fitted for
   std::string model_match;        //!< one sentence on how the model was chosen
+  std::string model_match_status; //!< "exact" or "borrowed" ("" when not recorded)
+  std::vector<std::string> model_differences;  //!< what the borrowed model differs in, e.g. "diameter 10 mm for 8 mm"
+  double model_relative_uncertainty = 0.0;     //!< r of the cautious bound the plan held (0: the model alone)
   std::string database_path;      //!< the model database ("" when none; the CLI stores it absolute and canonical)
   std::string program_path;       //!< the G-code file written ("" when none)
   std::string dialect;            //!< G-code dialect of that file, e.g. "linuxcnc"

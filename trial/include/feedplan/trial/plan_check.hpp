@@ -8,6 +8,7 @@
 #include "feedplan/cycles/cycle.hpp"
 #include "feedplan/planner/feed_plan.hpp"
 #include "feedplan/planner/peak_comparison.hpp"
+#include "feedplan/trial/virtual_machine_run.hpp"
 
 namespace feedplan::trial {
 
@@ -18,6 +19,12 @@ struct PlanCheck {
   planner::PeakComparison comparison;   //!< per-revolution peaks against the target
   std::vector<std::string> warnings;    //!< the simulation's warnings
 };
+
+//! The virtual machine for `spec` on `cycle.stock`: the spec's tool, machine limits and spindle speed,
+//! the cutting coefficients of `spec.material` from the materials file at `materials_path`. Throws
+//! InputError when the material is unknown to the virtual machine.
+VirtualMachine virtual_machine_for(const cycles::CycleSpec& spec, const cycles::Cycle& cycle,
+                                   const std::string& materials_path);
 
 //! Reads `program_text` back (gcode::read_program), simulates it on `cycle.stock` with the spec's tool,
 //! machine limits and the material `spec.material` from the materials file at `materials_path`, and
