@@ -11,6 +11,7 @@
 #include <nlohmann/json.hpp>
 
 #include "feedplan/core/atomic_file.hpp"
+#include "feedplan/core/json_document.hpp"
 #include "feedplan/core/json_fields.hpp"
 #include "feedplan/core/number_text.hpp"
 #include "feedplan/model/model_json.hpp"
@@ -177,14 +178,9 @@ std::vector<PlannedBlock> read_blocks(const Node& list) {
 
 // The steps of parse_plan_report, in its order.
 
-// The JSON text parsed; text that is not JSON, or not an object, throws.
+// The JSON text parsed; text that is not JSON, nests too deep or is not an object throws.
 Json parse_report_text(std::string_view json_text, const std::string& source_name) {
-  Json document;
-  try {
-    document = Json::parse(json_text.begin(), json_text.end());
-  } catch (const Json::parse_error& error) {
-    throw InputError(source_name, std::string("is not valid JSON: ") + error.what());
-  }
+  const Json document = parse_json_document<Json>(json_text, source_name);
   if (!document.is_object()) {
     throw InputError(source_name, "= " + json_value_text(document, JsonTextShown::kAsJson) +
                                       ": is not a feedplan plan report (expected a JSON object)");
