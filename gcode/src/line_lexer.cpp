@@ -123,8 +123,9 @@ std::optional<Word> next_word(const std::string& code, std::size_t& i, const std
   // Line and program numbers only label; every other number is a length, feed, speed, time or code, and
   // beyond this bound arcs lose their precision (an I of 60 digits put an arc's end off its circle).
   if (letter != 'N' && letter != 'O' && !(std::abs(value) <= kMaxWordValue)) {
-    problems.add(line, "word " + word + ": out of range: numbers are at most ±1000000 (1 km in mm), more than any "
-                                        "machine travels, feeds or turns");
+    const std::string shown = word.size() > 24 ? word.substr(0, 20) + "…" : word;
+    problems.add(line, "word " + shown + ": out of range: numbers are at most ±1000000 (1 km in mm), more than any "
+                                         "machine travels, feeds or turns");
     return std::nullopt;
   }
   const bool only_line_number_before = words.empty() || (words.size() == 1 && words[0].letter == 'N');
