@@ -12,22 +12,23 @@ namespace feedplan::force_log::detail {
 namespace {
 
 // What a numeric key of the writer may hold.
-enum class Rule { kPositive, kFlutes, kHelix };
+enum class Rule { kPositive, kNonNegative, kFlutes, kHelix };
 
 struct NumericKey {
   std::string_view key;
   Rule rule;
 };
 
-// The keys feedplan_csv_writer's callers (the virtual machine) write as numbers.
+// The keys feedplan_csv_writer's callers (the virtual machine) write as numbers. A spindle that never
+// turned in the simulated program writes spindle_rpm 0.
 constexpr std::array<NumericKey, 8> kNumericKeys{{{"sample_rate_hz", Rule::kPositive},
                                                    {"tool_diameter_mm", Rule::kPositive},
                                                    {"flutes", Rule::kFlutes},
                                                    {"helix_deg", Rule::kHelix},
-                                                   {"spindle_rpm", Rule::kPositive},
+                                                   {"spindle_rpm", Rule::kNonNegative},
                                                    {"radial_depth_mm", Rule::kPositive},
                                                    {"axial_depth_mm", Rule::kPositive},
-                                                   {"feed_per_tooth_mm", Rule::kPositive}}};
+                                                   {"feed_per_tooth_mm", Rule::kNonNegative}}};
 
 constexpr int kMaxFlutes = 100;  // as the model store's tools
 
@@ -38,6 +39,9 @@ std::string rule_problem(Rule rule, const std::string& value) {
     case Rule::kPositive:
       if (number && std::isfinite(*number) && *number > 0.0) return {};
       return "must be a finite number > 0";
+    case Rule::kNonNegative:
+      if (number && std::isfinite(*number) && *number >= 0.0) return {};
+      return "must be a finite number ≥ 0";
     case Rule::kFlutes:
       if (number && *number >= 1.0 && *number <= kMaxFlutes && *number == std::floor(*number)) return {};
       return "must be a whole number in [1, " + std::to_string(kMaxFlutes) + "]";

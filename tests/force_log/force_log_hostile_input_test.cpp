@@ -35,7 +35,7 @@ TEST(ForceLogHostileInput, NumbersInTheHeaderMustBeWhatTheWriterWrites) {
   EXPECT_TRUE(has_problem(problems_of("# tool: D10\n# flutes: 2.5\n" + kRows), "log.csv line 2 (# flutes)",
                           "must be a whole number in [1, 100]"));
   EXPECT_TRUE(has_problem(problems_of("# spindle_rpm: -2800\n" + kRows), "log.csv line 1 (# spindle_rpm)",
-                          "= \"-2800\": must be a finite number > 0"));
+                          "= \"-2800\": must be a finite number ≥ 0"));
   EXPECT_TRUE(has_problem(problems_of("# helix_deg: 90\n" + kRows), "log.csv line 1 (# helix_deg)",
                           "= \"90\": must be a number in [0, 90)"));
   EXPECT_TRUE(has_problem(problems_of("# sample_rate_hz: 1e400\n" + kRows), "log.csv line 1 (# sample_rate_hz)",

@@ -72,8 +72,8 @@ std::string write_force_log(const std::string& path, const ForceLog& log);
 //!
 //! Metadata is free text except that the writer's numeric keys (sample_rate_hz, tool_diameter_mm,
 //! flutes, helix_deg, spindle_rpm, radial_depth_mm, axial_depth_mm, feed_per_tooth_mm) must hold
-//! numbers in range (flutes a whole number in [1, 100], helix_deg in [0, 90), the others finite and
-//! > 0), and every key and value must be UTF-8.
+//! numbers in range (flutes a whole number in [1, 100], helix_deg in [0, 90), spindle_rpm and
+//! feed_per_tooth_mm finite and ≥ 0, the others finite and > 0), and every key and value must be UTF-8.
 //!
 //! Our format: a header row is required (the first line that is neither blank nor '#'); every column
 //! name must be known (an unknown one is reported with the closest known name) and appear once;
