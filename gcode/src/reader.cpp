@@ -400,7 +400,11 @@ class Interpreter {
       feed_reset_by_g94_ = false;
       feed_problem_reported_ = false;
     }
-    if (const Word* s = block.word('S')) spindle_rpm_ = s->value;
+    if (const Word* s = block.word('S')) {
+      spindle_rpm_ = s->value;
+      s_zero_line_ = s->value == 0.0 ? line : 0;
+      s_zero_reported_ = false;
+    }
     if (block.has('T')) selected_tool_ = tool_of(block.word('T'));
     if (block.has_m(6, 6)) {
       tool_in_spindle_ = selected_tool_;
@@ -458,6 +462,19 @@ class Interpreter {
     return false;
   }
 
+  // Checks that a feed move under M3/M4 does not run at an explicit S0: the spindle would not turn
+  // (LinuxCNC) while a reader of BlockCommand takes 0 as "no S given" and a speed of its own (the
+  // virtual machine: the spec's). Reports once per S0 word.
+  bool spindle_ok(int line, int motion) {
+    if (s_zero_line_ == 0 || spindle_ == SpindleDirection::kOff) return true;
+    if (!s_zero_reported_) {
+      problems_.add(line, detail::g_code_name(motion) + " with the spindle on at S0 (set on line " +
+                              std::to_string(s_zero_line_) + "): a feed move needs the spindle turning; give S > 0");
+      s_zero_reported_ = true;
+    }
+    return false;
+  }
+
   // False (after a problem that stops the reading) when the program has max_moves moves already.
   bool room_for_move(int line) {
     if (program_.path.moves.size() < static_cast<std::size_t>(std::max(options_.max_moves, 0))) return true;
@@ -487,7 +504,7 @@ class Interpreter {
     m.end = end;
     m.part = 0;
     const bool feed = motion != kG0;
-    if (feed && !feed_ok(line, motion)) {
+    if (feed && (!feed_ok(line, motion) || !spindle_ok(line, motion))) {
       position_mm_ = end;
       return;
     }
@@ -567,6 +584,8 @@ class Interpreter {
   bool feed_reset_by_g94_ = false;
   bool feed_problem_reported_ = false;
   double spindle_rpm_ = 0.0;
+  int s_zero_line_ = 0;  // line of the S0 word in effect; 0 when the S in effect is > 0 or none was given
+  bool s_zero_reported_ = false;
   SpindleDirection spindle_ = SpindleDirection::kOff;
   std::optional<int> selected_tool_;    // the last T word
   std::optional<int> tool_in_spindle_;  // set by the one M6

@@ -75,5 +75,15 @@ TEST(ReaderHostileInput, FilesAreReadUpToTheirSizeLimit) {
   }
 }
 
+// M3 S0 reached the virtual machine as "no S given" (BlockCommand::spindle_rpm 0), which simulated the
+// cut at the spec's spindle speed instead of a spindle that does not turn.
+TEST(ReaderHostileInput, FeedMoveAtSZeroWithTheSpindleOnIsRefused) {
+  EXPECT_THAT(problems_of("G21 F100 M3 S0\nG0 X5\nG1 X10\nG1 X20\nM2\n"),
+              HasSubstr("test line 3: G1 with the spindle on at S0 (set on line 1): a feed move needs the spindle "
+                        "turning; give S > 0"));
+  EXPECT_EQ(problems_of("G21 F100 M3 S0\nG0 X5\nS2000\nG1 X10\nM2\n"), "(accepted)");
+  EXPECT_EQ(problems_of("G21 F100 M3\nG1 X10\nM2\n"), "(accepted)");  // no S at all: the machine's own speed
+}
+
 }  // namespace
 }  // namespace feedplan::gcode
