@@ -56,8 +56,9 @@
 // Problems found (all collected, up to a cap, into one InputError; each names the line and the
 // word): unknown or refused words; numbers that are not plain decimals (`X1..2`, `Xabc`, `X`, no
 // exponents); two words of one modal group, or a letter twice, in a block; a feed move with no
-// positive F in effect, or with M3/M4 and an S0 in effect (the spindle would not turn); an arc without I J or R, with a zero radius, with I J whose end radius
-// differs from its start radius by more than the tolerance, or with an R shorter than half the chord;
+// positive F in effect, or with M3/M4 and an S0 in effect (the spindle would not turn); an arc
+// without I J or R, with a zero radius, with I J whose end radius differs from its start radius by
+// more than the tolerance, or with an R shorter than half the chord;
 // unbalanced or nested comment parentheses; F in a block whose G20/G21 changes the units (LinuxCNC
 // would read that F in the old unit); a file that ends without M2, M30 or a closing % (optional);
 // what no machine takes: a number beyond ±1 000 000 (1 km in mm), a line of more than 4096 characters
