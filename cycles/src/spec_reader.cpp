@@ -8,12 +8,12 @@
 #include <limits>
 #include <map>
 #include <set>
-#include <sstream>
 #include <string>
 #include <system_error>
 #include <vector>
 
 #include "common_checks.hpp"
+#include "feedplan/core/bounded_read.hpp"
 #include "feedplan/core/input_error.hpp"
 #include "feedplan/core/joined_text.hpp"
 #include "feedplan/core/yaml_fields.hpp"
@@ -34,6 +34,10 @@ constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 // checks, the values shown in problems) costs time and memory without bound: 800 bytes of nested
 // aliases expand to 10⁹ nodes.
 constexpr std::size_t kMaxSpecYamlNodes = 100000;
+
+// The largest spec or stock file read: /dev/zero or an endless pipe would otherwise be read until
+// memory runs out.
+constexpr std::size_t kMaxSpecFileBytes = std::size_t{4} << 20;
 
 const std::vector<std::string> kCycleNames = {"corner", "trochoid", "spiral", "helical_boring", "pocket"};
 
@@ -481,10 +485,13 @@ std::string read_text_file(const std::filesystem::path& path, const std::string&
   if (fs::is_directory(path, ec)) throw InputError(path.string(), "cannot be read: it is a directory, not " + what);
   std::ifstream file(path, std::ios::binary);
   if (!file) throw InputError(path.string(), "cannot be read: permission denied or I/O error");
-  std::ostringstream text;
-  text << file.rdbuf();
+  std::string text;
+  if (!read_at_most(file, kMaxSpecFileBytes, text)) {
+    throw InputError(path.string(), "is larger than " + byte_size_text(kMaxSpecFileBytes) + ": not " + what +
+                                        " (a spec is a few hundred bytes, a stock of 10 000 vertices some 300 KiB)");
+  }
   if (file.bad()) throw InputError(path.string(), "cannot be read: I/O error");
-  return text.str();
+  return text;
 }
 
 }  // namespace

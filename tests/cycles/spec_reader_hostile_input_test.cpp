@@ -36,10 +36,11 @@ const std::string kTrochoid =
 TEST(SpecReaderHostileInput, AliasBombIsRefusedBeforeItIsExpanded) {
   std::string yaml = kTrochoid + "l0: &l0 [lol, lol, lol, lol, lol, lol, lol, lol, lol, lol]\n";
   for (int level = 1; level <= 8; ++level) {
-    const std::string previous = "*l" + std::to_string(level - 1);
-    yaml += "l" + std::to_string(level) + ": &l" + std::to_string(level) + " [";
-    for (int i = 0; i < 10; ++i) yaml += (i == 0 ? "" : ", ") + previous;
-    yaml += "]\n";
+    std::string name = "l";
+    name.append(std::to_string(level));
+    yaml.append(name).append(": &").append(name).append(" [");
+    for (int i = 0; i < 10; ++i) yaml.append(i == 0 ? "" : ", ").append("*l").append(std::to_string(level - 1));
+    yaml.append("]\n");
   }
   yaml += "tool: *l8\n";
   EXPECT_THAT(error_of(yaml), HasSubstr("spec.yaml expands to more than 100000 YAML nodes through its aliases (*name)"));
@@ -79,6 +80,24 @@ TEST(SpecReaderHostileInput, DuplicateKeysAreAnErrorNamingBothLines) {
   EXPECT_THAT(message, HasSubstr("axial_depth_mm (line 5) is given twice (also on line 3): give it once"));
   EXPECT_THAT(error_of(kTrochoid + "tool: {diameter_mm: 10, flutes: 4, diameter_mm: 12}\n"),
               HasSubstr("tool.diameter_mm (line 4) is given twice (also on line 4): give it once"));
+}
+
+// A tool name in Latin-1 went into plan reports, whose JSON writer then threw (nlohmann: invalid UTF-8).
+TEST(SpecReaderHostileInput, TextThatIsNotUtf8IsRefused) {
+  EXPECT_THAT(error_of(kTrochoid + "tool: {diameter_mm: 10, flutes: 4, name: Fr\xe4ser}\n"),
+              HasSubstr("tool.name (line 4) = \"Fr?ser\": is not UTF-8 text (byte 3 is 0xE4); save the file as UTF-8"));
+  EXPECT_THAT(error_of(kTrochoid + "tool: {diameter_mm: 10, flutes: 4}\nmaterial: S50C \xff\n"),
+              HasSubstr("material (line 5) = \"S50C ?\": is not UTF-8 text (byte 6 is 0xFF)"));
+}
+
+// /dev/zero as the spec: read until memory ran out.
+TEST(SpecReaderHostileInput, FilesAreReadUpToTheSizeLimit) {
+  try {
+    load_cycle_spec("/dev/zero");
+    ADD_FAILURE() << "no InputError";
+  } catch (const InputError& error) {
+    EXPECT_THAT(error.what(), HasSubstr("/dev/zero is larger than 4 MiB: not a cycle spec"));
+  }
 }
 
 }  // namespace

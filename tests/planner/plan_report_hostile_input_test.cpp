@@ -5,6 +5,11 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <unistd.h>
+
+#include <cstdint>
+#include <filesystem>
+#include <fstream>
 #include <string>
 
 #include "feedplan/core/input_error.hpp"
@@ -53,6 +58,22 @@ TEST(PlanReportHostileInput, NumberBeyondADoubleIsNotValidJson) {
   EXPECT_EQ(problem.field, "plan.json");
   EXPECT_THAT(problem.message, HasSubstr("is not valid JSON"));
   EXPECT_THAT(problem.message, HasSubstr("1e400"));
+}
+
+// A report file of 257 MiB (a sparse file of zeros here) is refused by its size before it is read whole.
+TEST(PlanReportHostileInput, FilesAreReadUpToTheSizeLimit) {
+  const std::filesystem::path path =
+      std::filesystem::temp_directory_path() / ("feedplan_huge_report_" + std::to_string(::getpid()) + ".json");
+  { std::ofstream create(path); }
+  std::filesystem::resize_file(path, std::uintmax_t{257} << 20);
+  try {
+    read_plan_report(path);
+    ADD_FAILURE() << "no InputError";
+  } catch (const InputError& error) {
+    EXPECT_EQ(error.problems().at(0).field, path.string());
+    EXPECT_THAT(error.problems().at(0).message, HasSubstr("is larger than 256 MiB: not a plan report"));
+  }
+  std::filesystem::remove(path);
 }
 
 }  // namespace

@@ -24,6 +24,7 @@
 
 #include "feedplan/core/did_you_mean.hpp"
 #include "feedplan/core/input_error.hpp"
+#include "feedplan/core/utf8_text.hpp"
 #include "feedplan/core/yaml_text.hpp"
 
 namespace feedplan {
@@ -154,8 +155,8 @@ class YamlFieldReader {
     return static_cast<int>(value);
   }
 
-  //! The text at map[key]; empty when it is absent (a problem when `required`) or not a scalar (a
-  //! problem "must be text — <meaning>").
+  //! The text at map[key]; empty when it is absent (a problem when `required`), not a scalar (a
+  //! problem "must be text — <meaning>") or not UTF-8 (a problem naming the byte).
   std::string text(const YamlNode& map, const std::string& path, const std::string& key, bool required,
                    const std::string& meaning) {
     const YamlNode node = map[key];
@@ -165,6 +166,14 @@ class YamlFieldReader {
     }
     if (!node.IsScalar()) {
       type_problem(child(path, key), node, "must be text — " + meaning);
+      return {};
+    }
+    if (const std::string problem = utf8_problem(node.Scalar()); !problem.empty()) {
+      // Texts reach JSON (reports, the model database), which holds nothing but UTF-8.
+      // Built with append: GCC 12 warns falsely (-Wrestrict) on "= \"" + std::string when inlined.
+      std::string message = "= \"";
+      message.append(utf8_shown(node.Scalar())).append("\": ").append(problem).append("; save the file as UTF-8");
+      add(child(path, key), yaml_line(node), message);
       return {};
     }
     return node.Scalar();
