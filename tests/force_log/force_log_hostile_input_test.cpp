@@ -53,6 +53,14 @@ TEST(ForceLogHostileInput, HeaderTextMustBeUtf8) {
                           "log.csv line 2 (Filename)", "is not UTF-8 text (byte 1 is 0xFF)"));
 }
 
+// A problem quotes the input; bytes that are not UTF-8 are shown as '?' so that the message is UTF-8.
+TEST(ForceLogHostileInput, ProblemsQuoteBytesThatAreNotUtf8AsQuestionMarks) {
+  EXPECT_TRUE(has_problem(problems_of("t_s,x_mm,y_mm,fx_n,f\xe4_n\n0,0,0,1,2\n"), "log.csv line 1, column 5",
+                          "= \"f?_n\": unknown column"));
+  EXPECT_TRUE(has_problem(problems_of("t_s,x_mm,y_mm,fx_n,fy_n\n0,0,0,1,\xff\n"), "log.csv line 2, column 5 (fy_n)",
+                          "= \"?\": not a number"));
+}
+
 // /dev/zero as the log: read until memory ran out.
 TEST(ForceLogHostileInput, FilesAreReadUpToTheSizeLimit) {
   try {
