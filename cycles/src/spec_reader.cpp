@@ -8,12 +8,12 @@
 #include <limits>
 #include <map>
 #include <set>
-#include <sstream>
 #include <string>
 #include <system_error>
 #include <vector>
 
 #include "common_checks.hpp"
+#include "feedplan/core/bounded_read.hpp"
 #include "feedplan/core/input_error.hpp"
 #include "feedplan/core/joined_text.hpp"
 #include "feedplan/core/yaml_fields.hpp"
@@ -28,6 +28,16 @@ using geometry::Point2;
 namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+// The most YAML nodes a spec may expand to (each alias counted where it is used): a spec has a few
+// dozen, a stock polygon of 10 000 vertices 30 000. Beyond it every walk over the document (its
+// checks, the values shown in problems) costs time and memory without bound: 800 bytes of nested
+// aliases expand to 10⁹ nodes.
+constexpr std::size_t kMaxSpecYamlNodes = 100000;
+
+// The largest spec or stock file read: /dev/zero or an endless pipe would otherwise be read until
+// memory runs out.
+constexpr std::size_t kMaxSpecFileBytes = std::size_t{4} << 20;
 
 const std::vector<std::string> kCycleNames = {"corner", "trochoid", "spiral", "helical_boring", "pocket"};
 
@@ -448,10 +458,12 @@ std::vector<InputProblem> structural_then_semantic(SpecReader& in, std::vector<I
   return problems;
 }
 
-// Parses YAML text; malformed YAML is an InputError naming the source, line and column.
+// Parses YAML text; malformed YAML is an InputError naming the source, line and column, and so is a
+// document that expands beyond kMaxSpecYamlNodes through its aliases.
 YAML::Node load_yaml(const std::string& yaml_text, const std::string& source_name) {
+  YAML::Node root;
   try {
-    return YAML::Load(yaml_text);
+    root = YAML::Load(yaml_text);
   } catch (const YAML::Exception& e) {
     std::string where;
     if (!e.mark.is_null()) {
@@ -459,6 +471,12 @@ YAML::Node load_yaml(const std::string& yaml_text, const std::string& source_nam
     }
     throw InputError(source_name, "is not valid YAML" + where + ": " + e.msg);
   }
+  if (yaml_expands_beyond(root, kMaxSpecYamlNodes)) {
+    throw InputError(source_name, "expands to more than " + std::to_string(kMaxSpecYamlNodes) +
+                                      " YAML nodes through its aliases (*name), counting each use: a cycle spec has "
+                                      "a few dozen (a stock polygon one per vertex); write it without the aliases");
+  }
+  return root;
 }
 
 std::string read_text_file(const std::filesystem::path& path, const std::string& what) {
@@ -468,10 +486,13 @@ std::string read_text_file(const std::filesystem::path& path, const std::string&
   if (fs::is_directory(path, ec)) throw InputError(path.string(), "cannot be read: it is a directory, not " + what);
   std::ifstream file(path, std::ios::binary);
   if (!file) throw InputError(path.string(), "cannot be read: permission denied or I/O error");
-  std::ostringstream text;
-  text << file.rdbuf();
+  std::string text;
+  if (!read_at_most(file, kMaxSpecFileBytes, text)) {
+    throw InputError(path.string(), "is larger than " + byte_size_text(kMaxSpecFileBytes) + ": not " + what +
+                                        " (a spec is a few hundred bytes, a stock of 10 000 vertices some 300 KiB)");
+  }
   if (file.bad()) throw InputError(path.string(), "cannot be read: I/O error");
-  return text.str();
+  return text;
 }
 
 }  // namespace

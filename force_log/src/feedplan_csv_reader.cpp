@@ -4,10 +4,12 @@
 #include <array>
 #include <cmath>
 #include <optional>
+#include <utility>
 
 #include "feedplan/core/did_you_mean.hpp"
 #include "log_cells.hpp"
 #include "log_columns.hpp"
+#include "log_metadata.hpp"
 #include "log_problems.hpp"
 #include "time_order.hpp"
 
@@ -22,12 +24,17 @@ struct Header {
   std::array<std::optional<std::size_t>, kColumnCount> position;  // Column → header position
 };
 
-// A "# key: value" line into `log`'s metadata; other comment lines are skipped.
-void read_metadata_line(std::string_view line, ForceLog& log) {
+// A "# key: value" line (line index `i`) into `log`'s metadata, when log_metadata.hpp's checks pass;
+// other comment lines are skipped.
+void read_metadata_line(Problems& problems, std::string_view line, std::size_t i, ForceLog& log) {
   const std::string_view body = trim(line.substr(1));
   const std::size_t colon = body.find(':');
   if (colon != std::string_view::npos && colon > 0) {
-    log.metadata.emplace_back(std::string(trim(body.substr(0, colon))), std::string(trim(body.substr(colon + 1))));
+    std::string key(trim(body.substr(0, colon)));
+    std::string value(trim(body.substr(colon + 1)));
+    if (check_metadata_entry(problems, i + 1, "# " + key, key, value)) {
+      log.metadata.emplace_back(std::move(key), std::move(value));
+    }
   }
 }
 
@@ -175,7 +182,7 @@ ForceLog read_feedplan_csv(const std::vector<std::string_view>& lines, const std
     const std::string_view line = trim(lines[i]);
     if (line.empty()) continue;
     if (line.front() == '#') {
-      read_metadata_line(line, log);
+      read_metadata_line(problems, line, i, log);
       continue;
     }
     if (!header) {

@@ -6,6 +6,7 @@
 
 #include "log_cells.hpp"
 #include "log_columns.hpp"
+#include "log_metadata.hpp"
 #include "log_problems.hpp"
 #include "time_order.hpp"
 
@@ -50,7 +51,9 @@ std::size_t read_header_block(Problems& problems, const std::vector<std::string_
       }
       continue;
     }
-    if (!trim(value).empty()) log.metadata.emplace_back("dynoware." + key, value);
+    if (!trim(value).empty() && check_metadata_entry(problems, i + 1, key, "dynoware." + key, value)) {
+      log.metadata.emplace_back("dynoware." + key, value);
+    }
   }
   return 0;
 }

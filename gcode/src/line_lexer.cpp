@@ -12,6 +12,8 @@ namespace feedplan::gcode::detail {
 
 namespace {
 
+constexpr double kMaxWordValue = 1e6;
+
 bool is_space(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\v' || c == '\f'; }
 bool is_number_char(char c) { return std::isdigit(static_cast<unsigned char>(c)) || c == '.' || c == '+' || c == '-'; }
 
@@ -118,8 +120,12 @@ std::optional<Word> next_word(const std::string& code, std::size_t& i, const std
     return std::nullopt;
   }
   const double value = std::strtod(number.c_str(), nullptr);
-  if (!std::isfinite(value)) {
-    problems.add(line, "word " + std::string(1, letter) + ": the number is out of range");
+  // Line and program numbers only label; every other number is a length, feed, speed, time or code, and
+  // beyond this bound arcs lose their precision (an I of 60 digits put an arc's end off its circle).
+  if (letter != 'N' && letter != 'O' && !(std::abs(value) <= kMaxWordValue)) {
+    const std::string shown = word.size() > 24 ? word.substr(0, 20) + "…" : word;
+    problems.add(line, "word " + shown + ": out of range: numbers are at most ±1000000 (1 km in mm), more than any "
+                                         "machine travels, feeds or turns");
     return std::nullopt;
   }
   const bool only_line_number_before = words.empty() || (words.size() == 1 && words[0].letter == 'N');

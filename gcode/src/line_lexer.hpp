@@ -28,7 +28,8 @@ struct LexedLine {
 //! `( )` comments (not nested, closed on the same line), `;` comments to the end of the line, spaces
 //! and tabs anywhere outside comments (LinuxCNC ignores them), lower-case letters. A number is a
 //! plain decimal: optional sign, digits with at most one decimal point, at least one digit — no
-//! exponents, no `#` parameters or `[ ]` expressions. An `O` word must be alone on its line (a
+//! exponents, no `#` parameters or `[ ]` expressions, and at most ±1 000 000 (N and O words excepted).
+//! An `O` word must be alone on its line (a
 //! program number). The first problem in a line is logged for 1-based `line` and ends the line.
 LexedLine lex_line(std::string_view text, int line, ProblemLog& problems);
 

@@ -6,7 +6,6 @@
 #include <cmath>
 #include <fstream>
 #include <optional>
-#include <sstream>
 #include <string>
 #include <string_view>
 #include <system_error>
@@ -14,6 +13,7 @@
 
 #include "arc_geometry.hpp"
 #include "code_catalog.hpp"
+#include "feedplan/core/bounded_read.hpp"
 #include "feedplan/core/input_error.hpp"
 #include "feedplan/core/number_text.hpp"
 #include "feedplan/geometry/tool_path.hpp"
@@ -35,6 +35,7 @@ namespace {
 
 constexpr double kMmPerInch = 25.4;
 constexpr double kReportedShiftMm = 1e-6;  // centre moves above this are counted in a note
+constexpr std::size_t kMaxLineCharacters = 4096;  // LinuxCNC's limit is 255; CAM comments stay far below
 
 // Motion modes in tenths of their G number; kNoMotion after G80 and at the start (as LinuxCNC).
 constexpr int kNoMotion = -1;
@@ -100,6 +101,7 @@ class Interpreter {
       ++line;
       if (!ended_) {
         read_line(raw, line);
+        if (too_many_moves_) break;
       } else if (note_text_after_end(raw, line)) {
         break;
       }
@@ -133,6 +135,12 @@ class Interpreter {
   }
 
   void read_line(std::string_view raw, int line) {
+    if (raw.size() > kMaxLineCharacters) {
+      problems_.add(line, std::to_string(raw.size()) + " characters: more than " + std::to_string(kMaxLineCharacters) +
+                              " on one line, which no G-code block needs (LinuxCNC reads 255)");
+      last_content_line_ = line;
+      return;
+    }
     const detail::LexedLine lexed = detail::lex_line(raw, line, problems_);
     if (lexed.percent) {
       if (last_content_line_ == 0) {
@@ -288,6 +296,9 @@ class Interpreter {
       } else if (is_arc(motion)) {
         if (p->value < 1.0 || p->value != std::floor(p->value)) {
           fail("word " + p->text + ": the number of turns of G2/G3 must be a whole number ≥ 1");
+        } else if (p->value > options_.max_arc_turns) {
+          fail("word " + p->text + ": more than " + std::to_string(options_.max_arc_turns) +
+               " turns in one arc (ReaderOptions::max_arc_turns)");
         }
       } else if (!blend) {
         fail("word " + p->text + ": not supported here (P is read with G4, G2, G3 and G64)");
@@ -389,7 +400,11 @@ class Interpreter {
       feed_reset_by_g94_ = false;
       feed_problem_reported_ = false;
     }
-    if (const Word* s = block.word('S')) spindle_rpm_ = s->value;
+    if (const Word* s = block.word('S')) {
+      spindle_rpm_ = s->value;
+      s_zero_line_ = s->value == 0.0 ? line : 0;
+      s_zero_reported_ = false;
+    }
     if (block.has('T')) selected_tool_ = tool_of(block.word('T'));
     if (block.has_m(6, 6)) {
       tool_in_spindle_ = selected_tool_;
@@ -447,6 +462,29 @@ class Interpreter {
     return false;
   }
 
+  // Checks that a feed move under M3/M4 does not run at an explicit S0: the spindle would not turn
+  // (LinuxCNC) while a reader of BlockCommand takes 0 as "no S given" and a speed of its own (the
+  // virtual machine: the spec's). Reports once per S0 word.
+  bool spindle_ok(int line, int motion) {
+    if (s_zero_line_ == 0 || spindle_ == SpindleDirection::kOff) return true;
+    if (!s_zero_reported_) {
+      problems_.add(line, detail::g_code_name(motion) + " with the spindle on at S0 (set on line " +
+                              std::to_string(s_zero_line_) + "): a feed move needs the spindle turning; give S > 0");
+      s_zero_reported_ = true;
+    }
+    return false;
+  }
+
+  // False (after a problem that stops the reading) when the program has max_moves moves already.
+  bool room_for_move(int line) {
+    if (program_.path.moves.size() < static_cast<std::size_t>(std::max(options_.max_moves, 0))) return true;
+    problems_.add(line, "more than " + std::to_string(options_.max_moves) +
+                            " moves (ReaderOptions::max_moves): the planner and the virtual machine would need "
+                            "gigabytes for them; split the program");
+    too_many_moves_ = true;
+    return false;
+  }
+
   void move(const Block& block, int motion) {
     const int line = block.line;
     Point3 end = position_mm_;
@@ -466,7 +504,7 @@ class Interpreter {
     m.end = end;
     m.part = 0;
     const bool feed = motion != kG0;
-    if (feed && !feed_ok(line, motion)) {
+    if (feed && (!feed_ok(line, motion) || !spindle_ok(line, motion))) {
       position_mm_ = end;
       return;
     }
@@ -513,6 +551,7 @@ class Interpreter {
       m.ccw = ccw;
       m.sweep_rad = arc.sweep_rad;
     }
+    if (!room_for_move(line)) return;
     m.cutting = feed;
     geometry::BlockCommand command;
     command.feed_mm_per_min = feed ? feed_mm_per_min_ : 0.0;
@@ -545,6 +584,8 @@ class Interpreter {
   bool feed_reset_by_g94_ = false;
   bool feed_problem_reported_ = false;
   double spindle_rpm_ = 0.0;
+  int s_zero_line_ = 0;  // line of the S0 word in effect; 0 when the S in effect is > 0 or none was given
+  bool s_zero_reported_ = false;
   SpindleDirection spindle_ = SpindleDirection::kOff;
   std::optional<int> selected_tool_;    // the last T word
   std::optional<int> tool_in_spindle_;  // set by the one M6
@@ -556,6 +597,7 @@ class Interpreter {
   double largest_shift_mm_ = 0.0;
   int largest_shift_line_ = 0;
   bool percent_opened_ = false;
+  bool too_many_moves_ = false;  // max_moves reached: reading stops
   bool ended_ = false;
   int end_line_ = 0;
   const char* end_word_ = "";  // M2, M30 or %
@@ -587,10 +629,13 @@ geometry::Program load_program(const std::filesystem::path& path, const ReaderOp
   if (std::filesystem::is_directory(path, ec)) throw InputError(path.string(), "is a directory, not a G-code file");
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError(path.string(), "cannot be opened for reading");
-  std::ostringstream text;
-  text << in.rdbuf();
+  std::string text;
+  if (!read_at_most(in, options.max_file_bytes, text)) {
+    throw InputError(path.string(), "is larger than " + byte_size_text(options.max_file_bytes) +
+                                        " (ReaderOptions::max_file_bytes): not a program of a milling cycle");
+  }
   if (in.bad()) throw InputError(path.string(), "could not be read");
-  return read_program(text.str(), path.string(), options);
+  return read_program(text, path.string(), options);
 }
 
 }  // namespace feedplan::gcode

@@ -9,6 +9,7 @@
 
 #include "catalog_rows.hpp"
 #include "cutting_test_rows.hpp"
+#include "feedplan/core/json_document.hpp"
 #include "feedplan/core/json_fields.hpp"
 #include "feedplan/core/number_text.hpp"
 #include "feedplan/model/model_json.hpp"
@@ -213,14 +214,9 @@ IncomingEntry read_entry(const Node& node) {
 
 // ---- the steps of read_document ----
 
-//! The JSON text parsed; text that is not JSON, or JSON of another format, throws.
+//! The JSON text parsed; text that is not JSON, nests too deep or is JSON of another format throws.
 Json parse_exchange_text(std::string_view text, const std::string& source_name) {
-  Json root;
-  try {
-    root = Json::parse(text);
-  } catch (const Json::parse_error& error) {
-    throw InputError(source_name, std::string("is not valid JSON: ") + error.what());
-  }
+  Json root = parse_json_document<Json>(text, source_name);
   const auto format = root.is_object() ? root.find("format") : root.end();
   if (format == root.end() || !format->is_string() || format->get<std::string>() != "feedplan-model-db") {
     throw InputError(source_name, "is not a feedplan model database export (expected \"format\": \"feedplan-model-db\")");

@@ -206,6 +206,14 @@ int prepare_schema(Connection& connection, OpenMode mode, bool quick_check) {
                                             ", newer than this feedplan knows (" +
                                             std::to_string(kStoreSchemaVersion) + "): upgrade feedplan");
   }
+  if (version < 0) {
+    // migrations[version] below needs 0 ≤ version; feedplan writes 1 or more with its application_id.
+    throw InputError(connection.path(), "has model database schema version " + std::to_string(version) +
+                                            ", which feedplan never writes (it writes 1 to " +
+                                            std::to_string(kStoreSchemaVersion) +
+                                            "): the file was changed outside feedplan; restore it from a backup "
+                                            "or an export");
+  }
   if (quick_check && !empty) run_quick_check(connection);
   if (mode == OpenMode::kReadOnly) {
     if (version < kStoreSchemaVersion) {

@@ -2,9 +2,14 @@
 
 #include <sqlite3.h>
 
+#include <cmath>
+#include <limits>
 #include <stdexcept>
+#include <string_view>
 
 #include "feedplan/core/input_error.hpp"
+#include "feedplan/core/number_text.hpp"
+#include "feedplan/core/utf8_text.hpp"
 
 namespace feedplan::model_db::detail {
 
@@ -96,16 +101,84 @@ void Statement::reset() {
   next_parameter_ = 1;
 }
 
-double Statement::column_double(int index) const { return sqlite3_column_double(statement_, index); }
+std::string Statement::value_place(int index) const {
+  const char* table = sqlite3_column_table_name(statement_, index);
+  const char* column = sqlite3_column_origin_name(statement_, index);
+  if (table == nullptr || column == nullptr) return "result column " + std::to_string(index + 1) + " of " + sql_;
+  // The row by the key columns the statement selected from the same table: id, *_id, *_index.
+  std::string row;
+  for (int k = 0; k < sqlite3_column_count(statement_); ++k) {
+    const char* key_table = sqlite3_column_table_name(statement_, k);
+    const char* key = sqlite3_column_origin_name(statement_, k);
+    if (key_table == nullptr || key == nullptr || std::string_view(key_table) != table) continue;
+    const std::string_view name(key);
+    const bool is_key = name == "id" || name.ends_with("_id") || name.ends_with("_index");
+    if (!is_key || sqlite3_column_type(statement_, k) != SQLITE_INTEGER) continue;
+    row += (row.empty() ? ", row " : ", ") + std::string(name) + " " +
+           std::to_string(sqlite3_column_int64(statement_, k));
+  }
+  return "table " + std::string(table) + ", column " + column + row;
+}
 
-std::int64_t Statement::column_int64(int index) const { return sqlite3_column_int64(statement_, index); }
+void Statement::refuse_value(int index, const std::string& shown, const std::string& expected) const {
+  throw InputError(connection_.path() + " " + value_place(index),
+                   "= " + shown + ": " + expected +
+                       "; the file was changed outside feedplan: correct the row or restore the file from a backup");
+}
 
-int Statement::column_int(int index) const { return sqlite3_column_int(statement_, index); }
+namespace {
+
+// A stored text or blob as a problem shows it: quoted, bytes that are not UTF-8 as '?', shortened.
+std::string shown_text(sqlite3_stmt* statement, int index) {
+  const auto* bytes = static_cast<const char*>(sqlite3_column_blob(statement, index));
+  const std::string_view text(bytes == nullptr ? "" : bytes, static_cast<std::size_t>(sqlite3_column_bytes(statement, index)));
+  constexpr std::size_t kLongest = 40;
+  const std::string shown = utf8_shown(text.substr(0, kLongest));
+  return "'" + shown + (text.size() > kLongest ? "…'" : "'");
+}
+
+}  // namespace
+
+double Statement::column_double(int index) const {
+  const int type = sqlite3_column_type(statement_, index);
+  if (type == SQLITE_TEXT || type == SQLITE_BLOB) refuse_value(index, shown_text(statement_, index), "must be a number");
+  return sqlite3_column_double(statement_, index);
+}
+
+std::int64_t Statement::column_int64(int index) const {
+  const int type = sqlite3_column_type(statement_, index);
+  if (type == SQLITE_TEXT || type == SQLITE_BLOB) {
+    refuse_value(index, shown_text(statement_, index), "must be a whole number");
+  }
+  if (type == SQLITE_FLOAT) {
+    const double value = sqlite3_column_double(statement_, index);
+    // 2^63 is exact as a double; the range check keeps the cast defined.
+    if (!(value >= -9223372036854775808.0 && value < 9223372036854775808.0) || value != std::floor(value)) {
+      refuse_value(index, shortest_number_text(value), "must be a whole number");
+    }
+    return static_cast<std::int64_t>(value);
+  }
+  return sqlite3_column_int64(statement_, index);
+}
+
+int Statement::column_int(int index) const {
+  const std::int64_t value = column_int64(index);
+  if (value < std::numeric_limits<int>::min() || value > std::numeric_limits<int>::max()) {
+    refuse_value(index, std::to_string(value),
+                 "must be a whole number in [" + std::to_string(std::numeric_limits<int>::min()) + ", " +
+                     std::to_string(std::numeric_limits<int>::max()) + "]");
+  }
+  return static_cast<int>(value);
+}
 
 std::string Statement::column_text(int index) const {
   const auto* text = sqlite3_column_text(statement_, index);
   if (text == nullptr) return {};
-  return std::string(reinterpret_cast<const char*>(text), static_cast<std::size_t>(sqlite3_column_bytes(statement_, index)));
+  std::string value(reinterpret_cast<const char*>(text), static_cast<std::size_t>(sqlite3_column_bytes(statement_, index)));
+  if (const std::string problem = utf8_problem(value); !problem.empty()) {
+    refuse_value(index, shown_text(statement_, index), problem);
+  }
+  return value;
 }
 
 bool Statement::column_is_null(int index) const { return sqlite3_column_type(statement_, index) == SQLITE_NULL; }

@@ -79,6 +79,12 @@ class Statement {
   //! Resets the statement and its bindings for another run.
   void reset();
 
+  //! The value of result column `index`. A stored value of another kind — text or a blob where a
+  //! number belongs, a fraction or a number beyond int where a whole number belongs, text that is not
+  //! UTF-8 — is an InputError naming the file, table, column and row ("models.db table tools, column
+  //! diameter_mm, row id 3 = 'ten': must be a number; …"): only a change behind the store's back puts
+  //! it there (SQLite's column types do not refuse it), and reading it as 0 would plan with nonsense.
+  //! NULL reads as 0 or "" (aggregates over no rows; the schema keeps NULL out of stored columns).
   double column_double(int index) const;
   std::int64_t column_int64(int index) const;
   int column_int(int index) const;
@@ -87,6 +93,11 @@ class Statement {
   std::optional<std::int64_t> column_optional_int64(int index) const;
 
  private:
+  // Throws the InputError of a stored value that is not what column `index` holds (see column_double).
+  [[noreturn]] void refuse_value(int index, const std::string& shown, const std::string& expected) const;
+  // "table T, column C, row id N" for result column `index`, as far as the statement knows it.
+  std::string value_place(int index) const;
+
   const Connection& connection_;
   sqlite3_stmt* statement_ = nullptr;
   int next_parameter_ = 1;

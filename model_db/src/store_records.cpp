@@ -2,19 +2,57 @@
 
 #include <cctype>
 #include <cmath>
+#include <optional>
 #include <string>
 
 #include "feedplan/core/number_text.hpp"
 #include "feedplan/core/problem_list.hpp"
+#include "feedplan/core/utf8_text.hpp"
 
 namespace feedplan::model_db {
 namespace {
 
-std::string quoted(const std::string& text) { return "'" + text + "'"; }
+// Built with append: GCC 12 warns falsely (-Wrestrict) on "'" + std::string when inlined.
+std::string quoted(const std::string& text) {
+  std::string shown = "'";
+  shown.append(utf8_shown(text)).append("'");
+  return shown;
+}
+
+// Physical ranges of what the store describes: beyond them a number is a typing slip or an attack,
+// and would reach the planner as a tool or a cut that cannot exist (a 1e308 mm end mill was stored).
+constexpr double kMaxToolDiameterMm = 1000.0;   // the largest face mills are about 500 mm
+constexpr int kMaxFlutes = 100;                 // inserted face mills of the largest diameters
+constexpr double kMaxSpindleRpm = 200000.0;     // high-speed spindles reach about 150 000 rev/min
+constexpr double kMaxFeedMmPerMin = 200000.0;   // linear-motor machines reach about 120 m/min
+constexpr double kMaxDepthMm = 1000.0;          // depths of cut, as the tool diameter
+
+//! A problem unless `text` is UTF-8: it reaches JSON (`db list --json`, exports), which holds nothing else.
+void check_utf8(ProblemList& problems, const std::string& field, const std::string& text) {
+  if (const std::string problem = utf8_problem(text); !problem.empty()) problems.add_value(field, quoted(text), problem);
+}
+
+//! A problem unless `value` is finite and in (0, max], in `unit`.
+void check_up_to(ProblemList& problems, const std::string& field, double value, double max, const std::string& unit) {
+  if (!(value > 0.0 && value <= max)) {
+    problems.add_value(field, shortest_number_text(value), "must be in (0, " + shortest_number_text(max) + "] " + unit);
+  }
+}
+
+//! The highest hardness of each scale, or nothing for a scale the store does not know.
+std::optional<double> max_hardness(const std::string& scale) {
+  if (scale == "HB") return 1000.0;  // Brinell with a carbide ball ends near 650 HBW
+  if (scale == "HV") return 2500.0;  // hard metals and ceramics
+  if (scale == "HRC") return 70.0;
+  if (scale == "HRB") return 100.0;
+  return std::nullopt;
+}
 
 //! A problem unless `value` is a non-empty name without leading or trailing blanks.
 void check_name(ProblemList& problems, const std::string& field, const std::string& value) {
-  if (value.empty() || std::isspace(static_cast<unsigned char>(value.front())) != 0 ||
+  if (const std::string problem = utf8_problem(value); !problem.empty()) {
+    problems.add_value(field, quoted(value), problem);
+  } else if (value.empty() || std::isspace(static_cast<unsigned char>(value.front())) != 0 ||
       std::isspace(static_cast<unsigned char>(value.back())) != 0) {
     problems.add_value(field, quoted(value), "must be a non-empty name without leading or trailing blanks");
   }
@@ -66,22 +104,30 @@ std::optional<ModelSource> parse_model_source(std::string_view text) {
 std::vector<InputProblem> validate(const ToolRecord& tool) {
   ProblemList problems("tools.");
   check_name(problems, "name", tool.name);
-  problems.positive("diameter_mm", tool.diameter_mm);
-  if (tool.flutes < 1) problems.add_value("flutes", std::to_string(tool.flutes), "must be ≥ 1");
+  check_up_to(problems, "diameter_mm", tool.diameter_mm, kMaxToolDiameterMm, "mm");
+  if (tool.flutes < 1 || tool.flutes > kMaxFlutes) {
+    problems.add_value("flutes", std::to_string(tool.flutes), "must be in [1, " + std::to_string(kMaxFlutes) + "]");
+  }
   if (!std::isfinite(tool.helix_deg) || tool.helix_deg < 0.0 || tool.helix_deg >= 90.0) {
     problems.add_value("helix_deg", shortest_number_text(tool.helix_deg), "must be in [0, 90)");
   }
+  check_utf8(problems, "tool_material", tool.tool_material);
+  check_utf8(problems, "coating", tool.coating);
+  check_utf8(problems, "notes", tool.notes);
   return problems.take();
 }
 
 std::vector<InputProblem> validate(const MaterialRecord& material) {
   ProblemList problems("materials.");
   check_name(problems, "name", material.name);
-  problems.positive("hardness_value", material.hardness_value);
   const std::string& scale = material.hardness_scale;
-  if (scale != "HB" && scale != "HV" && scale != "HRC" && scale != "HRB") {
+  if (const std::optional<double> max = max_hardness(scale)) {
+    check_up_to(problems, "hardness_value", material.hardness_value, *max, "on the " + scale + " scale");
+  } else {
+    problems.positive("hardness_value", material.hardness_value);
     problems.add_value("hardness_scale", quoted(scale), "must be one of HB, HV, HRC, HRB");
   }
+  check_utf8(problems, "notes", material.notes);
   return problems.take();
 }
 
@@ -102,6 +148,7 @@ std::vector<InputProblem> validate(const ModelRecord& record) {
   for (std::size_t i = 0; i < fit.standard_errors.size(); ++i) {
     problems.non_negative("fit.standard_errors[" + std::to_string(i) + "]", fit.standard_errors[i]);
   }
+  check_utf8(problems, "note", record.note);
   for (auto& problem : problems.take()) list.push_back(std::move(problem));
   return list;
 }
@@ -111,10 +158,12 @@ std::vector<InputProblem> validate(const CuttingTestRecord& test) {
   const CuttingTestConditions& conditions = test.conditions;
   check_name(problems, "tool_name", conditions.tool_name);
   check_name(problems, "material_name", conditions.material_name);
-  problems.positive("spindle_rpm", conditions.spindle_rpm);
-  problems.positive("feed_mm_per_min", conditions.feed_mm_per_min);
-  problems.positive("radial_depth_mm", conditions.radial_depth_mm);
-  problems.positive("axial_depth_mm", conditions.axial_depth_mm);
+  check_up_to(problems, "spindle_rpm", conditions.spindle_rpm, kMaxSpindleRpm, "rev/min");
+  check_up_to(problems, "feed_mm_per_min", conditions.feed_mm_per_min, kMaxFeedMmPerMin, "mm/min");
+  check_up_to(problems, "radial_depth_mm", conditions.radial_depth_mm, kMaxDepthMm, "mm");
+  check_up_to(problems, "axial_depth_mm", conditions.axial_depth_mm, kMaxDepthMm, "mm");
+  check_utf8(problems, "source", test.source);
+  for (std::size_t i = 0; i < test.notes.size(); ++i) check_utf8(problems, "notes[" + std::to_string(i) + "]", test.notes[i]);
   problems.non_negative("feed_per_tooth_mm", test.feed_per_tooth_mm);
   problems.non_negative("chip_mm", test.chip_mm);
   problems.non_negative("contact_length_mm", test.contact_length_mm);
@@ -142,6 +191,8 @@ std::vector<InputProblem> validate(const LearningEntry& entry) {
   if (entry.n_samples < 0) problems.add_value("n_samples", std::to_string(entry.n_samples), "must be ≥ 0");
   problems.non_negative("error_before_n", entry.error_before_n);
   problems.non_negative("error_after_n", entry.error_after_n);
+  check_utf8(problems, "part_name", entry.part_name);
+  check_utf8(problems, "note", entry.note);
   return problems.take();
 }
 

@@ -4,13 +4,14 @@
 #include <charconv>
 #include <cmath>
 #include <fstream>
-#include <iterator>
 #include <limits>
 #include <optional>
 
 #include <nlohmann/json.hpp>
 
 #include "feedplan/core/atomic_file.hpp"
+#include "feedplan/core/bounded_read.hpp"
+#include "feedplan/core/json_document.hpp"
 #include "feedplan/core/json_fields.hpp"
 #include "feedplan/core/number_text.hpp"
 #include "feedplan/model/model_json.hpp"
@@ -23,6 +24,8 @@ using Reader = JsonFieldReader<Json>;  // the plan report's rules are JsonFieldR
 using Node = JsonNode<Json>;
 
 constexpr const char* kFormatTag = "feedplan-plan";
+// The largest report read_plan_report reads: JSON parsed whole takes about ten times its size.
+constexpr std::size_t kMaxPlanReportFileBytes = std::size_t{256} << 20;
 constexpr double kRadToDeg = 180.0 / 3.14159265358979323846;
 
 // --- Writing --------------------------------------------------------------------------------------
@@ -180,14 +183,9 @@ std::vector<PlannedBlock> read_blocks(const Node& list) {
 
 // The steps of parse_plan_report, in its order.
 
-// The JSON text parsed; text that is not JSON, or not an object, throws.
+// The JSON text parsed; text that is not JSON, nests too deep or is not an object throws.
 Json parse_report_text(std::string_view json_text, const std::string& source_name) {
-  Json document;
-  try {
-    document = Json::parse(json_text.begin(), json_text.end());
-  } catch (const Json::parse_error& error) {
-    throw InputError(source_name, std::string("is not valid JSON: ") + error.what());
-  }
+  const Json document = parse_json_document<Json>(json_text, source_name);
   if (!document.is_object()) {
     throw InputError(source_name, "= " + json_value_text(document, JsonTextShown::kAsJson) +
                                       ": is not a feedplan plan report (expected a JSON object)");
@@ -315,9 +313,25 @@ void read_program(const Node& root, PlanReport& report) {
   report.program_blocks = program.count("blocks");
 }
 
+// The report's tool within the ranges a cycle spec allows (the plan came from one): a tool of
+// diameter 0 would reach learning and the re-plan.
+void check_tool(const geometry::Tool& tool, std::vector<InputProblem>& problems) {
+  if (!(std::isfinite(tool.diameter_mm) && tool.diameter_mm > 0.0)) {
+    problems.push_back({"tool.diameter_mm", "= " + shortest_number_text(tool.diameter_mm) + ": must be finite and > 0 mm"});
+  }
+  if (tool.flutes < 1 || tool.flutes > 32) {
+    problems.push_back({"tool.flutes", "= " + std::to_string(tool.flutes) + ": must be in [1, 32]"});
+  }
+  if (!(tool.helix_deg >= 0.0 && tool.helix_deg < 60.0)) {
+    problems.push_back({"tool.helix_deg", "= " + shortest_number_text(tool.helix_deg) + ": must be in [0, 60) deg"});
+  }
+}
+
 // Well-formed numbers may still be out of range: the planner's own checks name the same paths.
 void check_settings(const PlanReport& report) {
   std::vector<InputProblem> settings_problems = validate(report.settings, report.context.tool);
+  std::erase_if(settings_problems, [](const InputProblem& p) { return p.field == "tool.flutes"; });  // check_tool's
+  check_tool(report.context.tool, settings_problems);
   if (!settings_problems.empty()) throw InputError(std::move(settings_problems));
 }
 
@@ -455,7 +469,11 @@ PlanReport read_plan_report(const std::filesystem::path& path) {
   }
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError(path.string(), "cannot be read");
-  const std::string text{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+  std::string text;
+  if (!read_at_most(in, kMaxPlanReportFileBytes, text)) {
+    throw InputError(path.string(), "is larger than " + byte_size_text(kMaxPlanReportFileBytes) +
+                                        ": not a plan report (a plan of 100 000 blocks writes about 20 MiB)");
+  }
   if (in.bad()) throw InputError(path.string(), "cannot be read (read error)");
   return parse_plan_report(text, path.string());
 }

@@ -269,7 +269,7 @@ TEST_F(BadDocumentTest, IsoGroupX) {
 
 TEST_F(BadDocumentTest, NegativeDiameter) {
   EXPECT_EQ(error_after([](auto& d) { d["tools"][0]["diameter_mm"] = -10; }),
-            "tools[0].diameter_mm = -10: must be finite and > 0");
+            "tools[0].diameter_mm = -10: must be in (0, 1000] mm");
 }
 
 TEST_F(BadDocumentTest, NullCoefficientAndMissingField) {

@@ -121,8 +121,8 @@ TEST(Store, NegativeDiameterAndOtherBadToolFieldsAreAllReported) {
   ToolRecord bad = fixtures::tool("", -10, 0, 90);
   EXPECT_EQ(input_error_of([&] { store.add_tool(bad); }),
             "tools.name = '': must be a non-empty name without leading or trailing blanks\n"
-            "tools.diameter_mm = -10: must be finite and > 0\n"
-            "tools.flutes = 0: must be ≥ 1\n"
+            "tools.diameter_mm = -10: must be in (0, 1000] mm\n"
+            "tools.flutes = 0: must be in [1, 100]\n"
             "tools.helix_deg = 90: must be in [0, 90)");
   EXPECT_TRUE(store.tools().empty());
 }
@@ -359,7 +359,7 @@ TEST_F(StoreWithCatalog, BadCuttingTestIsAnInputErrorNamingEachField) {
   bad.revolutions_used = 99;
   bad.steady_peaks_n[2] = kNaN;
   EXPECT_EQ(input_error_of([&] { store_.add_cutting_test(bad); }),
-            "cutting_tests.spindle_rpm = -2800: must be finite and > 0\n"
+            "cutting_tests.spindle_rpm = -2800: must be in (0, 200000] rev/min\n"
             "cutting_tests.revolutions_used = 99: must be in [0, revolutions_total = 16]\n"
             "cutting_tests.steady_peaks_n[2] = nan: must be finite and ≥ 0\n"
             "cutting_tests.material_name = 'Steel': unknown material; known: Al7075-T6, S50C");

@@ -438,6 +438,16 @@ TEST(PlanReportRead, LearningAlongThePathMustMatchThePlanSamples) {
               Contains(problem("path_learning.measurements[0][1]", "= -2: must be ≥ 0")));
 }
 
+// A report's tool of diameter 0 was accepted, and learning refitted a model for a tool that cannot exist.
+TEST(PlanReportRead, ToolOutsideTheSpecsRangesIsRejected) {
+  EXPECT_THAT(problems_after([](auto& j) { j["tool"]["diameter_mm"] = 0; }),
+              Contains(problem("tool.diameter_mm", "= 0: must be finite and > 0 mm")));
+  EXPECT_THAT(problems_after([](auto& j) { j["tool"]["flutes"] = 1000; }),
+              Contains(problem("tool.flutes", "= 1000: must be in [1, 32]")));
+  EXPECT_THAT(problems_after([](auto& j) { j["tool"]["helix_deg"] = -5; }),
+              Contains(problem("tool.helix_deg", "= -5: must be in [0, 60)")));
+}
+
 TEST(PlanReportRead, BlocksOutOfOrderAreRejected) {
   EXPECT_THAT(problems_after([](auto& j) { j["blocks"][0]["last_sample"] = -1; }),
               Contains(Field(&InputProblem::field, "blocks[0].last_sample")));

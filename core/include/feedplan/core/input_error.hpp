@@ -8,6 +8,8 @@
 #include <utility>
 #include <vector>
 
+#include "feedplan/core/utf8_text.hpp"
+
 namespace feedplan {
 
 //! One problem with user input.
@@ -22,11 +24,13 @@ inline std::string to_string(const InputProblem& problem) {
   return problem.field + " " + problem.message;
 }
 
-//! Thrown when user input is invalid; what() lists every problem, one per line.
+//! Thrown when user input is invalid; what() lists every problem, one per line. Problems quote the
+//! input, which may hold any bytes: a byte that does not belong to UTF-8 text is shown as '?', so
+//! that every message is UTF-8 (it may go into JSON, which holds nothing else).
 class InputError : public std::runtime_error {
  public:
   explicit InputError(std::vector<InputProblem> problems)
-      : std::runtime_error(join(problems)), problems_(std::move(problems)) {}
+      : std::runtime_error(join(as_utf8(problems))), problems_(std::move(problems)) {}
   InputError(std::string field, std::string message)
       : InputError(std::vector<InputProblem>{{std::move(field), std::move(message)}}) {}
 
@@ -34,6 +38,13 @@ class InputError : public std::runtime_error {
   const std::vector<InputProblem>& problems() const { return problems_; }
 
  private:
+  static std::vector<InputProblem>& as_utf8(std::vector<InputProblem>& problems) {
+    for (auto& p : problems) {
+      if (first_non_utf8_byte(p.field)) p.field = utf8_shown(p.field);
+      if (first_non_utf8_byte(p.message)) p.message = utf8_shown(p.message);
+    }
+    return problems;
+  }
   static std::string join(const std::vector<InputProblem>& problems) {
     std::string text;
     for (const auto& p : problems) {

@@ -24,6 +24,7 @@
 
 #include "feedplan/core/did_you_mean.hpp"
 #include "feedplan/core/input_error.hpp"
+#include "feedplan/core/utf8_text.hpp"
 #include "feedplan/core/yaml_text.hpp"
 
 namespace feedplan {
@@ -83,9 +84,10 @@ class YamlFieldReader {
     reported.insert(field);
   }
 
-  //! Checks that `node` (the value of `path`) is a mapping with keys from `allowed` only, and records
-  //! the line of every key. Not a mapping: a problem "= <value>: <not_a_mapping>" and false. Each
-  //! unknown key: a problem naming the allowed keys and the closest one; the mapping is still read.
+  //! Checks that `node` (the value of `path`) is a mapping with keys from `allowed` only, each given
+  //! once, and records the line of every key. Not a mapping: a problem "= <value>: <not_a_mapping>"
+  //! and false. Each unknown key: a problem naming the allowed keys and the closest one; each repeated
+  //! key: "is given twice (also on line N)"; the mapping is still read.
   bool check_mapping(const YamlNode& node, const std::string& path, const std::vector<std::string>& allowed,
                      const std::string& not_a_mapping) {
     if (!node.IsMap()) {
@@ -96,9 +98,17 @@ class YamlFieldReader {
     for (const auto& name : allowed) {
       if (!node[name]) unused.push_back(name);
     }
+    std::map<std::string, int> key_lines;  // key → line of its first appearance in this mapping
     for (const auto& item : node) {
       const std::string key = yaml_key_text(item.first);
       const std::string field = child(path, key);
+      if (const auto first = key_lines.find(key); first != key_lines.end()) {
+        // YAML lookups find the first; the second value would be ignored without a word.
+        add(field, yaml_line(item.first),
+            "is given twice (also on line " + std::to_string(first->second) + "): give it once");
+        continue;
+      }
+      key_lines[key] = yaml_line(item.first);
       lines[field] = yaml_line(item.first);
       if (std::find(allowed.begin(), allowed.end(), key) != allowed.end()) continue;
       std::string message = "is not a known field; expected one of " + joined(allowed);
@@ -145,8 +155,8 @@ class YamlFieldReader {
     return static_cast<int>(value);
   }
 
-  //! The text at map[key]; empty when it is absent (a problem when `required`) or not a scalar (a
-  //! problem "must be text — <meaning>").
+  //! The text at map[key]; empty when it is absent (a problem when `required`), not a scalar (a
+  //! problem "must be text — <meaning>") or not UTF-8 (a problem naming the byte).
   std::string text(const YamlNode& map, const std::string& path, const std::string& key, bool required,
                    const std::string& meaning) {
     const YamlNode node = map[key];
@@ -156,6 +166,14 @@ class YamlFieldReader {
     }
     if (!node.IsScalar()) {
       type_problem(child(path, key), node, "must be text — " + meaning);
+      return {};
+    }
+    if (const std::string problem = utf8_problem(node.Scalar()); !problem.empty()) {
+      // Texts reach JSON (reports, the model database), which holds nothing but UTF-8.
+      // Built with append: GCC 12 warns falsely (-Wrestrict) on "= \"" + std::string when inlined.
+      std::string message = "= \"";
+      message.append(utf8_shown(node.Scalar())).append("\": ").append(problem).append("; save the file as UTF-8");
+      add(child(path, key), yaml_line(node), message);
       return {};
     }
     return node.Scalar();

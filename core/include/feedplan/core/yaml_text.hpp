@@ -5,27 +5,86 @@
 // Templates over the node type so that core needs no yaml-cpp: they take a YAML::Node and are
 // instantiated only in the modules that link yaml-cpp themselves (PRIVATE, see their CMakeLists).
 
+#include <cstddef>
 #include <string>
+#include <vector>
 
 namespace feedplan {
 
-//! A YAML value as the user wrote it: scalars as they stand, quoted scalars ("1045") in double
-//! quotes, lists and mappings in flow style ("[1, 2]", "{x: 1, y: 2}"), an empty value "null".
-//! `YamlNode` is YAML::Node.
+//! The longest value text a problem shows, in bytes before "…": a list of thousands of numbers in the
+//! wrong place is named, not echoed, and an alias bomb is not expanded into the message.
+inline constexpr std::size_t kLongestYamlValueText = 80;
+
+namespace detail {
+
+// Appends the text of `node` to `out`, stopping once `out` is longer than `longest`.
 template <typename YamlNode>
-std::string yaml_value_text(const YamlNode& node) {
-  if (node.IsScalar()) return node.Tag() == "!" ? "\"" + node.Scalar() + "\"" : node.Scalar();
-  if (!node.IsSequence() && !node.IsMap()) return "null";
-  std::string items;  // ", " between items; an empty first item (a !!str "") adds none
+void append_yaml_value_text(const YamlNode& node, std::string& out, std::size_t longest) {
+  if (out.size() > longest) return;
+  if (node.IsScalar()) {
+    out += node.Tag() == "!" ? "\"" + node.Scalar() + "\"" : node.Scalar();
+    return;
+  }
+  if (!node.IsSequence() && !node.IsMap()) {
+    out += "null";
+    return;
+  }
+  out += node.IsSequence() ? "[" : "{";
+  const std::size_t open = out.size();
   for (const auto& item : node) {
-    if (!items.empty()) items += ", ";
+    if (out.size() > longest) return;
+    if (out.size() > open) out += ", ";  // an empty first item (a !!str "") adds none
     if (node.IsSequence()) {
-      items += yaml_value_text<YamlNode>(item);
+      append_yaml_value_text<YamlNode>(item, out, longest);
     } else {
-      items += yaml_value_text(item.first) + ": " + yaml_value_text(item.second);
+      append_yaml_value_text(item.first, out, longest);
+      out += ": ";
+      append_yaml_value_text(item.second, out, longest);
     }
   }
-  return node.IsSequence() ? "[" + items + "]" : "{" + items + "}";
+  out += node.IsSequence() ? "]" : "}";
+}
+
+}  // namespace detail
+
+//! A YAML value as the user wrote it: scalars as they stand, quoted scalars ("1045") in double
+//! quotes, lists and mappings in flow style ("[1, 2]", "{x: 1, y: 2}"), an empty value "null"; cut
+//! after kLongestYamlValueText bytes ("[1, 2, 3, …"). `YamlNode` is YAML::Node.
+template <typename YamlNode>
+std::string yaml_value_text(const YamlNode& node) {
+  std::string text;
+  detail::append_yaml_value_text(node, text, kLongestYamlValueText);
+  if (text.size() > kLongestYamlValueText) {
+    std::size_t cut = kLongestYamlValueText;
+    while (cut > 0 && (static_cast<unsigned char>(text[cut]) & 0xC0) == 0x80) --cut;  // not inside a UTF-8 character
+    text.resize(cut);
+    text += "…";
+  }
+  return text;
+}
+
+//! True when `node` counts more than `max_nodes` nodes with every alias (*name) expanded where it is
+//! used — what any walk over the document visits. Stops counting there, so an alias bomb (ten
+//! aliases of ten aliases of … : 10⁹ nodes from 800 bytes) costs max_nodes steps. `YamlNode` is
+//! YAML::Node.
+template <typename YamlNode>
+bool yaml_expands_beyond(const YamlNode& node, std::size_t max_nodes) {
+  std::vector<YamlNode> pending{node};
+  std::size_t count = 0;
+  while (!pending.empty()) {
+    const YamlNode next = pending.back();
+    pending.pop_back();
+    if (++count > max_nodes) return true;
+    if (next.IsSequence()) {
+      for (const auto& item : next) pending.push_back(item);
+    } else if (next.IsMap()) {
+      for (const auto& item : next) {
+        pending.push_back(item.first);
+        pending.push_back(item.second);
+      }
+    }
+  }
+  return false;
 }
 
 //! The 1-based line of `node` in its document, or 0 when it has none (a node built in code).

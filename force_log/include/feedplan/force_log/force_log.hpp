@@ -19,6 +19,7 @@
 // Such logs have no positions: has_positions is false and x_mm, y_mm, z_mm are NaN, as are
 // feed_mm_per_min and spindle_rpm. Time keeps the export's clock (it need not start at 0).
 
+#include <cstddef>
 #include <string>
 #include <utility>
 #include <vector>
@@ -69,6 +70,11 @@ std::string write_force_log(const std::string& path, const ForceLog& log);
 //! Parses a force log: our format or a Kistler DynoWare export (recognised by its first line starting
 //! with "DynoWare"). `source_name` names the text in messages (a path, or "test").
 //!
+//! Metadata is free text except that the writer's numeric keys (sample_rate_hz, tool_diameter_mm,
+//! flutes, helix_deg, spindle_rpm, radial_depth_mm, axial_depth_mm, feed_per_tooth_mm) must hold
+//! numbers in range (flutes a whole number in [1, 100], helix_deg in [0, 90), spindle_rpm and
+//! feed_per_tooth_mm finite and ≥ 0, the others finite and > 0), and every key and value must be UTF-8.
+//!
 //! Our format: a header row is required (the first line that is neither blank nor '#'); every column
 //! name must be known (an unknown one is reported with the closest known name) and appear once;
 //! t_s, x_mm, y_mm and fx_n, fy_n (or ix_a, iy_a) must be there. Every row must have as many cells as
@@ -82,8 +88,14 @@ std::string write_force_log(const std::string& path, const ForceLog& log);
 //! expected, e.g. `log.csv line 12, column 5 (fx_n) = "1.2.3": not a number`.
 ForceLog read_force_log(const std::string& text, const std::string& source_name);
 
+//! The largest force log load_force_log reads by default, bytes: 512 MiB is about 15 minutes of
+//! feedplan CSV at 10 kHz, and takes some 2 GB once read; /dev/zero or an endless pipe would otherwise
+//! be read until memory runs out.
+inline constexpr std::size_t kMaxForceLogFileBytes = std::size_t{512} << 20;
+
 //! Reads the file at `path` and parses it with read_force_log (the path is the source name). A file
-//! that does not exist or cannot be read is an InputError naming the path.
-ForceLog load_force_log(const std::string& path);
+//! that does not exist, cannot be read or holds more than `max_file_bytes` is an InputError naming the
+//! path ("… is larger than 512 MiB: split the recording …").
+ForceLog load_force_log(const std::string& path, std::size_t max_file_bytes = kMaxForceLogFileBytes);
 
 }  // namespace feedplan::force_log

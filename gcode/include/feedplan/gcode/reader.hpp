@@ -56,16 +56,21 @@
 // Problems found (all collected, up to a cap, into one InputError; each names the line and the
 // word): unknown or refused words; numbers that are not plain decimals (`X1..2`, `Xabc`, `X`, no
 // exponents); two words of one modal group, or a letter twice, in a block; a feed move with no
-// positive F in effect; an arc without I J or R, with a zero radius, with I J whose end radius
-// differs from its start radius by more than the tolerance, or with an R shorter than half the chord;
+// positive F in effect, or with M3/M4 and an S0 in effect (the spindle would not turn); an arc
+// without I J or R, with a zero radius, with I J whose end radius differs from its start radius by
+// more than the tolerance, or with an R shorter than half the chord;
 // unbalanced or nested comment parentheses; F in a block whose G20/G21 changes the units (LinuxCNC
-// would read that F in the old unit); a file that ends without M2, M30 or a closing % (optional).
+// would read that F in the old unit); a file that ends without M2, M30 or a closing % (optional);
+// what no machine takes: a number beyond ±1 000 000 (1 km in mm), a line of more than 4096 characters
+// (LinuxCNC reads 255), an arc of more than ReaderOptions::max_arc_turns turns, more than
+// ReaderOptions::max_moves moves, a file larger than ReaderOptions::max_file_bytes.
 //
 // What the output means: every G1/G2/G3 move is `cutting` because a reader cannot know which feed
 // moves cut and which move through air (that needs the stock: geometry/engagement does it);
 // axial_depth_mm is 0 for the same reason. All moves belong to part 0, named "program". Moves of
 // zero length (a G0/G1 to where the tool already is, or a block without axis words) are dropped.
 
+#include <cstddef>
 #include <filesystem>
 #include <string>
 
@@ -86,6 +91,15 @@ struct ReaderOptions {
   bool require_program_end = true;  //!< the text must end the program with M2, M30 or a closing %
                                     //!< (LinuxCNC's rule; catches truncated files); false accepts snippets
   int max_problems = 50;            //!< problems collected before the reader stops looking for more
+  //! Most turns of one G2/G3 (its P word): a deep helical bore takes a few hundred; a million turns
+  //! is one move that the planner and the virtual machine sample into gigabytes.
+  int max_arc_turns = 1000;
+  //! Most moves in a program: feedplan's own plans of its cycles take a few thousand; beyond this the
+  //! planner and the virtual machine need gigabytes (10⁵ tiny moves took more than 4 GB).
+  int max_moves = 50000;
+  //! Largest file load_program reads, bytes: a program of max_moves moves is a few MiB; /dev/zero or an
+  //! endless pipe would otherwise be read until memory runs out.
+  std::size_t max_file_bytes = std::size_t{64} << 20;
 };
 
 //! Parses RS274/NGC text (`source_name` — a file name, or e.g. "test" — prefixes every problem).
