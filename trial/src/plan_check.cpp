@@ -8,7 +8,7 @@ namespace feedplan::trial {
 
 PlanCheck check_on_virtual_machine(const std::string& program_text, const cycles::CycleSpec& spec,
                                    const cycles::Cycle& cycle, const planner::PlanResult& plan, double target_force_n,
-                                   const std::string& materials_path) {
+                                   const std::string& materials_path, const std::function<void(double)>& progress) {
   const sim::MaterialLibrary materials = sim::load_materials(materials_path);
   trial::VirtualMachine machine;
   machine.tool = spec.tool;
@@ -16,6 +16,8 @@ PlanCheck check_on_virtual_machine(const std::string& program_text, const cycles
   machine.stock = cycle.stock;
   machine.machine = spec.machine;
   machine.spindle_rpm = spec.spindle_rpm;
+  machine.keep_log = false;
+  machine.progress = progress;
   const trial::VirtualMachineRun run =
       trial::run_on_virtual_machine(gcode::read_program(program_text, "planned program"), machine, plan, target_force_n);
   PlanCheck check;
