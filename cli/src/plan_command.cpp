@@ -14,6 +14,7 @@
 #include "database_path.hpp"
 #include "model_choice.hpp"
 #include "output_path.hpp"
+#include "progress_bar.hpp"
 #include "feedplan/trial/plan_check.hpp"
 #include "feedplan/core/atomic_file.hpp"
 #include "feedplan/core/input_error.hpp"
@@ -292,8 +293,10 @@ std::string write_plan_outputs(const PlanCommandOptions& o, const PlanInputs& in
     out.written.push_back(o.program_path);
   }
   if (o.simulate && out.program.any()) {
+    ProgressBar progress("running the program on the virtual machine");
     out.check = trial::check_on_virtual_machine(text, in.spec, planned.cycle, planned.result, in.target_force_n,
-                                                o.materials_path.empty() ? bundled_materials_path() : o.materials_path);
+                                                o.materials_path.empty() ? bundled_materials_path() : o.materials_path,
+                                                [&progress](double fraction) { progress(fraction); });
   }
   return write_plan_files(o, in, planned, report_context(o, in, model, out.program, writer), out);
 }
