@@ -459,6 +459,8 @@ SimulationResult simulate(const SimulationRequest& request) {
   force_log::ForceLogInMemory in_memory(result.log);
   force_log::ForceLogSink& sink = request.log_sink ? *request.log_sink : in_memory;
   sink.begin(result.log);
+  // Kept whole: room for every row at once (growing by doubling would need up to twice as much).
+  if (!request.log_sink) result.log.rows.reserve(static_cast<std::size_t>(motion.duration_s() * request.options.log_rate_hz) + 2);
   MachineRun machine(request, motion, layers, clock, sink, progress, result);
   const ContactTotals contact = machine.run();
   summarize(result, request, motion, layers, layer_mm, clock.dt, contact);
