@@ -2,10 +2,10 @@
 // Internal to the virtual machine (milling_simulation.cpp): how much of a run is done, for
 // SimulationRequest::progress. A run has two parts whose share of the time depends on the program —
 // the stock's engagement (path length sampled over all layer bands) and the internal steps (each
-// summing the force over the layers the flutes reach) — so each part's work is weighted by what it
-// costs per unit on this code (measured on the pocket sample, bench/simulation_bench.cpp), and the
-// fraction reported is the weighted work done over the weighted work in all. A remaining-time
-// estimate from it is then right within tens of percent from the first report on.
+// summing the force over the layers the flutes reach) — so each part's work is weighted by a rough
+// cost per unit (run_progress.cpp), and the fraction reported is the weighted work done over the
+// weighted work in all: a remaining-time estimate from it holds across the switch from one part to
+// the other, instead of jumping there.
 
 #include <functional>
 

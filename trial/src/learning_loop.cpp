@@ -6,7 +6,8 @@ namespace feedplan::trial {
 
 namespace {
 
-// The virtual machine's share of a cycle's time (the trochoid sample: plan 0.1 s, cut 12 s, learn 2 s).
+// The virtual machine's share of a cycle's time, roughly: it steps through the whole program, while
+// planning and learning pass over it once each.
 constexpr double kCutShareOfCycle = 0.85;
 
 }  // namespace
