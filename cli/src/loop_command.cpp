@@ -12,6 +12,7 @@
 #include "model_choice.hpp"
 #include "number_flag.hpp"
 #include "output_path.hpp"
+#include "progress_bar.hpp"
 #include "feedplan/core/atomic_file.hpp"
 #include "feedplan/core/input_error.hpp"
 #include "feedplan/core/number_text.hpp"
@@ -125,20 +126,10 @@ trial::LoopRequest loop_request(const LoopOptions& o, const LoopInputs& in, cons
 
 // Runs the loop with a progress bar on a terminal.
 trial::LoopResult run_loop_with_progress(trial::LoopRequest request, int cycles) {
-  const bool terminal = ::isatty(STDERR_FILENO) != 0;
-  const auto show_progress = [&](int done) {
-    if (!terminal) return;
-    constexpr int kWidth = 30;
-    const int filled = kWidth * done / cycles;
-    std::fprintf(stderr, "\r[%.*s%.*s] %d/%d cycles planned, cut on the virtual machine and learned", filled,
-                 "##############################", kWidth - filled, "..............................", done, cycles);
-    std::fflush(stderr);
-  };
-  show_progress(0);
-  request.on_cycle_done = show_progress;
-  const trial::LoopResult result = trial::run_learning_loop(request);
-  if (terminal) std::fprintf(stderr, "\n");
-  return result;
+  ProgressBar progress(std::to_string(cycles) + (cycles == 1 ? " cycle" : " cycles") +
+                       " of plan, cut on the virtual machine, learn");
+  request.progress = [&progress](double fraction) { progress(fraction); };
+  return trial::run_learning_loop(request);
 }
 
 void print_loop_json(const LoopOptions& o, const LoopInputs& in, const ChosenModel& chosen, const trial::LoopResult& result) {

@@ -19,6 +19,7 @@
 #include "plan_baselines.hpp"
 #include "plan_outcome.hpp"
 #include "plan_summary.hpp"
+#include "progress_bar.hpp"
 #include "feedplan/trial/plan_check.hpp"
 #include "feedplan/core/atomic_file.hpp"
 #include "feedplan/core/input_error.hpp"
@@ -271,7 +272,9 @@ std::string write_plan_outputs(const PlanCommandOptions& o, const PlanInputs& in
   if (out.program.any() && !files.add(o.program_path, text)) return files.error();
   const std::string materials = o.materials_path.empty() ? bundled_materials_path() : o.materials_path;
   if (o.simulate && out.program.any()) {
-    out.check = trial::check_on_virtual_machine(text, in.spec, planned.cycle, planned.result, in.target_force_n, materials);
+    ProgressBar progress("running the program on the virtual machine");
+    out.check = trial::check_on_virtual_machine(text, in.spec, planned.cycle, planned.result, in.target_force_n, materials,
+                                                [&progress](double fraction) { progress(fraction); });
   }
   out.baselines = plan_baselines(in, planned, out.program.planned ? out.check : std::nullopt, materials);
   stage_plan_files(o, in, planned, report_context(o, in, model, out.program, writer), out, files);

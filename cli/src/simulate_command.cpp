@@ -4,6 +4,7 @@
 #include "number_flag.hpp"
 #include "output_files.hpp"
 #include "output_path.hpp"
+#include "progress_bar.hpp"
 
 #include <nlohmann/json.hpp>
 #include <unistd.h>
@@ -26,7 +27,9 @@
 #include "feedplan/geometry/tool_path.hpp"
 #include "feedplan/sim/cutting_test.hpp"
 #include "feedplan/force_log/force_log.hpp"
+#include "feedplan/force_log/force_log_file_writer.hpp"
 #include "feedplan/sim/force_plot.hpp"
+#include "feedplan/sim/force_plot_collector.hpp"
 #include "feedplan/sim/material.hpp"
 #include "feedplan/sim/milling_simulation.hpp"
 
@@ -125,29 +128,6 @@ geometry::Stock default_stock(const geometry::Program& program, double tool_radi
   return stock;
 }
 
-class ProgressBar {
- public:
-  ProgressBar() : started_(std::chrono::steady_clock::now()), terminal_(isatty(STDERR_FILENO) != 0) {}
-  void operator()(double fraction) {
-    if (!terminal_) return;
-    const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - started_).count();
-    if (elapsed < 1.0 && fraction < 1.0) return;
-    if (fraction >= 1.0 && !shown_) return;
-    shown_ = true;
-    const int width = 40;
-    const int filled = static_cast<int>(std::lround(std::clamp(fraction, 0.0, 1.0) * width));
-    std::fprintf(stderr, "\rsimulating [%s%s] %3d%%  %.0f s", std::string(filled, '#').c_str(),
-                 std::string(width - filled, '.').c_str(), static_cast<int>(std::lround(fraction * 100)), elapsed);
-    if (fraction >= 1.0) std::fprintf(stderr, "\n");
-    std::fflush(stderr);
-  }
-
- private:
-  std::chrono::steady_clock::time_point started_;
-  bool terminal_ = false;
-  bool shown_ = false;
-};
-
 // What the job runs with: flags, else the spec.
 struct SimulateInputs {
   std::optional<cycles::CycleSpec> spec;  // --spec
@@ -165,8 +145,10 @@ struct SimulationJob {
 
 // The simulation and its wall time.
 struct SimulationRun {
-  sim::SimulationResult result;  // log, revolutions, summary, warnings
+  sim::SimulationResult result;  // log header, revolutions, summary, warnings
   double wall_s = 0.0;           // wall time of the simulation, s
+  std::string log_error;         // why the log could not be written, or empty
+  sim::ForcePlotCollector plot;  // the force for --plot
 };
 
 // Every numeric flag against its range (the virtual machine's), named after the flag.
@@ -305,26 +287,38 @@ SimulationJob set_program(const SimulateOptions& options, const SimulateInputs& 
   return job;
 }
 
-// Runs the simulation with a progress bar on a terminal.
-SimulationRun run_simulation(sim::SimulationRequest request) {
-  ProgressBar progress;
+// Runs the simulation with a progress bar on a terminal. The log goes to its file as it is recorded
+// (and to the plot's collector with --plot): memory stays bounded however long the program.
+SimulationRun run_simulation(sim::SimulationRequest request, const SimulateOptions& options) {
+  SimulationRun run;
+  force_log::ForceLogFileWriter log_file(options.log_path);
+  if (!log_file.error().empty()) {
+    run.log_error = log_file.error();
+    return run;
+  }
+  std::vector<force_log::ForceLogSink*> sinks = {&log_file};
+  if (!options.plot_path.empty()) sinks.push_back(&run.plot);
+  force_log::ForceLogFanOut log(sinks);
+  request.log_sink = &log;
+  ProgressBar progress("simulating");
   request.progress = [&progress](double fraction) { progress(fraction); };
   const auto started = std::chrono::steady_clock::now();
-  SimulationRun run;
   run.result = sim::simulate(request);
   run.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+  run.log_error = log_file.finish();
   return run;
 }
 
-// Outputs: the log, --peaks, --plot, all staged and then put in place together (none when one cannot be
-// written). Returns the first error, or empty.
-std::string write_simulation_outputs(const SimulateOptions& options, const sim::SimulationResult& result,
-                                     const std::string& job) {
+// Outputs, each complete or untouched: the log (streamed to a staged file during the run and put in
+// place at its end), then --peaks and --plot, staged and put in place together. Returns the first error,
+// or empty.
+std::string write_simulation_outputs(const SimulateOptions& options, const SimulationRun& run, const std::string& job) {
+  const sim::SimulationResult& result = run.result;
+  if (!run.log_error.empty()) return run.log_error;
   OutputFiles files;
-  files.add(options.log_path, force_log::format_force_log(result.log));
   if (!options.peaks_path.empty()) files.add(options.peaks_path, force_log::format_revolution_peaks(result.revolutions));
   if (!options.plot_path.empty()) {
-    files.add(options.plot_path, sim::force_plot_svg(sim::force_plot_data(result.log, job, result.revolutions)));
+    files.add(options.plot_path, sim::force_plot_svg(run.plot.data(job, result.revolutions)));
   }
   return files.commit();
 }
@@ -349,7 +343,7 @@ void print_simulation_json(const SimulateOptions& options, const geometry::Tool&
   out["stock_layers"] = s.stock_layers;
   out["engagement_bands"] = s.engagement_bands;
   out["log"] = options.log_path;
-  out["log_rows"] = result.log.rows.size();
+  out["log_rows"] = s.log_rows;
   if (!options.plot_path.empty()) out["plot"] = options.plot_path;
   if (!options.peaks_path.empty()) out["peaks"] = options.peaks_path;
   out["wall_time_s"] = run.wall_s;
@@ -378,7 +372,7 @@ void print_simulation_text(const SimulateOptions& options, const geometry::Tool&
               "(%.1f simulated s per wall s)\n",
               s.steps, s.step_s * 1e6, s.stock_layers, s.engagement_bands, wall_s,
               wall_s > 0 ? s.cycle_time_s / wall_s : 0.0);
-  std::printf("force log (%zu rows) written to %s\n", result.log.rows.size(), options.log_path.c_str());
+  std::printf("force log (%lld rows) written to %s\n", s.log_rows, options.log_path.c_str());
   if (!options.peaks_path.empty()) {
     std::printf("per-revolution peaks (%zu) written to %s\n", result.revolutions.size(), options.peaks_path.c_str());
   }
@@ -434,8 +428,8 @@ int run_simulate_command(const SimulateOptions& options) {
   sim::SimulationRequest request = simulation_request(options, in, material);
   const SimulationJob job = options.cutting_test ? set_cutting_test(options, in, request) : set_program(options, in, request);
   request.log_metadata.push_back({"material", material.name});
-  const SimulationRun run = run_simulation(std::move(request));
-  if (const std::string error = write_simulation_outputs(options, run.result, job.name); !error.empty()) {
+  const SimulationRun run = run_simulation(std::move(request), options);
+  if (const std::string error = write_simulation_outputs(options, run, job.name); !error.empty()) {
     std::cerr << "feedplan: failed: " << error << "\n";
     return 1;
   }

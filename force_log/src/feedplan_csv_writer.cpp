@@ -11,6 +11,7 @@
 #include "feedplan/core/number_text.hpp"
 #include "feedplan/force_log/force_log.hpp"
 #include "log_columns.hpp"
+#include "log_text.hpp"
 
 namespace feedplan::force_log {
 
@@ -34,9 +35,7 @@ std::string one_line(std::string text) {
 
 }  // namespace
 
-std::string format_force_log(const ForceLog& log) {
-  std::string out;
-  out.reserve(128 + log.rows.size() * (log.has_currents ? 110 : 80));
+void detail::append_force_log_header(std::string& out, const ForceLog& log) {
   for (const auto& [key, value] : log.metadata) {
     std::string clean_key = one_line(key);
     std::replace(clean_key.begin(), clean_key.end(), ':', '_');
@@ -48,17 +47,26 @@ std::string format_force_log(const ForceLog& log) {
     out += kColumnNames[c];
   }
   out += '\n';
-  for (const ForceLogRow& row : log.rows) {
-    for (int c = 0; c < column_count; ++c) {
-      if (c > 0) out += ',';
-      const bool omitted = (!log.has_positions && (c == kX || c == kY || c == kZ)) ||
-                           (!log.has_forces && (c == kFx || c == kFy || c == kFz));
-      const double value = cell_of(row, c);
-      if (omitted || std::isnan(value)) continue;  // empty cell: not recorded
-      append_fixed(out, value, kDecimals[c]);
-    }
-    out += '\n';
+}
+
+void detail::append_force_log_row(std::string& out, const ForceLog& log, const ForceLogRow& row) {
+  const int column_count = log.has_currents ? kColumnCount : kIx;
+  for (int c = 0; c < column_count; ++c) {
+    if (c > 0) out += ',';
+    const bool omitted = (!log.has_positions && (c == kX || c == kY || c == kZ)) ||
+                         (!log.has_forces && (c == kFx || c == kFy || c == kFz));
+    const double value = cell_of(row, c);
+    if (omitted || std::isnan(value)) continue;  // empty cell: not recorded
+    append_fixed(out, value, kDecimals[c]);
   }
+  out += '\n';
+}
+
+std::string format_force_log(const ForceLog& log) {
+  std::string out;
+  out.reserve(128 + log.rows.size() * (log.has_currents ? 110 : 80));
+  append_force_log_header(out, log);
+  for (const ForceLogRow& row : log.rows) append_force_log_row(out, log, row);
   return out;
 }
 

@@ -33,10 +33,10 @@ void LogResampler::add(const force_log::ForceLogRow& step_row) {
     if (!have_previous_row_ || t <= previous_row_.t_s) {
       force_log::ForceLogRow out = step_row;
       out.t_s = tl;
-      log_.rows.push_back(out);
+      sink_.add(out);
     } else {
       const double w = (tl - previous_row_.t_s) / (t - previous_row_.t_s);
-      log_.rows.push_back(interpolated(previous_row_, step_row, tl, w));
+      sink_.add(interpolated(previous_row_, step_row, tl, w));
     }
     ++next_log_;
   }

@@ -5,21 +5,25 @@
 // taken from the nearer step).
 
 #include "feedplan/force_log/force_log.hpp"
+#include "feedplan/force_log/force_log_sink.hpp"
 
 namespace feedplan::sim::detail {
 
-//! Writes log rows into a ForceLog as internal steps arrive.
+//! Hands log rows to a sink as internal steps arrive.
 class LogResampler {
  public:
-  //! Rows go to `log`, which must outlive the object, at `log_rate_hz` (> 0).
-  LogResampler(force_log::ForceLog& log, double log_rate_hz) : log_(log), log_dt_(1.0 / log_rate_hz) {}
+  //! Rows go to `sink`, which must outlive the object, at `log_rate_hz` (> 0).
+  LogResampler(force_log::ForceLogSink& sink, double log_rate_hz) : sink_(sink), log_dt_(1.0 / log_rate_hz) {}
 
   //! Takes the readings of the next internal step (times increasing) and writes every log row due up
   //! to its time.
   void add(const force_log::ForceLogRow& step_row);
 
+  //! Rows written so far.
+  long long rows() const { return next_log_; }
+
  private:
-  force_log::ForceLog& log_;
+  force_log::ForceLogSink& sink_;
   double log_dt_;
   long long next_log_ = 0;
   force_log::ForceLogRow previous_row_;

@@ -11,6 +11,7 @@
 #include "feedplan/sim/layered_engagement.hpp"
 #include "log_resampler.hpp"
 #include "revolution_statistics.hpp"
+#include "run_progress.hpp"
 
 namespace feedplan::sim {
 
@@ -92,6 +93,7 @@ void check_options(std::vector<InputProblem>& problems, const SimulationOptions&
         {"options.engagement_ds_mm", "= " + six_digit_number_text(o.engagement_ds_mm) + ": must be ≥ 0.001"});
   }
   check_positive(problems, "options.log_rate_hz", o.log_rate_hz, "force log sample rate");
+  check_non_negative(problems, "options.recut_tolerance_mm", o.recut_tolerance_mm, "distance of a re-cutting track");
   check_non_negative(problems, "options.flute_length_mm", o.flute_length_mm, "0 means longer than any cut");
   check_non_negative(problems, "options.default_spindle_rpm", o.default_spindle_rpm, "spindle speed for blocks without S");
   if (!o.runout_mm.empty() && static_cast<int>(o.runout_mm.size()) != tool.flutes) {
@@ -216,6 +218,17 @@ std::string tool_name(const geometry::Tool& tool) {
   return name;
 }
 
+// The stock layers the flutes may reach: from the lowest feed-move tip (or the stock bottom) to the
+// stock top (LayeredEngagement's layers, known before they are computed).
+int expected_layers(const SimulationRequest& request, double layer_mm) {
+  double lowest = request.stock.z_top_mm;
+  for (const auto& move : request.program.path.moves) {
+    if (move.kind != geometry::MoveKind::kRapid) lowest = std::min({lowest, move.start.z_mm, move.end.z_mm});
+  }
+  const double depth_mm = request.stock.z_top_mm - std::max(lowest, request.stock.z_bottom_mm);
+  return static_cast<int>(std::ceil(std::max(depth_mm, 0.0) / layer_mm));
+}
+
 // Step 3. The log's header: where it comes from, its rate, the tool and the spindle speed, then the
 // request's own entries.
 void start_log(force_log::ForceLog& log, const SimulationRequest& request, double max_rpm) {
@@ -251,7 +264,8 @@ struct ContactTotals {
 class MachineRun {
  public:
   MachineRun(const SimulationRequest& request, const MotionProfile& motion, const LayeredEngagement& layers,
-             const StepClock& clock, SimulationResult& result)
+             const StepClock& clock, force_log::ForceLogSink& log, detail::RunProgress& progress,
+             SimulationResult& result)
       : request_(request),
         motion_(motion),
         clock_(clock),
@@ -262,10 +276,11 @@ class MachineRun {
                            ? std::max<long long>(1, std::llround(request.override_loop.period_s / clock.dt))
                            : 0),
         contact_(request, layers, clock.steps_per_tooth),
-        log_(result.log, request.options.log_rate_hz) {}
+        log_(log, request.options.log_rate_hz),
+        progress_(progress) {}
 
-  // Runs every step; fills the result's log rows, revolutions, max_force_z_n, steps and the warning
-  // of a run stopped by the override. Returns the time in contact.
+  // Runs every step; gives the log its rows, fills the result's revolutions, max_force_z_n, steps,
+  // log_rows and the warning of a run stopped by the override. Returns the time in contact.
   ContactTotals run();
 
  private:
@@ -289,12 +304,12 @@ class MachineRun {
   long long control_every_;
   detail::CutterContact contact_;
   detail::LogResampler log_;
+  detail::RunProgress& progress_;
   detail::RevolutionStatistics revolutions_;
   ContactTotals contact_totals_;
   double omega_angle_ = 0.0;     // spindle angle Ω, rad
   double tau_ = 0.0;             // time along the planned motion (differs from t under a feed override)
   double last_direction_ = 0.0;  // feed direction of the last feed move, rad
-  double next_progress_ = 0.0;
 };
 
 ContactTotals MachineRun::run() {
@@ -320,7 +335,8 @@ ContactTotals MachineRun::run() {
     }
   }
   result_.revolutions = revolutions_.finish(result_.summary.steps * clock_.dt);
-  if (request_.progress) request_.progress(1.0);
+  result_.summary.log_rows = log_.rows();
+  progress_.finish();
   return contact_totals_;
 }
 
@@ -384,13 +400,9 @@ void MachineRun::control(long long step, const StepState& now, const SensorReadi
   override_channel_->command(request_.override_loop.controller(input));
 }
 
-// The fraction of planned time done, about every 1 %.
+// The fraction of planned time done.
 void MachineRun::report_progress() {
-  const double done = motion_.duration_s() > 0.0 ? tau_ / motion_.duration_s() : 1.0;
-  if (request_.progress && done >= next_progress_) {
-    request_.progress(done);
-    next_progress_ = done + 0.01;
-  }
+  progress_.motion(motion_.duration_s() > 0.0 ? tau_ / motion_.duration_s() : 1.0);
 }
 
 // Step 5. The totals of the run.
@@ -407,6 +419,7 @@ void summarize(SimulationResult& result, const SimulationRequest& request, const
   summary.stock_layers = layers.layer_count();
   summary.layer_thickness_mm = layer_mm;
   summary.engagement_bands = layers.band_count();
+  summary.engagement_samples = static_cast<long long>(layers.samples_computed());
 }
 
 }  // namespace
@@ -431,13 +444,24 @@ SimulationResult simulate(const SimulationRequest& request) {
   const MotionProfile motion = plan_motion(request.program, request.machine);
   SimulationResult result;
   const double layer_mm = layer_thickness_mm(request.program.path, request.options.layer_thickness_mm);
-  const LayeredEngagement layers(request.program.path, request.stock, request.tool.radius_mm(),
-                                 {.layer_thickness_mm = layer_mm, .ds_mm = request.options.engagement_ds_mm});
+  const StepClock clock = step_clock(request, motion);
+  detail::RunProgress progress(request.progress, clock.total_steps, expected_layers(request, layer_mm),
+                               request.options.engagement_ds_mm);
+  LayerOptions layer_options;
+  layer_options.layer_thickness_mm = layer_mm;
+  layer_options.ds_mm = request.options.engagement_ds_mm;
+  layer_options.recut_tolerance_mm = request.options.recut_tolerance_mm;
+  layer_options.progress = [&progress](double done_mm, double total_mm) { progress.engagement(done_mm, total_mm); };
+  const LayeredEngagement layers(request.program.path, request.stock, request.tool.radius_mm(), layer_options);
   result.warnings = layers.warnings();
   if (auto warning = m4_warning(request.program)) result.warnings.push_back(std::move(*warning));
-  const StepClock clock = step_clock(request, motion);
-  MachineRun machine(request, motion, layers, clock, result);
   start_log(result.log, request, clock.max_rpm);
+  force_log::ForceLogInMemory in_memory(result.log);
+  force_log::ForceLogSink& sink = request.log_sink ? *request.log_sink : in_memory;
+  sink.begin(result.log);
+  // Kept whole: room for every row at once (growing by doubling would need up to twice as much).
+  if (!request.log_sink) result.log.rows.reserve(static_cast<std::size_t>(motion.duration_s() * request.options.log_rate_hz) + 2);
+  MachineRun machine(request, motion, layers, clock, sink, progress, result);
   const ContactTotals contact = machine.run();
   summarize(result, request, motion, layers, layer_mm, clock.dt, contact);
   return result;

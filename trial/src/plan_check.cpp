@@ -20,8 +20,10 @@ VirtualMachine virtual_machine_for(const cycles::CycleSpec& spec, const cycles::
 
 PlanCheck check_on_virtual_machine(const std::string& program_text, const cycles::CycleSpec& spec,
                                    const cycles::Cycle& cycle, const planner::PlanResult& plan, double target_force_n,
-                                   const std::string& materials_path) {
-  const VirtualMachine machine = virtual_machine_for(spec, cycle, materials_path);
+                                   const std::string& materials_path, const std::function<void(double)>& progress) {
+  VirtualMachine machine = virtual_machine_for(spec, cycle, materials_path);
+  machine.keep_log = false;
+  machine.progress = progress;
   const trial::VirtualMachineRun run =
       trial::run_on_virtual_machine(gcode::read_program(program_text, "planned program"), machine, plan, target_force_n);
   PlanCheck check;

@@ -4,6 +4,17 @@
 
 namespace feedplan::trial {
 
+namespace {
+
+// A force log nobody reads: the run's peaks and summary are all that is kept.
+class RowsDropped final : public force_log::ForceLogSink {
+ public:
+  void begin(const force_log::ForceLog&) override {}
+  void add(const force_log::ForceLogRow&) override {}
+};
+
+}  // namespace
+
 VirtualMachineRun run_on_virtual_machine(const geometry::Program& program, const VirtualMachine& machine,
                                          const planner::PlanResult& plan, double target_force_n) {
   sim::SimulationRequest request;
@@ -14,6 +25,9 @@ VirtualMachineRun run_on_virtual_machine(const geometry::Program& program, const
   request.machine = machine.machine;
   request.options.default_spindle_rpm = machine.spindle_rpm;
   request.sensors = machine.sensors;
+  request.progress = machine.progress;
+  RowsDropped dropped;
+  if (!machine.keep_log) request.log_sink = &dropped;
   VirtualMachineRun run;
   run.simulation = sim::simulate(request);
 

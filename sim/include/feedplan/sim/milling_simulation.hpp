@@ -16,6 +16,7 @@
 #include "feedplan/sim/cutting_coefficients.hpp"
 #include "feedplan/sim/feed_override.hpp"
 #include "feedplan/force_log/force_log.hpp"
+#include "feedplan/force_log/force_log_sink.hpp"
 #include "feedplan/sim/motion_profile.hpp"
 #include "feedplan/force_log/revolution_peaks.hpp"
 #include "feedplan/sim/sensors.hpp"
@@ -33,6 +34,11 @@ struct SimulationOptions {
   std::vector<double> runout_mm;
   double flute_length_mm = 0.0;  //!< cutting length above the tip, mm; 0: longer than any cut
   double log_rate_hz = 10000.0;  //!< force log sample rate, Hz
+  //! How far a flat track may lie from a helix track it re-cuts for the layers between to share the
+  //! lowest layer's engagement from there on, mm (LayerOptions::recut_tolerance_mm). The default is
+  //! exact. 0.2 lets a pocket read back from 3-decimal G-code share (10× faster), at the price of the
+  //! slivers its moved arc centres leave at the bore wall seen on every layer, not on the lowest.
+  double recut_tolerance_mm = 1e-9;
   //! Spindle speed for blocks that give none (no S word), rev/min; 0: such a block cutting is an error.
   double default_spindle_rpm = 0.0;
 };
@@ -67,7 +73,12 @@ struct SimulationRequest {
   SimulationOptions options;          //!< resolution, runout, log rate
   OverrideLoop override_loop;         //!< optional feedback controller on the feed override
   std::vector<std::pair<std::string, std::string>> log_metadata;  //!< extra `# key: value` lines
-  //! Called with the fraction of program time done (0..1), about every 1 % and at the end.
+  //! Where the force log goes as it is recorded (header first, then every row; must outlive the run):
+  //! a file, a plot, nothing. Null: kept whole in SimulationResult::log — about 100 bytes per row,
+  //! 0.1 GB per 2 minutes at 10 kHz. With a sink the result's log holds the header and no rows.
+  force_log::ForceLogSink* log_sink = nullptr;
+  //! Called with the fraction of the whole run done (0..1, the stock's engagement and the program's
+  //! time weighted by their expected cost), at least every 1 % and at the end; may be empty.
   std::function<void(double)> progress;
 };
 
@@ -81,16 +92,19 @@ struct SimulationSummary {
   double mean_force_in_contact_n = 0.0; //!< mean |F_xy| while in contact, N
   double max_force_z_n = 0.0;      //!< largest |F_z|, N
   long long steps = 0;             //!< internal steps simulated
+  long long log_rows = 0;          //!< force log rows recorded (kept or given to the sink)
   double step_s = 0.0;             //!< internal step, s
   int stock_layers = 0;            //!< axial layers of the stock
   double layer_thickness_mm = 0.0; //!< layer thickness used, mm
   int engagement_bands = 0;        //!< distinct engagement computations
+  long long engagement_samples = 0;  //!< engagement samples computed over all bands
 };
 
 //! Result of a run. Warnings are things a user must see but that do not stop the run (a rapid into
 //! material, feeding into material with the spindle stopped, M4 with a right-hand cutter).
 struct SimulationResult {
-  force_log::ForceLog log;                                //!< sensor readings at options.log_rate_hz
+  //! Sensor readings at options.log_rate_hz: header and rows, or the header only with a log_sink.
+  force_log::ForceLog log;
   //! One per spindle revolution (by the simulated spindle angle), from the true force — unfiltered
   //! and noise-free, at every internal step.
   std::vector<force_log::RevolutionPeak> revolutions;

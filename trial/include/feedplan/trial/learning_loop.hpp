@@ -32,6 +32,9 @@ struct LoopRequest {
   bool path_correction = true;
   //! Called after each cycle with its number (1-based); may be empty.
   std::function<void(int)> on_cycle_done;
+  //! Called with the fraction of the whole loop done (0..1) while the virtual machine cuts and after
+  //! each cycle's learning; may be empty.
+  std::function<void(double)> progress;
 };
 
 //! One cycle.

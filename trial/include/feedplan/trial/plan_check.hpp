@@ -3,6 +3,7 @@
 // by the G-code reader, first-principles forces for the spec's material — not the planner's model) and
 // compare its per-revolution peak forces with the target along the plan.
 
+#include <functional>
 #include <string>
 
 #include "feedplan/cycles/cycle.hpp"
@@ -28,10 +29,11 @@ VirtualMachine virtual_machine_for(const cycles::CycleSpec& spec, const cycles::
 
 //! Reads `program_text` back (gcode::read_program), simulates it on `cycle.stock` with the spec's tool,
 //! machine limits and the material `spec.material` from the materials file at `materials_path`, and
-//! compares the true per-revolution peaks with `target_force_n` along `plan`. Throws InputError when the
-//! material is unknown to the virtual machine.
+//! compares the true per-revolution peaks with `target_force_n` along `plan`, the force log not kept
+//! (bounded memory). `progress`, if set, is called with the fraction of the simulation done. Throws
+//! InputError when the material is unknown to the virtual machine.
 PlanCheck check_on_virtual_machine(const std::string& program_text, const cycles::CycleSpec& spec,
                                    const cycles::Cycle& cycle, const planner::PlanResult& plan, double target_force_n,
-                                   const std::string& materials_path);
+                                   const std::string& materials_path, const std::function<void(double)>& progress = {});
 
 }  // namespace feedplan::trial

@@ -3,6 +3,8 @@
 // model) and comparing its true per-revolution peaks with the plan's target — what `feedplan plan
 // --simulate` reports and what `feedplan loop` learns from.
 
+#include <functional>
+
 #include "feedplan/cycles/spec.hpp"
 #include "feedplan/geometry/program.hpp"
 #include "feedplan/geometry/stock.hpp"
@@ -22,11 +24,16 @@ struct VirtualMachine {
   geometry::MachineLimits machine;          //!< feed, acceleration and rapid limits
   double spindle_rpm = 0.0;               //!< for blocks without S, rev/min
   sim::SensorOptions sensors;             //!< what is logged (dynamometer by default)
+  //! Keep the force log's rows in the run (learning reads them); false: only its header, the
+  //! per-revolution peaks and the summary — what `plan --simulate` needs, in bounded memory.
+  bool keep_log = true;
+  //! Called with the fraction of the simulation done (sim::SimulationRequest::progress); may be empty.
+  std::function<void(double)> progress;
 };
 
 //! One run.
 struct VirtualMachineRun {
-  sim::SimulationResult simulation;       //!< log, true per-revolution peaks, summary
+  sim::SimulationResult simulation;       //!< log (rows only with keep_log), true per-revolution peaks, summary
   planner::PeakComparison comparison;     //!< true peaks against the target along the plan
 };
 
