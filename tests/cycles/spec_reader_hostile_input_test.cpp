@@ -90,6 +90,12 @@ TEST(SpecReaderHostileInput, TextThatIsNotUtf8IsRefused) {
               HasSubstr("material (line 5) = \"S50C ?\": is not UTF-8 text (byte 6 is 0xFF)"));
 }
 
+// Found by libFuzzer: a key with a byte that is not UTF-8 was quoted into the message as it stood.
+TEST(SpecReaderHostileInput, ProblemsShowBytesThatAreNotUtf8AsQuestionMarks) {
+  EXPECT_THAT(error_of(kTrochoid + "tool: {diameter_mm: 10, flutes: 4}\nsolid\xc4 S51C: 1\n"),
+              HasSubstr("solid? S51C (line 5) is not a known field"));
+}
+
 // /dev/zero as the spec: read until memory ran out.
 TEST(SpecReaderHostileInput, FilesAreReadUpToTheSizeLimit) {
   try {
