@@ -29,7 +29,7 @@ sim::SimulationRequest trochoid_request() {
   }
   request.stock = cycle.stock;
   request.tool = spec.tool;
-  request.coefficients.ktc_n_per_mm2 = 2000;  // DESIGN.md §6.2 medium-carbon steel
+  request.coefficients.ktc_n_per_mm2 = 2000;  // docs/method.md §6.2 medium-carbon steel
   request.coefficients.krc_n_per_mm2 = 600;
   request.coefficients.kac_n_per_mm2 = 300;
   request.coefficients.kte_n_per_mm = 20;

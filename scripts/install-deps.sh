@@ -9,7 +9,7 @@ packages=(
   libceres-dev libsqlite3-dev
   libcli11-dev libyaml-cpp-dev nlohmann-json3-dev libfmt-dev
   libgtest-dev libgmock-dev libbenchmark-dev
-  linuxcnc-uspace  # rs274, LinuxCNC's interpreter: the oracle of the G-code tests (DESIGN.md §7)
+  linuxcnc-uspace  # rs274, LinuxCNC's interpreter: the oracle of the G-code tests (docs/method.md §7)
   clang libclang-rt-14-dev llvm  # libFuzzer, the ASan/UBSan runtimes, llvm-symbolizer (readable stacks): tests/fuzz/run-fuzzers.sh
 )
 

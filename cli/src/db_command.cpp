@@ -101,7 +101,7 @@ void print_model(const mdb::ModelRecord& m) {
               m.fit.loo_rmse_n);
 }
 
-// Straight-cut model inputs for radial depth a_e and feed per tooth f_z (DESIGN.md §5.1).
+// Straight-cut model inputs for radial depth a_e and feed per tooth f_z (docs/method.md §5.1).
 std::pair<double, double> straight_cut_inputs(double tool_radius_mm, double radial_depth_mm, double feed_per_tooth_mm) {
   const double engagement = radial_depth_mm >= 2.0 * tool_radius_mm
                                 ? kPi

@@ -396,7 +396,7 @@ void add_simulate_command(CLI::App& app, SimulateOptions& options) {
   cmd->add_option("--stock", options.stock_path,
                   "Workpiece: a stock YAML (stock: {z_bottom_mm, z_top_mm, regions}) or a cycle spec; default: a "
                   "solid block around the program below z = 0");
-  cmd->add_option("--log", options.log_path, "Force log to write (CSV, DESIGN.md §4)")->required();
+  cmd->add_option("--log", options.log_path, "Force log to write (CSV, docs/method.md §4)")->required();
   cmd->add_option("--plot", options.plot_path, "Plot of the force to write (SVG)");
   cmd->add_option("--peaks", options.peaks_path, "Per-revolution peak and mean |F_xy| to write (CSV, true force)");
   cmd->add_flag("--json", options.json, "Print the summary as JSON");

@@ -291,7 +291,7 @@ void finish_walls(const PocketSpec& spec, const PocketPlan& p, const ZLevels& z,
   follow_walls(b, w, spec.depth_mm);
   leave_walls(b, w, z);
   detail::append(cycle.path, b.finish(), "walls: ");
-  // Thickest wall stock: at the corners, measured from the slot end centre (DESIGN: round slot ends).
+  // Thickest wall stock: at the corners, measured from the slot end centre (round slot ends).
   const double s2 = 0.5 * p.short_side;
   const double thickest = std::sqrt(2.0) * (s2 - spec.corner_radius_mm) + spec.corner_radius_mm - p.rough_radius;
   if (thickest > p.allowance + 1e-6) {

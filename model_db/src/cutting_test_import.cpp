@@ -89,7 +89,7 @@ void check_input(const CuttingTestConditions& conditions, const geometry::Tool& 
 void require_force_samples(const force_log::ForceLog& log, const std::string& source) {
   if (!log.has_forces) {
     throw InputError(source, "has no force columns (fx_n, fy_n): a cutting test needs measured forces — turn servo "
-                             "currents into forces with a calibration first (DESIGN.md §6.4)");
+                             "currents into forces with a calibration first (docs/method.md §6.4)");
   }
   if (log.rows.empty()) throw InputError(source, "has no samples");
 }
@@ -314,7 +314,7 @@ void fill_statistics(const std::vector<force_log::RevolutionPeak>& peaks, const 
   record.peak_std_n = found > 1 ? std::sqrt(squares / (found - 1)) : 0.0;
 }
 
-//! Model inputs (DESIGN.md §5.1): straight cut, f_z at the tool centre.
+//! Model inputs (docs/method.md §5.1): straight cut, f_z at the tool centre.
 void fill_model_inputs(const CuttingTestConditions& conditions, const geometry::Tool& tool,
                        CuttingTestRecord& record) {
   const double radius_mm = tool.radius_mm();

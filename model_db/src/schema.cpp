@@ -8,7 +8,7 @@
 namespace feedplan::model_db::detail {
 namespace {
 
-// Version 1: everything. Column names carry units (DESIGN.md §3). The CHECK constraints repeat the
+// Version 1: everything. Column names carry units (docs/method.md §3). The CHECK constraints repeat the
 // validate() rules as a last line of defence for files written by other programs.
 const char* const kVersion1 = R"sql(
 CREATE TABLE tools (

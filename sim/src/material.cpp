@@ -217,7 +217,7 @@ void read_size_effect(Reader& in, const YAML::Node& node, const std::string& pat
     return;
   }
   SizeEffectFields read;
-  read.exponent = in.number(size, size_path, "exponent", "size-effect exponent m_c (DESIGN §6.2: ≈ 0.13 steel, 0 = off)");
+  read.exponent = in.number(size, size_path, "exponent", "size-effect exponent m_c (docs/method.md §6.2: ≈ 0.13 steel, 0 = off)");
   read.reference_chip_mm =
       in.number(size, size_path, "reference_chip_mm", "chip thickness in mm at which the K*c values hold");
   if (size["min_chip_mm"]) {

@@ -147,7 +147,7 @@ std::vector<double> junction_speeds_squared(const geometry::Program& program, co
   return u;
 }
 
-// Step 4. Look-ahead: forward then backward pass on u = v² at the junctions (DESIGN.md §5.5).
+// Step 4. Look-ahead: forward then backward pass on u = v² at the junctions (docs/method.md §5.5).
 void look_ahead(std::vector<double>& u, const std::vector<MoveTiming>& timings, const std::vector<std::size_t>& real,
                 double accel) {
   const std::size_t m = real.size();

@@ -1,4 +1,4 @@
-// Honest summaries (issue 13): regression tests for what a new user found.
+// Honest summaries: regression tests for what a new user found.
 //   - `plan --simulate` leads with the largest per-revolution peak anywhere, and where: checked against
 //     the per-revolution peaks CSV and the force log `feedplan simulate` writes for the same program;
 //   - a borrowed model is a status and plans cautiously: the relative differences computed by hand, the

@@ -1,5 +1,5 @@
 // Corner rounding generator: the tool-centre path against the closed-form offsets of the finished
-// walls, and the engagement in its steady parts against the analytic oracle of DESIGN.md §5.1
+// walls, and the engagement in its steady parts against the analytic oracle of docs/method.md §5.1
 // (which needs the implied stock to be concentric with the finished corner).
 
 #include "feedplan/cycles/corner.hpp"
@@ -95,7 +95,7 @@ TEST(Corner, SteadyEngagementMatchesTheAnalyticOracle) {
     if (s.move_index == static_cast<int>(wall1) && std::abs(s.position.x_mm + 25.0) < 0.03) wall_middle = s.engagement_rad;
     if (s.move_index == static_cast<int>(corner)) corner_max = std::max(corner_max, s.engagement_rad);
   }
-  // DESIGN.md §5.1: straight R_d 1.5, r 5 → acos(1 − 0.3) = 45.57°; internal R 10 / R_d 1.5 → 63.58°.
+  // docs/method.md §5.1: straight R_d 1.5, r 5 → acos(1 − 0.3) = 45.57°; internal R 10 / R_d 1.5 → 63.58°.
   EXPECT_NEAR(rad_to_deg(wall_middle), 45.573, 0.01);
   EXPECT_NEAR(rad_to_deg(corner_max), 63.58, 0.01);
 }

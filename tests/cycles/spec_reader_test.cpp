@@ -19,7 +19,7 @@ namespace {
 
 const std::string kTool = "tool: {diameter_mm: 10, flutes: 4, helix_deg: 30, name: \"SC EM D10 Z4\"}\n";
 
-// The example of DESIGN.md §4, with the loop centres of seed 003 Table 2.
+// The example of docs/method.md §4, with the loop centres of seed 003 Table 2.
 const std::string kDesignExample =
     "cycle: trochoid\n"
     "tool: {diameter_mm: 10, flutes: 4, helix_deg: 30, name: \"SC EM D10 Z4\"}\n"

@@ -1,4 +1,4 @@
-// Force logs: the written format (DESIGN.md §4), round trips, every reader error with its line and
+// Force logs: the written format (docs/method.md §4), round trips, every reader error with its line and
 // column, and real Kistler DynoWare exports (tests/data/kistler, excerpts of data/kistler_slot).
 
 #include "feedplan/force_log/force_log.hpp"

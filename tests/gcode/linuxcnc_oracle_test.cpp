@@ -1,4 +1,4 @@
-// Oracle test (DESIGN.md §7): the reader against LinuxCNC's own interpreter. `rs274 -g in.ngc out.txt`
+// Oracle test (docs/method.md §7): the reader against LinuxCNC's own interpreter. `rs274 -g in.ngc out.txt`
 // (Debian package linuxcnc-uspace) writes the canonical machining calls it would make —
 // STRAIGHT_TRAVERSE, STRAIGHT_FEED, ARC_FEED, SET_FEED_RATE, DWELL, spindle calls — and exits 1 on a
 // program it rejects. Every program in tests/data/gcode/ is read by both: the moves must agree (end

@@ -1,5 +1,5 @@
 #pragma once
-// LinuxCNC's G-code interpreter as a test oracle (DESIGN.md §7), shared by the reader's and the
+// LinuxCNC's G-code interpreter as a test oracle (docs/method.md §7), shared by the reader's and the
 // writer's oracle tests. `rs274 -g in.ngc out.txt` (Debian package linuxcnc-uspace) writes the
 // canonical machining calls it would make — STRAIGHT_TRAVERSE, STRAIGHT_FEED, ARC_FEED,
 // SET_FEED_RATE, DWELL, spindle calls, COMMENT, MESSAGE — and exits 1 on a program it rejects.

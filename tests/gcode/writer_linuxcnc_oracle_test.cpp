@@ -1,4 +1,4 @@
-// Oracle test (DESIGN.md §7): what the writer emits, run through LinuxCNC's interpreter (rs274) and
+// Oracle test (docs/method.md §7): what the writer emits, run through LinuxCNC's interpreter (rs274) and
 // read back with our reader, against the program it was written from.
 //
 // Programs: a hand-built one (lines, arcs both ways, a helix of 2.5 turns, a full circle, short moves,

@@ -1,4 +1,4 @@
-// Oracle test: the exact engagement kernel against the closed forms of DESIGN.md §5.1 on steady
+// Oracle test: the exact engagement kernel against the closed forms of docs/method.md §5.1 on steady
 // straight cuts and steady internal and external arcs.
 
 #include <gtest/gtest.h>
@@ -40,7 +40,7 @@ Move arc(Point2 center, double radius_mm, double from_rad, double sweep_rad, boo
   return m;
 }
 
-// The DESIGN.md §5.1 reference values, checked against the closed forms themselves.
+// The docs/method.md §5.1 reference values, checked against the closed forms themselves.
 TEST(AnalyticEngagement, DesignReferenceValues) {
   EXPECT_NEAR(rad_to_deg(internal_arc_engagement_rad(5, 20, 1.5)), 52.05, 0.005);
   EXPECT_NEAR(rad_to_deg(internal_arc_engagement_rad(5, 10, 1.5)), 63.58, 0.005);

@@ -1,6 +1,6 @@
 #pragma once
 // Brute-force engagement oracle for tests, written independently of the library's kernels: it
-// samples the tool circle densely and asks, for each point, the defining question of DESIGN.md
+// samples the tool circle densely and asks, for each point, the defining question of docs/method.md
 // §5.2 — inside the initial stock, and farther than the sweep radius from every earlier tool
 // position at or below the evaluation height? Transitions between engaged and free points are then
 // refined by bisection. Distances to earlier moves are point-to-segment and point-to-arc; a move

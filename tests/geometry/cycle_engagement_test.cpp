@@ -93,7 +93,7 @@ TEST_P(TrochoidEngagement, LoopMaximaMatchOracleAndBackIsFree) {
                 rad_to_deg(profile_max), rad_to_deg(oracle_max));
     if (loop_number > 1) {
       // Steady loops cut one pitch into the previous loop's wall: the internal-arc closed form with
-      // the wall radius R_t + r and R_d = p bounds the maximum from below (DESIGN.md §5.2).
+      // the wall radius R_t + r and R_d = p bounds the maximum from below (docs/method.md §5.2).
       EXPECT_GE(profile_max + 1e-6, internal_arc_engagement_rad(5.0, loop_radius + 5.0, 1.0));
     }
     // Back of the loop: angle about the loop centre between 100° and 260° from the slot direction.

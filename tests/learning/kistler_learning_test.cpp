@@ -1,4 +1,4 @@
-// Real data (issue 6 acceptance): two Kistler DynoWare recordings of slot milling (300 and 1500 mm/min,
+// Real data: two Kistler DynoWare recordings of slot milling (300 and 1500 mm/min,
 // tests/data/kistler_full/) are treated as the logs of a straight-slot plan at those feeds; the refit
 // must move the model's prediction at the third recording's feed (900 mm/min) toward its measured
 // per-revolution peak, 495.4 N (worked out independently, tests/data/kistler_full/README.md).

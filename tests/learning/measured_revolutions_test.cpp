@@ -2,7 +2,7 @@
 // with 8 mm walls and 6 mm axial depth, planned with a hand-made model). Oracles: the simulator's own
 // per-revolution true peaks (SimulationResult::revolutions: unfiltered, noise-free, every internal step),
 // its motion (sim::plan_motion) for where and how fast the tool was, and the analytic straight-cut
-// engagement of DESIGN.md §5.1 (cos α = 1 − R_d / r, t_m = f sin α, L = r α) on the first wall.
+// engagement of docs/method.md §5.1 (cos α = 1 − R_d / r, t_m = f sin α, L = r α) on the first wall.
 
 #include <gtest/gtest.h>
 
@@ -96,7 +96,7 @@ const force_log::RevolutionPeak* true_revolution(double t_start_s) {
   return nullptr;
 }
 
-// The analytic straight cut on the walls (DESIGN.md §5.1).
+// The analytic straight cut on the walls (docs/method.md §5.1).
 double wall_engagement_rad() { return std::acos(1.0 - kRadialDepthMm / kToolRadiusMm); }
 
 // True when the plan has the straight-wall engagement all over [s0, s1].

@@ -1,4 +1,4 @@
-// The feed that meets a target force (DESIGN.md §5.3): hand-solved quadratics for each status, the linear
+// The feed that meets a target force (docs/method.md §5.3): hand-solved quadratics for each status, the linear
 // case, bad arguments, and a seeded property test against an independent root computation in f.
 
 #include <gmock/gmock.h>

@@ -1,5 +1,5 @@
 // Every program the planner emits for every bundled sample (the four cycles and the pocket), in every
-// dialect, read by LinuxCNC's own interpreter (`rs274 -g`, DESIGN.md §7): it must accept the program,
+// dialect, read by LinuxCNC's own interpreter (`rs274 -g`, docs/method.md §7): it must accept the program,
 // its canonical path must pass through every planned block end within 1 µm, in order, with each arc's
 // centre within 1 µm of the planned centre and the same turning sense, and the feed LinuxCNC sets for
 // every move must equal the planned block's F.

@@ -1,5 +1,5 @@
 // The feed planner against truths it does not compute itself: the closed-form feed on a straight wall
-// (DESIGN.md §5.1, §5.3), the virtual machine's own controller model (sim::plan_motion, a separate
+// (docs/method.md §5.1, §5.3), the virtual machine's own controller model (sim::plan_motion, a separate
 // implementation of look-ahead under the acceleration limit) for the predicted cycle time and the
 // feed actually run, and the statuses for targets the model cannot meet.
 

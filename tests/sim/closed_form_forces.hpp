@@ -1,6 +1,6 @@
 #pragma once
 // Test oracle: the closed-form mean forces of a straight cut (Altintas, Manufacturing Automation
-// ch. 2; DESIGN.md §6.1), written here independently of the code under test, and the Al7075
+// ch. 2; docs/method.md §6.1), written here independently of the code under test, and the Al7075
 // coefficients the checks use. Shared by milling_forces_test.cpp and milling_simulation_test.cpp.
 
 #include <cmath>
@@ -16,7 +16,7 @@ struct MeanForce {
   double fy_n = 0.0;  //!< mean force normal to the feed, N
 };
 
-//! F̄x, F̄y of DESIGN.md §6.1 for `n` teeth, axial depth `a_mm`, feed per tooth `c_mm`, every tooth
+//! F̄x, F̄y of docs/method.md §6.1 for `n` teeth, axial depth `a_mm`, feed per tooth `c_mm`, every tooth
 //! engaged from `phi_st` to `phi_ex` (rad), feed along +x.
 inline MeanForce closed_form_mean(int n, double a_mm, double c_mm, double phi_st, double phi_ex,
                                   const CuttingCoefficients& k) {
@@ -32,7 +32,7 @@ inline MeanForce closed_form_mean(int n, double a_mm, double c_mm, double phi_st
   return {fx(phi_ex) - fx(phi_st), fy(phi_ex) - fy(phi_st)};
 }
 
-//! Al7075 cutting coefficients of DESIGN.md §6.2 (Altintas), no size effect.
+//! Al7075 cutting coefficients of docs/method.md §6.2 (Altintas), no size effect.
 inline CuttingCoefficients al7075() {
   CuttingCoefficients k;
   k.ktc_n_per_mm2 = 796;

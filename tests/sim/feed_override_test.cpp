@@ -1,4 +1,4 @@
-// The override channel against the closed-form responses of 14 e^(−0.08 s)/(s + 14) (DESIGN.md §6.3):
+// The override channel against the closed-form responses of 14 e^(−0.08 s)/(s + 14) (docs/method.md §6.3):
 // a step is 1 − e^(−14 (t − 0.08)) after the dead time and 0 before it; a staircase ramp is the sum
 // of such steps.
 

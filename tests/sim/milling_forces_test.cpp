@@ -1,5 +1,5 @@
 // Instantaneous mechanistic forces against the closed-form mean forces of a straight cut (Altintas,
-// Manufacturing Automation ch. 2; DESIGN.md §6.1), written independently of the code in
+// Manufacturing Automation ch. 2; docs/method.md §6.1), written independently of the code in
 // closed_form_forces.hpp.
 
 #include <gtest/gtest.h>
@@ -44,11 +44,11 @@ MeanForce simulated_mean(const CutterGeometry& cutter, const CuttingCoefficients
 }
 
 TEST(MillingForces, Al7075DownMillingMatchesDesignCheck) {
-  // DESIGN.md §6.1: N 4, a 10, c 0.1, a_e 1.5 on r 5, down milling → F̄x 180.5 N, F̄y 295.2 N.
+  // docs/method.md §6.1: N 4, a 10, c 0.1, a_e 1.5 on r 5, down milling → F̄x 180.5 N, F̄y 295.2 N.
   const CutterGeometry cutter{5.0, 4, 30.0, {}};
   const double phi_st = kPi - std::acos(1 - 1.5 / 5.0);
   const MeanForce truth = closed_form_mean(4, 10, 0.1, phi_st, kPi, al7075());
-  // The closed form gives 180.44 N; DESIGN.md quotes it rounded up to 180.5.
+  // The closed form gives 180.44 N; docs/method.md §6.1 quotes it rounded up to 180.5.
   EXPECT_NEAR(truth.fx_n, 180.5, 0.1);
   EXPECT_NEAR(truth.fy_n, 295.2, 0.1);
   const MeanForce sim = simulated_mean(cutter, al7075(), 10, 0.1, phi_st, kPi, 0.0, 7200, 0.1);

@@ -1,4 +1,4 @@
-// The virtual machine end to end: cutting tests against the closed-form mean forces (DESIGN.md
+// The virtual machine end to end: cutting tests against the closed-form mean forces (docs/method.md
 // §6.1, closed_form_forces.hpp), steady per-revolution peaks on straight cuts and internal arcs,
 // a helix cutting layer by layer, determinism, the feed override loop and bad requests.
 
@@ -73,7 +73,7 @@ TEST(MillingSimulation, CuttingTestsMatchTheClosedFormMeanForces) {
     double ae_mm;
     MillingMode mode;
   };
-  const Case cases[] = {{"down a_e 1.5 (DESIGN Al7075 check)", 1.5, MillingMode::kDown},
+  const Case cases[] = {{"down a_e 1.5 (Al7075 check of docs/method.md §6.1)", 1.5, MillingMode::kDown},
                         {"up a_e 1.5", 1.5, MillingMode::kUp},
                         {"down a_e 4", 4.0, MillingMode::kDown},
                         {"up a_e 3", 3.0, MillingMode::kUp},
@@ -113,7 +113,7 @@ double peak_spread(const SimulationResult& result, double t_lo, double t_hi, int
 }
 
 TEST(MillingSimulation, DesignMagnitudeCheckForSteel) {
-  // DESIGN.md §6.2: S50C-like Ktc 2000, Krc 0.3 Ktc (no edge forces), D10 Z4, 2800 rpm, a_p 10, a_e 1.5,
+  // docs/method.md §6.2: S50C-like Ktc 2000, Krc 0.3 Ktc (no edge forces), D10 Z4, 2800 rpm, a_p 10, a_e 1.5,
   // 1000 mm/min → mean |F| ≈ 350 N, peak ≈ 480–490 N, the magnitude seed 003 reports.
   SimulationRequest request = cutting_test_request(1.5, MillingMode::kDown, 1000.0 / (4 * 2800), 2800);
   request.coefficients = CuttingCoefficients{};

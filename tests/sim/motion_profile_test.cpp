@@ -478,7 +478,7 @@ Program random_program(std::mt19937_64& rng, geometry::MachineLimits& limits) {
 }
 
 // The oracle: junction caps from grbl's formula as written in its planner, then a forward and a
-// backward pass on v² over a grid of points on every move (DESIGN.md §5.5), and on each grid interval
+// backward pass on v² over a grid of points on every move (docs/method.md §5.5), and on each grid interval
 // the fastest motion between its end speeds under the move's cap (accelerate, cruise, decelerate).
 // Its code shares nothing with the planner's.
 struct Oracle {

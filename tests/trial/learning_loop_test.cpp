@@ -1,4 +1,4 @@
-// The learning loop on the virtual machine (issue 6 acceptance, the corner-rounding case): plan with
+// The learning loop on the virtual machine (the corner-rounding case): plan with
 // the sample database's S50C model, cut on a virtual machine whose true cutting coefficients are 1.5 ×
 // the material's (the model is 33 % soft), learn, re-plan. The truth the test judges by is the virtual
 // machine's own per-revolution peak force — mechanistic physics, not the response-surface model.

@@ -1,6 +1,6 @@
 #pragma once
 // Angle conversions. The library works in radians; degrees appear only in user-facing text and
-// specs (DESIGN.md §3).
+// specs (docs/method.md §3).
 
 #include <numbers>
 

@@ -21,13 +21,13 @@
 //   5. (departure) feed in air to e2 + ℓ·d2 + r·n2; rapid up to the clearance height.
 // Steps 2–4 are cutting moves with axial_depth_mm = A_d.
 //
-// Implied stock (seed 003 Fig. 1b; DESIGN.md §5.1): a block from the entry face through s1 to the
+// Implied stock (seed 003 Fig. 1b; docs/method.md §5.1): a block from the entry face through s1 to the
 // exit face through e2, perpendicular to the walls, reaching 2·D behind the walls into the material,
 // minus one earlier pass of the same tool recorded in Stock::removed: the same centre path R_d further
 // from the walls (lines at r + R_d, corner arc of radius R − r − R_d about Q, or, when that is not
 // positive, the two offset lines meeting in a sharp corner), extended through lead-in and lead-out.
 // So the surface left before this pass is R_d deep on the walls and concentric with the finished
-// corner — the analytic engagement of DESIGN.md §5.1 holds in the steady parts. z from
+// corner — the analytic engagement of docs/method.md §5.1 holds in the steady parts. z from
 // top − (A_d + 5) to top. Direction::kCw mirrors path and stock about wall 1's line.
 
 #include <vector>

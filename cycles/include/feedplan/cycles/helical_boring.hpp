@@ -15,7 +15,7 @@
 // Helix turns and the bottom circle are cutting moves with axial_depth_mm = p.
 //
 // Engagement on a helix is evaluated on the layer one pitch deep that the previous turn left
-// (DESIGN.md §5.2, geometry::compute_engagement); cutting with the end of the tool while it ramps is
+// (docs/method.md §5.2, geometry::compute_engagement); cutting with the end of the tool while it ramps is
 // not modelled.
 //
 // Implied stock: a solid square block of half-size D_h / 2 + 2·D about O; z from top − (depth + 5) to

@@ -1,6 +1,6 @@
 #pragma once
 // What a cycle spec says: the tool, the cutting conditions, the machine, and the geometry of one
-// canned cycle (DESIGN.md §4). Plain structs; read_cycle_spec (spec_reader.hpp) fills and checks
+// canned cycle (docs/method.md §4). Plain structs; read_cycle_spec (spec_reader.hpp) fills and checks
 // them from YAML, and programs may fill them directly and call validate (cycle.hpp).
 //
 // Conventions shared by every cycle: an M3 (clockwise) spindle and climb (down) milling, so the
@@ -31,7 +31,7 @@ const char* to_string(Direction direction);
 
 //! Corner rounding (seed 003 Fig. 5): finishing an internal (concave) corner between two straight
 //! walls, the walls on the tool's right, the path turning left. The material before the cut is what
-//! an earlier pass of the same tool, `radial_depth_mm` further from the walls, left (DESIGN.md §5.1).
+//! an earlier pass of the same tool, `radial_depth_mm` further from the walls, left (docs/method.md §5.1).
 struct CornerSpec {
   geometry::Point2 corner_point;                //!< intersection of the two finished wall lines, mm
   double entry_heading_deg = 0.0;               //!< direction of travel along wall 1, counter-clockwise from +X, deg

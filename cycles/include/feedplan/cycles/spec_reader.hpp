@@ -1,5 +1,5 @@
 #pragma once
-// Reading a cycle spec from YAML (DESIGN.md §4) with every problem reported at once.
+// Reading a cycle spec from YAML (docs/method.md §4) with every problem reported at once.
 
 #include <filesystem>
 #include <string>

@@ -1,5 +1,5 @@
 #pragma once
-// Force logs (DESIGN.md §4): what a machine's data acquisition writes, and what the virtual machine
+// Force logs (docs/method.md §4): what a machine's data acquisition writes, and what the virtual machine
 // writes in the same format. A CSV text:
 //
 //   # source: feedplan simulate          ← metadata, "# key: value", anywhere before or among the rows
@@ -9,7 +9,7 @@
 //   0.000000,0.0000,0.0000,-10.0000,0.000,0.000,0.000,1000.00,2800.0
 //
 // Required columns: t_s, x_mm, y_mm and either fx_n, fy_n (dynamometer or spindle sensor) or ix_a,
-// iy_a (servo currents, to be turned into forces with a calibration, DESIGN.md §6.4). Optional: z_mm,
+// iy_a (servo currents, to be turned into forces with a calibration, docs/method.md §6.4). Optional: z_mm,
 // fz_n, feed_mm_per_min, spindle_rpm, iz_a. A cell may be empty when the value was not recorded
 // (read as NaN); t_s and the required force (or current) cells may not.
 //

@@ -1,6 +1,6 @@
 #pragma once
 // The peak of the XY resultant force in each spindle revolution: the quantity seed 003's model
-// (Eq. 1) predicts and seed 002's controller regulates (DESIGN.md §5.3). Used on simulated logs and
+// (Eq. 1) predicts and seed 002's controller regulates (docs/method.md §5.3). Used on simulated logs and
 // on measured ones (e.g. Kistler exports).
 //
 // Revolutions are counted from the first sample: revolution k covers the spindle angle

@@ -1,6 +1,6 @@
 #pragma once
 // Reading RS274/NGC (LinuxCNC) G-code into a Program: the moves of the tool tip with the feed,
-// spindle and dwells commanded for each (DESIGN.md §2, gcode/ text ──► ToolPath). The reader takes
+// spindle and dwells commanded for each (docs/method.md §2, gcode/ text ──► ToolPath). The reader takes
 // the subset a CAM post or feedplan's own writer emits for 2.5D milling and refuses everything else
 // by line and word — a skipped word could change the path the force model is computed on.
 //

@@ -1,6 +1,6 @@
 #pragma once
 // Writing a Program (moves with their F, spindle and dwells) as G-code for LinuxCNC, Fanuc 0i/30i or
-// Haas (DESIGN.md §2, gcode/ Program ──► text). Every program is checked against LinuxCNC's own
+// Haas (docs/method.md §2, gcode/ Program ──► text). Every program is checked against LinuxCNC's own
 // interpreter in the tests (tests/gcode/writer_linuxcnc_oracle_test.cpp), and read_program reads
 // back what write_gcode writes (for decimals ≥ 3 at its default arc tolerance).
 //

@@ -1,6 +1,6 @@
 #pragma once
 // Closed-form engagement for steady cuts: straight lines and arcs concentric with the previous pass
-// (seed 003 Eq. 2, with the corrections of DESIGN.md §5.1). Used as test oracles and as fast paths.
+// (seed 003 Eq. 2, with the corrections of docs/method.md §5.1). Used as test oracles and as fast paths.
 //
 // r: tool radius; R_d: radial depth of cut; R: radius of the FINISHED WALL (not of the tool-centre
 // path, which is R − r for an internal arc and R + r for an external one).

@@ -1,5 +1,5 @@
 #pragma once
-// How far an engagement is from the straight cuts a response surface is fitted on (DESIGN.md §5.3).
+// How far an engagement is from the straight cuts a response surface is fitted on (docs/method.md §5.3).
 //
 // The force model F̂(t_m, L) knows t_m and L only. In a straight cut (and on steady arcs) the engaged
 // arc ends at the side of the tool, so the chip thins from t_m to 0 along it; where the tool enters

@@ -1,6 +1,6 @@
 #pragma once
 // The cutter's engagement along a tool path: at each sample, which part of the tool circle is in
-// material, and the quantities the force model needs (DESIGN.md §5).
+// material, and the quantities the force model needs (docs/method.md §5).
 //
 // Angles of tool points are immersion angles φ as in Altintas: measured clockwise (the sense in
 // which an M3 spindle turns the teeth) from the left-hand normal of the feed direction. φ = 0 is the
@@ -48,7 +48,7 @@ struct EngagementSample {
   double entry_rad = 0.0;            //!< entry of the first engaged interval, rad (0 when not engaged)
   double exit_rad = 0.0;             //!< exit of the last engaged interval, rad (0 when not engaged)
   double chip_factor = 0.0;          //!< k = t_m / f_z: the largest cos of a tool point's angle from the
-                                     //!< feed direction over the engaged set, in [0, 1] (DESIGN.md §5.1)
+                                     //!< feed direction over the engaged set, in [0, 1] (docs/method.md §5.1)
   double contact_length_mm = 0.0;    //!< L = r · α_en, mm
   //! ρ ≥ 1: uncut chip area over that of the straight cut with the same t_m and L (chip_area_ratio.hpp);
   //! 1 on straight cuts and steady arcs, up to 2 where the tool enters material

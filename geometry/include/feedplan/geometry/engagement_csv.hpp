@@ -1,5 +1,5 @@
 #pragma once
-// The engagement profile as CSV, one row per sample (DESIGN.md §4 naming: units in column names,
+// The engagement profile as CSV, one row per sample (docs/method.md §4 naming: units in column names,
 // degrees for angles because users read it).
 
 #include <string>

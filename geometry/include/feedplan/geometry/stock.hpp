@@ -1,7 +1,7 @@
 #pragma once
 // The workpiece material before a cycle: an initial 2D region extruded over a z range, minus the
 // material that earlier cuts swept away. Carrying a Stock from one cycle to the next is how a later
-// cycle sees what an earlier one removed (DESIGN.md §5.2).
+// cycle sees what an earlier one removed (docs/method.md §5.2).
 
 #include <string>
 #include <vector>

@@ -1,6 +1,6 @@
 #pragma once
 // Batch refit of the force model's coefficients over all aligned samples of the logged cycles, pulled toward
-// the prior model where the logs do not excite a direction (DESIGN.md §5.4).
+// the prior model where the logs do not excite a direction (docs/method.md §5.4).
 //
 // The method. ψ_i = regressors(prior, t_m, L) (seed 003 Eq. 4) with the prior model's centres and scales,
 // which the refit keeps, so β stays comparable with the prior's.

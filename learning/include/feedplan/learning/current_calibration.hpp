@@ -1,5 +1,5 @@
 #pragma once
-// Feed-drive servo currents as force sensors (seed 002, Kim & Kim 1996, Eqs. 12–14; DESIGN.md §6.4):
+// Feed-drive servo currents as force sensors (seed 002, Kim & Kim 1996, Eqs. 12–14; docs/method.md §6.4):
 // the static map I = a + b·|F| per axis, fitted from a log with both forces and currents, and applied to
 // a log with currents only.
 //

@@ -1,6 +1,6 @@
 #pragma once
 // One measured point for learning: a spindle revolution's peak XY force paired with the force model's
-// inputs at the place and feed where it was measured (DESIGN.md §5.4).
+// inputs at the place and feed where it was measured (docs/method.md §5.4).
 
 #include <string>
 #include <vector>

@@ -1,5 +1,5 @@
 #pragma once
-// Where on the planned path each row of a force log was measured (DESIGN.md §2 learning, §4 force log):
+// Where on the planned path each row of a force log was measured (docs/method.md §2 learning, §4 force log):
 // the arc length s of the plan for every log row, so measured forces can be paired with the model's
 // inputs there (measured_revolutions.hpp).
 //

@@ -1,6 +1,6 @@
 #pragma once
 // Per-revolution peak forces of an aligned log paired with the force model's inputs where and at the feed
-// they were measured (DESIGN.md §5.3–5.4): the samples the RLS and the batch refit learn from, and the
+// they were measured (docs/method.md §5.3–5.4): the samples the RLS and the batch refit learn from, and the
 // revolutions compare_peaks judges a plan by.
 //
 // Step by step:

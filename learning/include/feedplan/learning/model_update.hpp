@@ -1,5 +1,5 @@
 #pragma once
-// One learning step (seed 003 §2.3, DESIGN.md §5.4): the force logs of cycles cut with a plan →
+// One learning step (seed 003 §2.3, docs/method.md §5.4): the force logs of cycles cut with a plan →
 // aligned per-revolution samples → RLS (seed 003 Eq. 5, what the controller does in the air cut) and a
 // robust batch refit with a prior toward the model the cycles were planned with, rescaled by the median
 // ratio of measured to predicted force (one gain every log excites) → the next model and

@@ -1,5 +1,5 @@
 #pragma once
-// Recursive least squares on the force model's coefficients (seed 003 Eq. 5, DESIGN.md §5.4), with the
+// Recursive least squares on the force model's coefficients (seed 003 Eq. 5, docs/method.md §5.4), with the
 // safeguards seed 002 uses after Goodwin & Sin (Adaptive Filtering, Prediction and Control, 1984): a
 // forgetting factor, covariance resetting and a dead zone.
 //

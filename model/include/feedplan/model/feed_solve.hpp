@@ -1,6 +1,6 @@
 #pragma once
 // The feed per tooth that makes the response-surface model predict a target force (seed 003 §2.2,
-// DESIGN.md §5.3).
+// docs/method.md §5.3).
 //
 // The geometry fixes the chip factor k = t_m / f_z = sin(min(α_en, π/2)) and the contact length L at a
 // path sample; the feed does not change them. With t_m = k f, F̂ is a quadratic in f:

@@ -1,5 +1,5 @@
 #pragma once
-// Fitting the response-surface model (seed 003 Eq. 1, DESIGN.md §5.3) to data points (t_m, L, F) —
+// Fitting the response-surface model (seed 003 Eq. 1, docs/method.md §5.3) to data points (t_m, L, F) —
 // cutting tests, or aligned samples of logged cycles — with a robust loss, and saying how well the
 // coefficients are determined.
 //

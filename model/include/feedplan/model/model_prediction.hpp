@@ -1,5 +1,5 @@
 #pragma once
-// Evaluating the response-surface model (seed 003 Eq. 1, DESIGN.md §5.3) at one point (t_m, L): the
+// Evaluating the response-surface model (seed 003 Eq. 1, docs/method.md §5.3) at one point (t_m, L): the
 // regressor vector ψ of seed 003 Eq. 4 and the predicted force, with whether the point lies outside the
 // range the model was fitted on (where the model extrapolates).
 

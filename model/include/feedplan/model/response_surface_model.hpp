@@ -1,5 +1,5 @@
 #pragma once
-// The response-surface force model of seed 003 Eq. 1 (DESIGN.md §5.3): the peak XY resultant force
+// The response-surface force model of seed 003 Eq. 1 (docs/method.md §5.3): the peak XY resultant force
 // per spindle revolution as a quadratic in the maximum undeformed chip thickness t_m and the contact
 // length L, normalised by centres and scales stored with the model, valid inside the range it was
 // fitted on.

@@ -30,7 +30,7 @@ struct CuttingTestConditions {
 struct CuttingTestRecord {
   CuttingTestConditions conditions;
   double feed_per_tooth_mm = 0.0;        //!< f_z = F / (N · S), mm
-  double chip_mm = 0.0;                  //!< t_m = f_z · sin(min(α_en, π/2)), mm (DESIGN.md §5.1)
+  double chip_mm = 0.0;                  //!< t_m = f_z · sin(min(α_en, π/2)), mm (docs/method.md §5.1)
   double contact_length_mm = 0.0;        //!< L = r · α_en, mm
   double peak_mean_n = 0.0;              //!< mean of the steady per-revolution peaks |F_xy|, N
   double peak_std_n = 0.0;               //!< their standard deviation, N

@@ -1,7 +1,7 @@
 #pragma once
 // Cutting-test import: from the force log of a straight cut at constant conditions (measured on a
 // dynamometer, or simulated by the virtual machine) to one model data point — the steady per-revolution
-// peak of |F_xy| and the model inputs t_m and L it belongs to (DESIGN.md §4, §5.1, §5.3).
+// peak of |F_xy| and the model inputs t_m and L it belongs to (docs/method.md §4, §5.1, §5.3).
 //
 // Steady-state rule. A straight cut starts and ends with transients (air, the tool entering the block,
 // the tool leaving it); only the steady part between them is the cutting test. With P_k the peak of
@@ -74,7 +74,7 @@ std::vector<InputProblem> validate(const CuttingTestImportOptions& options);
 //!
 //! Returns the record: the conditions; f_z = F / (N · S); α_en from the straight-cut closed form
 //! (geometry::straight_engagement_rad, π for a slot); t_m = f_z · sin(min(α_en, π/2)); L = r · α_en
-//! (DESIGN.md §5.1); the steady peaks with their mean, sample standard deviation (0 for one), min and max;
+//! (docs/method.md §5.1); the steady peaks with their mean, sample standard deviation (0 for one), min and max;
 //! the complete and the steady revolution counts; and notes saying which revolutions were used, how the
 //! feed and spindle speed were checked (or why not) and whether the peaks scatter much.
 //!

@@ -2,7 +2,7 @@
 // The rows of the model database (Store) as plain structs: tools, workpiece materials, model versions
 // with their fit statistics, stored cutting tests and learning-history entries, and the checks each
 // one passes before it is written. Field names are the column names; every dimensional value carries
-// its unit in its name (DESIGN.md §3).
+// its unit in its name (docs/method.md §3).
 
 #include <array>
 #include <cstdint>

@@ -1,5 +1,5 @@
 #pragma once
-// The force model at one path sample, in both directions (DESIGN.md §5.3): the feed limit that makes
+// The force model at one path sample, in both directions (docs/method.md §5.3): the feed limit that makes
 // the model predict the target, and the force predicted at a given feed.
 //
 // The chip: t_m = k · f_xy with k the sample's chip factor and f_xy the feed per tooth in the XY plane,

@@ -1,5 +1,5 @@
 #pragma once
-// The feed planner (seed 003 §2, DESIGN.md §5.3, §5.5): the engagement along a path + a force model +
+// The feed planner (seed 003 §2, docs/method.md §5.3, §5.5): the engagement along a path + a force model +
 // a target force + the machine's limits → a program whose F words hold the predicted force at the
 // target, with a prediction of what the machine will do and the constant-feed baseline.
 //
@@ -85,7 +85,7 @@ struct PlanOptions {
 struct PlanGeometry {
   geometry::ToolPath path;                  //!< the tool-centre path (moves, parts)
   geometry::Tool tool;                      //!< the end mill
-  geometry::EngagementProfile engagement;   //!< engagement along the path (DESIGN.md §5.1–5.2)
+  geometry::EngagementProfile engagement;   //!< engagement along the path (docs/method.md §5.1–5.2)
 };
 
 //! Computes the engagement of `tool` along `path` on `stock` at `ds_mm` (geometry::compute_engagement).

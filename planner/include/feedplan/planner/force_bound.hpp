@@ -1,6 +1,6 @@
 #pragma once
 // The cautious plan: an upper confidence bound on the predicted force from the model's parameter
-// covariance (issue 6, "cautious first cut"). With covariance C of β, the standard deviation of F̂ at
+// covariance (the "cautious first cut"). With covariance C of β, the standard deviation of F̂ at
 // (t_m, L) is σ(t_m, L) = √(ψᵀ C ψ), ψ the regressors of seed 003 Eq. 4; the planner then holds
 // F̂ + z·σ at the target instead of F̂. As logs arrive the refit's covariance shrinks and the bound
 // tightens toward F̂.

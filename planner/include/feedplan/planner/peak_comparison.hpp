@@ -1,6 +1,6 @@
 #pragma once
 // How close measured (or simulated) per-revolution peak forces come to the plan's target: the figure a
-// process engineer checks before trusting a plan on the machine (issue 5; seed 003 Figs. 6, 10, 13).
+// process engineer checks before trusting a plan on the machine (seed 003 Figs. 6, 10, 13).
 //
 // Each revolution is placed on the path by the path length it spans. A revolution counts as
 //   - in cut when some planned sample inside its span is engaged;

@@ -1,5 +1,5 @@
 #pragma once
-// The plan report (DESIGN.md §4): a JSON summary of one plan — what was asked (model, target, machine,
+// The plan report (docs/method.md §4): a JSON summary of one plan — what was asked (model, target, machine,
 // options), where it came from (spec, tool, material, model version, database, program) and what the
 // planner predicts (summary, the constant-feed baseline, the block schedule) — and a CSV with one row
 // per engagement sample. The `learn` command reads the JSON back (read_plan_report) to re-plan with a
@@ -32,7 +32,7 @@
 //
 // CSV: a header row, then one row per sample, comma-separated, no metadata lines. Columns:
 //   s_mm, x_mm, y_mm, engagement_deg, chip_thickness_mm, contact_length_mm, feed_mm_per_min,
-//   predicted_force_n, time_s                         (DESIGN.md §4)
+//   predicted_force_n, time_s                         (docs/method.md §4)
 //   z_mm, chip_factor, feed_limit_mm_per_min, limit_reason, command_feed_mm_per_min,
 //   block_feed_mm_per_min, block, engaged, extrapolated   (extras)
 // Numbers in fixed precision with trailing zeros dropped: lengths 4 decimals (0.1 µm), angles 4, chip

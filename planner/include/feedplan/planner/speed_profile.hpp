@@ -1,6 +1,6 @@
 #pragma once
 // The greatest speed profile along a path under pointwise speed caps and a path acceleration limit
-// (DESIGN.md §5.5), and the time it takes.
+// (docs/method.md §5.5), and the time it takes.
 //
 // Nodes i = 0…n−1 sit at path lengths s_i (non-decreasing). Between two nodes the acceleration is
 // constant, so u = v² is linear in s there, and the constraints are

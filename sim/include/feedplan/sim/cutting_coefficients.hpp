@@ -1,6 +1,6 @@
 #pragma once
 // Mechanistic cutting coefficients of a tool–material pair (Altintas, Manufacturing Automation, ch. 2;
-// DESIGN.md §6.1): per unit chip width, dF_t = (Ktc h + Kte) dz, dF_r = (Krc h + Kre) dz,
+// docs/method.md §6.1): per unit chip width, dF_t = (Ktc h + Kte) dz, dF_r = (Krc h + Kre) dz,
 // dF_a = (Kac h + Kae) dz, with an optional size effect on the cutting terms.
 
 #include <initializer_list>
@@ -16,7 +16,7 @@ struct CuttingCoefficients {
   double kre_n_per_mm = 0.0;   //!< radial edge coefficient
   double kae_n_per_mm = 0.0;   //!< axial edge coefficient
   //! Size-effect exponent m_c: the cutting coefficients scale as (h / size_reference_chip_mm)^(−m_c)
-  //! (k_c = k_1 h^(−m_c), DESIGN.md §6.2). 0 turns the size effect off.
+  //! (k_c = k_1 h^(−m_c), docs/method.md §6.2). 0 turns the size effect off.
   double size_exponent = 0.0;
   double size_reference_chip_mm = 0.1;  //!< chip thickness at which the K*c values above hold, mm
   //! Smallest chip thickness the size effect is evaluated at (keeps h^(−m_c) finite), mm.

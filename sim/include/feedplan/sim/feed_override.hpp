@@ -1,6 +1,6 @@
 #pragma once
 // The feed override channel of the virtual machine: what an external feedback controller (seed 002,
-// DESIGN.md §6.3) commands, and the override ratio the machine actually applies.
+// docs/method.md §6.3) commands, and the override ratio the machine actually applies.
 //
 // The controller commands a ratio r_cmd ∈ [0, max_ratio] (0–150 % by default, the range seed 001's
 // controller used; commands outside are clamped, as an override knob stops at its ends). The machine

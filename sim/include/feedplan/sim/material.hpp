@@ -1,6 +1,6 @@
 #pragma once
 // Workpiece materials as data: a YAML library (data/materials.yaml) of named materials, each with its
-// mechanistic cutting coefficients (DESIGN.md §6.1, §6.2) and where those numbers come from. The
+// mechanistic cutting coefficients (docs/method.md §6.1, §6.2) and where those numbers come from. The
 // virtual machine takes its coefficients from here; nothing in the code knows a material by name.
 //
 // File format (one YAML document):
@@ -14,7 +14,7 @@
 //         {ktc_n_per_mm2: 796, krc_n_per_mm2: 169, kac_n_per_mm2: 222,
 //          kte_n_per_mm: 27.7, kre_n_per_mm: 30.8, kae_n_per_mm: 1.4}
 //       size_effect: {exponent: 0.13, reference_chip_mm: 0.1}   # optional (min_chip_mm optional too)
-//       sources: {krc_n_per_mm2: "0.3 × ktc, DESIGN §6.2"}     # optional per-number sources
+//       sources: {krc_n_per_mm2: "0.3 × ktc, docs/method.md §6.2"}     # optional per-number sources
 //
 // Names and aliases are matched case-insensitively and must be unique across the whole library.
 

@@ -1,5 +1,5 @@
 #pragma once
-// Mechanistic milling forces at one instant (Altintas, Manufacturing Automation, ch. 2; DESIGN.md
+// Mechanistic milling forces at one instant (Altintas, Manufacturing Automation, ch. 2; docs/method.md
 // §6.1): a flat end mill with N helical flutes, cut into axial slices, each tooth element loaded by
 // the chip it cuts now. This is the virtual machine's physics; it shares nothing with the
 // response-surface model it is meant to judge.
@@ -61,7 +61,7 @@ struct CutterState {
 //! element is in the cut when q lies in the engaged arcs of its layer and h > 0; then
 //! dF_t = (K_tc h + K_te) dz, dF_r = (K_rc h + K_re) dz, dF_a = (K_ac h + K_ae) dz, with the cutting
 //! coefficients scaled by (h / h_ref)^(−m_c) when the size effect is on, and
-//! F = −dF_t·(sin θ, −cos θ) − dF_r·(cos θ, sin θ), F_z = dF_a (DESIGN.md §6.1 with feed along +x).
+//! F = −dF_t·(sin θ, −cos θ) − dF_r·(cos θ, sin θ), F_z = dF_a (docs/method.md §6.1 with feed along +x).
 Force3 milling_force(const CutterGeometry& cutter, const CuttingCoefficients& coefficients, const CutterState& state,
                      std::span<const ForceSlice> slices);
 

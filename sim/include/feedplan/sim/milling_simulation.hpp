@@ -2,7 +2,7 @@
 // The virtual machine: runs a Program on a stock the way a machining centre would — feeds under the
 // acceleration limits (motion_profile.hpp), mechanistic forces tooth by tooth (milling_forces.hpp) on
 // the material the path has not yet removed (layered_engagement.hpp), read by sensors
-// (sensors.hpp) — and writes the force log a data-acquisition system would (DESIGN.md §4, §6).
+// (sensors.hpp) — and writes the force log a data-acquisition system would (docs/method.md §4, §6).
 
 #include <cstdint>
 #include <functional>

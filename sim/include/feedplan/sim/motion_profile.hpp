@@ -1,6 +1,6 @@
 #pragma once
 // How the virtual machine's controller executes a Program: the path speed v(t) along the whole
-// program under the machine's limits, with look-ahead over every block (DESIGN.md §5.5, §6.3).
+// program under the machine's limits, with look-ahead over every block (docs/method.md §5.5, §6.3).
 //
 // The model, step by step:
 //   1. Speed caps per move (constant along the move): a feed move (kLine, kArc) runs at most at its
@@ -26,7 +26,7 @@
 //      - every junction speed is also capped by both moves' caps, so a slower block is entered at
 //        no more than its F.
 //   4. Look-ahead over the whole program (forward and backward pass on u = v² at the junctions,
-//      u_{j+1} ≤ u_j + 2 a L_j and u_j ≤ u_{j+1} + 2 a L_j, DESIGN.md §5.5), from rest at the start to
+//      u_{j+1} ≤ u_j + 2 a L_j and u_j ≤ u_{j+1} + 2 a L_j, docs/method.md §5.5), from rest at the start to
 //      rest at the end.
 //   5. Each move then runs the greatest profile between its entry and exit speeds under its cap:
 //      accelerate at a, cruise at the cap, decelerate at a (a triangle when the cap is not reached).

@@ -1,5 +1,5 @@
 #pragma once
-// What the machine's sensors read when the true cutting force acts (DESIGN.md §6.4). The virtual
+// What the machine's sensors read when the true cutting force acts (docs/method.md §6.4). The virtual
 // machine computes the true force (Fx, Fy, Fz) every internal step and passes it to Sensors::update,
 // which returns the readings of a table dynamometer, an optional spindle-deflection sensor and the
 // optional feed-drive servo currents.
@@ -53,7 +53,7 @@ struct DynamometerOptions {
 //! Spindle-deflection (spindle-integrated force) sensor: sees Fx and Fy only.
 struct SpindleSensorOptions {
   bool enabled = false;                       //!< read the spindle sensor at all
-  double bandwidth_hz = 350.0;                //!< −3 dB frequency, Hz (DESIGN.md §6.4)
+  double bandwidth_hz = 350.0;                //!< −3 dB frequency, Hz (docs/method.md §6.4)
   double damping_ratio = 0.7071067811865476;  //!< ζ of the second-order low pass, in (0, 2]
   double noise_n = 0.0;                       //!< RMS white noise added to each axis, N
 };
