@@ -181,7 +181,8 @@ PlannedCycle plan_cycle(const PlanCommandOptions& o, const PlanInputs& in, const
 // The program only when the target can be met everywhere, or the constant-feed one when asked for.
 ProgramChoice choose_program(const PlanCommandOptions& o, const planner::PlanResult& result) {
   ProgramChoice choice;
-  choice.planned = result.status != planner::PlanStatus::kTargetNotMet && o.constant_feed_mm_per_min == 0.0;
+  choice.planned = result.status != planner::PlanStatus::kTargetNotMet && result.status != planner::PlanStatus::kUnsafe &&
+                   o.constant_feed_mm_per_min == 0.0;
   choice.constant = o.constant_feed_mm_per_min > 0.0;
   return choice;
 }
@@ -428,8 +429,13 @@ int run_plan_command(const PlanCommandOptions& o) {
   }
   print_plan_notes(planned.result, out);
   if (!out.program.any()) {
-    std::cerr << "feedplan: failed: the target cannot be met everywhere (see the note above); no program written to "
-              << o.program_path << " — raise the target, or lower the machine's min_feed_mm_per_min\n";
+    if (planned.result.status == planner::PlanStatus::kUnsafe) {
+      std::cerr << "feedplan: failed: the plan is unsafe (see the note above); no program written to " << o.program_path
+                << "\n";
+    } else {
+      std::cerr << "feedplan: failed: the target cannot be met everywhere (see the note above); no program written to "
+                << o.program_path << " — raise the target, or lower the machine's min_feed_mm_per_min\n";
+    }
     return kExitFailed;
   }
   return 0;
