@@ -25,9 +25,8 @@ std::array<Transfer, 2> transfers(const model::ResponseSurfaceModel& model, cons
   const auto& range = model.range;
   const double clamped_mm = std::min(model_contact_length_mm(model, sample.contact_length_mm),
                                      std::max(range.contact_length_max_mm, range.contact_length_min_mm));
-  // Above the fitted contact lengths the quadratic is not extrapolated: L' is clamped and the chip-load
-  // transfer carries the larger engagement.
-  return {Transfer{clamped_mm, axial_depth_ratio(model, sample.axial_depth_mm)}, Transfer{clamped_mm, load_ratio}};
+  return {Transfer{model_contact_length_mm(model, sample.contact_length_mm), axial_depth_ratio(model, sample.axial_depth_mm)},
+          Transfer{clamped_mm, load_ratio}};
 }
 
 // The solved feed per tooth for one transfer, with what the solve said.

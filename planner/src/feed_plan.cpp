@@ -644,6 +644,10 @@ void check_program(const PlanContext& c, const PlanGeometry& geometry, PlanResul
   input.settings = &c.settings;
   input.correction_s_mm = c.s;
   input.ds_mm = c.settings.options.ds_mm;
+  // --mode regulate promises F within the merge tolerance of the limit (feed_plan.hpp), not below it.
+  if (c.settings.options.mode == PlanMode::kRegulate) {
+    input.relative_tolerance = std::max(input.relative_tolerance, c.settings.options.merge_tolerance);
+  }
   const std::vector<SafetyViolation> violations = check_safety(result.program, input);
   if (violations.empty()) return;
   result.status = PlanStatus::kUnsafe;

@@ -15,8 +15,7 @@
 // Axial depth: the model has no axial-depth term; it was fitted at a_p,model (ResponseSurfaceModel::
 // axial_depth_mm). Forces scale with the axial depth in contact, so at a sample cut at a_p (the height of
 // material in contact above the tip, on every layer: geometry/engagement.hpp) the planner uses
-// F̂(t_m, L') · a_p / a_p,model (1 when either is unknown), L' = L clamped to the fitted range (the
-// quadratic is not extrapolated beyond it; the chip-load transfer below carries larger engagements). Outside kAxialDepthRatioRange that
+// F̂(t_m, max(L, L_min)) · a_p / a_p,model (1 when either is unknown). Outside kAxialDepthRatioRange that
 // scaling counts as an extrapolation.
 //
 // Engagements a straight cut does not have: a model fitted at a_p,model has the helix lag of its flutes
