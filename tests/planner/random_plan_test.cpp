@@ -148,7 +148,7 @@ RandomCase random_case(std::mt19937_64& rng) {
 
 TEST(RandomPlans, FeedsAccelerationsAndForcesWithinLimits) {
   const unsigned seed = env_or("FEEDPLAN_TEST_SEED", 20261123u);
-  const unsigned count = env_or("FEEDPLAN_TEST_COUNT", 10000u);
+  const unsigned count = env_or("FEEDPLAN_TEST_COUNT", 2000u);
   std::cout << "random plans: FEEDPLAN_TEST_SEED=" << seed << " FEEDPLAN_TEST_COUNT=" << count << "\n";
   std::mt19937_64 rng(seed);
   long long blocks_checked = 0;
@@ -238,7 +238,7 @@ TEST(RandomPlans, FeedsAccelerationsAndForcesWithinLimits) {
   std::cout << "checked " << blocks_checked << " blocks, " << steps_checked << " block changes, " << samples_checked
             << " engaged samples; " << not_met << " cases with the target not reachable everywhere; " << unsafe
             << " plans refused by the safety check\n";
-  EXPECT_GT(samples_checked, 100000);
+  EXPECT_GT(samples_checked, 10LL * count);
 }
 
 }  // namespace
