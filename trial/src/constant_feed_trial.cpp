@@ -82,15 +82,11 @@ std::string method_text(const EqualPeakFeed& found, int made, bool at_range_end,
 }  // namespace
 
 ConstantFeedRun run_constant_feed(const VirtualMachine& machine, const geometry::ToolPath& path, double feed_mm_per_min) {
-  sim::SimulationRequest request;
-  request.program = planner::constant_feed_program(path, feed_mm_per_min, machine.spindle_rpm);
-  request.tool = machine.tool;
-  request.coefficients = machine.coefficients;
-  request.stock = machine.stock;
-  request.machine = machine.machine;
-  request.options.default_spindle_rpm = machine.spindle_rpm;
-  request.sensors = machine.sensors;
-  const sim::SimulationResult result = sim::simulate(request);
+  VirtualMachine quiet = machine;  // a baseline run: peaks and time only, no log rows, no progress of its own
+  quiet.keep_log = false;
+  quiet.progress = nullptr;
+  const sim::SimulationResult result =
+      simulate_on(planner::constant_feed_program(path, feed_mm_per_min, machine.spindle_rpm), quiet);
   return {feed_mm_per_min, result.summary.cycle_time_s, result.summary.max_revolution_peak_n};
 }
 

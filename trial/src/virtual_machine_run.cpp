@@ -15,8 +15,7 @@ class RowsDropped final : public force_log::ForceLogSink {
 
 }  // namespace
 
-VirtualMachineRun run_on_virtual_machine(const geometry::Program& program, const VirtualMachine& machine,
-                                         const planner::PlanResult& plan, double target_force_n) {
+sim::SimulationResult simulate_on(const geometry::Program& program, const VirtualMachine& machine) {
   sim::SimulationRequest request;
   request.program = program;
   request.tool = machine.tool;
@@ -28,10 +27,15 @@ VirtualMachineRun run_on_virtual_machine(const geometry::Program& program, const
   request.progress = machine.progress;
   RowsDropped dropped;
   if (!machine.keep_log) request.log_sink = &dropped;
-  VirtualMachineRun run;
-  run.simulation = sim::simulate(request);
+  return sim::simulate(request);
+}
 
-  const sim::MotionProfile motion = sim::plan_motion(request.program, request.machine);
+VirtualMachineRun run_on_virtual_machine(const geometry::Program& program, const VirtualMachine& machine,
+                                         const planner::PlanResult& plan, double target_force_n) {
+  VirtualMachineRun run;
+  run.simulation = simulate_on(program, machine);
+
+  const sim::MotionProfile motion = sim::plan_motion(program, machine.machine);
   const double offset_mm = plan.samples.empty() ? 0.0 : motion.length_mm() - plan.samples.back().s_mm;
   std::vector<planner::MeasuredRevolution> revolutions;
   revolutions.reserve(run.simulation.revolutions.size());

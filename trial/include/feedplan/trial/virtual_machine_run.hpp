@@ -37,6 +37,10 @@ struct VirtualMachineRun {
   planner::PeakComparison comparison;     //!< true peaks against the target along the plan
 };
 
+//! Simulates `program` on `machine`: its tool, true physics, stock, limits, spindle speed and sensors; the
+//! log's rows are kept only with machine.keep_log. Throws InputError on an invalid request (sim::validate).
+sim::SimulationResult simulate_on(const geometry::Program& program, const VirtualMachine& machine);
+
 //! Simulates `program` on `machine` and places every simulated revolution on the plan's path: the
 //! machine's motion gives the path length at each revolution's start and end; a program that begins
 //! with a move the plan does not have (a G-code text read back starts from the machine's position) is
