@@ -152,6 +152,17 @@ double predicted_force_n(const model::ResponseSurfaceModel& model, const geometr
   return force_n;
 }
 
+double force_transfer_factor(const model::ResponseSurfaceModel& model, const geometry::EngagementSample& sample,
+                             double load_ratio, double feed_mm_per_min, int flutes, double spindle_rpm) {
+  const double linear = axial_depth_ratio(model, sample.axial_depth_mm);
+  if (!is_engaged(sample)) return linear;
+  const double chip_mm = chip_thickness_mm(sample, feed_mm_per_min, flutes, spindle_rpm);
+  const double straight_n = model::predict(model, chip_mm, model_contact_length_mm(model, sample.contact_length_mm)).force_n;
+  const double transferred_n = predicted_force_n(model, sample, load_ratio, feed_mm_per_min, flutes, spindle_rpm);
+  if (!(straight_n > 0.0) || !(transferred_n > 0.0)) return linear;
+  return transferred_n / straight_n;
+}
+
 double upper_force_n(const model::ResponseSurfaceModel& model, const geometry::EngagementSample& sample,
                      double load_ratio, double feed_mm_per_min, int flutes, double spindle_rpm,
                      const ForceUncertainty* uncertainty) {

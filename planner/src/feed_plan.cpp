@@ -177,6 +177,9 @@ std::vector<InputProblem> validate(const PlanSettings& settings, const geometry:
 
 namespace {
 
+// Plans of the program before one the safety check refuses is reported unsafe.
+constexpr int kSafetyPasses = 4;
+
 // What every step of plan() reads: the inputs, and the values derived from them once.
 struct PlanContext {
   PlanContext(const PlanGeometry& geometry, const PlanSettings& settings);
@@ -341,6 +344,7 @@ FeedLimits limit_feeds(const PlanContext& c, PlanResult& result) {
   result.samples.resize(c.n);
   for (std::size_t i = 0; i < c.n; ++i) {
     result.samples[i] = planned_engagement(c.samples[i]);
+    result.samples[i].load_ratio = c.load_ratio[i];
     limits.mm_per_min[i] = feed_limit_at(c, limits.centripetal, i, result.samples[i], limits.target_below_model);
   }
   hold_feed_limit_before_rapids(c, limits.mm_per_min);
@@ -635,9 +639,8 @@ void report_outcome(const PlanContext& c, const FeedLimits& limits, const FirstP
   for (const std::string& warning : c.engagement.warnings) result.messages.push_back(warning);
 }
 
-// The safety check (safety_check.hpp) on the written program: any violation makes the plan unsafe,
-// named at its first places.
-void check_program(const PlanContext& c, const PlanGeometry& geometry, PlanResult& result) {
+// The safety check (safety_check.hpp) on the written program.
+SafetyCheck check_program(const PlanContext& c, const PlanGeometry& geometry, const PlanResult& result) {
   SafetyCheckInput input;
   input.stock = &geometry.stock;
   input.tool = &geometry.tool;
@@ -648,7 +651,49 @@ void check_program(const PlanContext& c, const PlanGeometry& geometry, PlanResul
   if (c.settings.options.mode == PlanMode::kRegulate) {
     input.relative_tolerance = std::max(input.relative_tolerance, c.settings.options.merge_tolerance);
   }
-  const std::vector<SafetyViolation> violations = check_safety(result.program, input);
+  return check_safety(result.program, input);
+}
+
+// The check samples between two planner samples where the limit is lower than at both: every check sample
+// of a program move that breaks an invariant lowers the limits of the two planner samples around it to
+// the feed the check allows there (on feed moves; a rapid in material or an unknown engagement is not
+// mended by a feed). True when a limit was lowered.
+bool hold_check_allowances(const PlanContext& c, const SafetyCheck& check, FeedLimits& limits, PlanResult& result) {
+  std::vector<bool> violating(result.program.path.moves.size(), false);
+  for (const SafetyViolation& v : check.violations) violating[static_cast<std::size_t>(v.move_index)] = true;
+  bool lowered = false;
+  for (const AllowedFeed& allowed : check.allowed) {
+    if (!violating[static_cast<std::size_t>(allowed.move_index)]) continue;
+    if (!(allowed.mm_per_min > 0.0) || !std::isfinite(allowed.mm_per_min)) continue;
+    const auto after = std::upper_bound(c.s.begin(), c.s.end(), allowed.s_mm);
+    const std::size_t i = after == c.s.begin() ? 0 : static_cast<std::size_t>(after - c.s.begin()) - 1;
+    for (std::size_t j = i; j <= std::min(i + 1, c.n - 1); ++j) {
+      const auto& move = c.path.moves[static_cast<std::size_t>(c.samples[j].move_index)];
+      if (move.kind == geometry::MoveKind::kRapid || !(limits.mm_per_min[j] > allowed.mm_per_min * (1.0 + 1e-9))) {
+        continue;
+      }
+      limits.mm_per_min[j] = allowed.mm_per_min;
+      result.samples[j].feed_limit_mm_per_min = allowed.mm_per_min;
+      result.samples[j].limit_reason = FeedLimitReason::kForce;
+      lowered = true;
+    }
+  }
+  return lowered;
+}
+
+// Steps 2 and 3 and the program under the current limits; the check on it.
+SafetyCheck plan_checked_program(const PlanContext& c, const PlanGeometry& geometry, const FeedLimits& limits,
+                                 CommandProfile& command, PlanResult& result) {
+  command = plan_command_profile(c, limits, result);
+  split_into_blocks(c, command, result);
+  result.program = {};
+  write_program(c, result);
+  return check_program(c, geometry, result);
+}
+
+// A plan the check still refuses is unsafe, named at its first places.
+void report_unsafe(const SafetyCheck& check, PlanResult& result) {
+  const std::vector<SafetyViolation>& violations = check.violations;
   if (violations.empty()) return;
   result.status = PlanStatus::kUnsafe;
   constexpr std::size_t kNamed = 3;
@@ -663,20 +708,24 @@ void check_program(const PlanContext& c, const PlanGeometry& geometry, PlanResul
 
 }  // namespace
 
-// The steps of the method in feed_plan.hpp, in order.
+// The steps of the method in feed_plan.hpp, in order; steps 2 and 3 again (at most kSafetyPasses times in
+// all) while the safety check finds places between the planner's samples that need a lower feed.
 PlanResult plan(const PlanGeometry& geometry, const PlanSettings& settings) {
   check_plan_input(geometry, settings);
   const PlanContext context(geometry, settings);
   PlanResult result;
-  const FeedLimits limits = limit_feeds(context, result);
-  const CommandProfile command = plan_command_profile(context, limits, result);
-  split_into_blocks(context, command, result);
+  FeedLimits limits = limit_feeds(context, result);
+  CommandProfile command;
+  SafetyCheck check = plan_checked_program(context, geometry, limits, command, result);
+  for (int pass = 1; pass < kSafetyPasses && !check.violations.empty(); ++pass) {
+    if (!hold_check_allowances(context, check, limits, result)) break;
+    check = plan_checked_program(context, geometry, limits, command, result);
+  }
   const BlockRunner runner(context, limits, command.accel_mm_per_s2);
   const FirstProblems first = predict(context, limits, runner, result);
   plan_baseline(context, runner, result);
-  write_program(context, result);
   report_outcome(context, limits, first, result);
-  check_program(context, geometry, result);
+  report_unsafe(check, result);
   return result;
 }
 

@@ -44,28 +44,24 @@ double force_limit_mm_per_min(const SafetyCheckInput& input, const geometry::Eng
   return std::max(limit.feed_mm_per_min, settings.machine.min_feed_mm_per_min);
 }
 
-// The problem at one sample of a move run at `feed`, if any, with the feed allowed there.
-struct SampleVerdict {
-  bool unsafe = false;
+// The feed allowed at one sample and the invariant that sets it.
+struct SampleAllowance {
+  double mm_per_min = std::numeric_limits<double>::infinity();
   SafetyProblem problem = SafetyProblem::kAboveForceLimit;
-  double allowed_mm_per_min = 0.0;
 };
 
-SampleVerdict judge_sample(const SafetyCheckInput& input, const geometry::EngagementProfile& profile,
-                           const geometry::EngagementSample& sample, const geometry::Move& move, double feed) {
-  SampleVerdict verdict;
+SampleAllowance allowance(const SafetyCheckInput& input, const geometry::EngagementProfile& profile,
+                          const geometry::EngagementSample& sample, const geometry::Move& move) {
   if (!std::isfinite(sample.engagement_rad) || !std::isfinite(sample.chip_factor) ||
       !std::isfinite(sample.material_height_mm)) {
-    return {true, SafetyProblem::kEngagementUnknown, 0.0};
+    return {0.0, SafetyProblem::kEngagementUnknown};
   }
-  if (!is_engaged(sample)) return verdict;
-  if (move.kind == geometry::MoveKind::kRapid) return {true, SafetyProblem::kRapidInMaterial, 0.0};
-  const double slack = 1.0 + input.relative_tolerance;
+  if (!is_engaged(sample)) return {};
+  if (move.kind == geometry::MoveKind::kRapid) return {0.0, SafetyProblem::kRapidInMaterial};
   const double plunge = plunge_feed_limit_mm_per_min(move, *input.tool, input.settings->spindle_rpm);
-  if (feed > plunge * slack) return {true, SafetyProblem::kAbovePlungeLimit, plunge};
   const double force = force_limit_mm_per_min(input, profile, sample);
-  if (feed > force * slack) return {true, SafetyProblem::kAboveForceLimit, force};
-  return verdict;
+  if (plunge < force) return {plunge, SafetyProblem::kAbovePlungeLimit};
+  return {force, SafetyProblem::kAboveForceLimit};
 }
 
 // How bad a violation is, for keeping a move's worst one.
@@ -85,25 +81,29 @@ std::string to_string(SafetyProblem problem) {
   return "?";
 }
 
-std::vector<SafetyViolation> check_safety(const geometry::Program& program, const SafetyCheckInput& input) {
+SafetyCheck check_safety(const geometry::Program& program, const SafetyCheckInput& input) {
   assert(input.stock && input.tool && input.settings && input.ds_mm > 0.0);
   assert(program.blocks.size() == program.path.moves.size());
   geometry::EngagementOptions options;
   options.ds_mm = input.ds_mm;
   const geometry::EngagementProfile profile =
       geometry::compute_engagement(program.path, *input.stock, input.tool->radius_mm(), options);
-  std::vector<SafetyViolation> violations;
+  SafetyCheck check;
+  std::vector<SafetyViolation>& violations = check.violations;
+  check.allowed.reserve(profile.samples.size());
+  const double slack = 1.0 + input.relative_tolerance;
   int last_move = -1;
   for (const geometry::EngagementSample& sample : profile.samples) {
     const auto m = static_cast<std::size_t>(sample.move_index);
     const geometry::Move& move = program.path.moves[m];
     const double feed = move.kind == geometry::MoveKind::kRapid ? input.settings->machine.rapid_feed_mm_per_min
                                                                 : program.blocks[m].feed_mm_per_min;
-    const SampleVerdict verdict = judge_sample(input, profile, sample, move, feed);
-    if (!verdict.unsafe) continue;
-    const SafetyViolation found{verdict.problem, sample.move_index,     program.blocks[m].source_line,
+    const SampleAllowance allowed = allowance(input, profile, sample, move);
+    check.allowed.push_back({sample.s_mm, sample.move_index, allowed.mm_per_min});
+    if (!(feed > allowed.mm_per_min * slack)) continue;
+    const SafetyViolation found{allowed.problem, sample.move_index,     program.blocks[m].source_line,
                                 sample.s_mm,     sample.position,       feed,
-                                verdict.allowed_mm_per_min, sample.engagement_rad, sample.material_height_mm};
+                                allowed.mm_per_min, sample.engagement_rad, sample.material_height_mm};
     if (sample.move_index != last_move) {
       violations.push_back(found);
       last_move = sample.move_index;
@@ -111,7 +111,7 @@ std::vector<SafetyViolation> check_safety(const geometry::Program& program, cons
       violations.back() = found;
     }
   }
-  return violations;
+  return check;
 }
 
 std::string describe(const SafetyViolation& v) {

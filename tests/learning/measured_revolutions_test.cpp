@@ -218,7 +218,7 @@ TEST(MeasuredRevolutions, FeedFromTheAlignmentWhenTheLogHasNone) {
 
 TEST(MeasuredRevolutions, ForcesScaleToTheModelsAxialDepthUnlessAskedNot) {
   MeasuredRevolutionOptions raw;
-  raw.scale_to_model_axial_depth = false;
+  raw.transfer_to_model = false;
   const MeasuredRevolutions scaled =
       measured_revolutions(run().result.log, run().alignment, run().plan, run().model, kFlutes, kRpm);
   const MeasuredRevolutions unscaled =

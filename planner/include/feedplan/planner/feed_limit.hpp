@@ -96,6 +96,13 @@ double upper_force_n(const model::ResponseSurfaceModel& model, const geometry::E
 double predicted_force_n(const model::ResponseSurfaceModel& model, const geometry::EngagementSample& sample,
                          double load_ratio, double feed_mm_per_min, int flutes, double spindle_rpm);
 
+//! predicted_force_n / F̂(t_m, max(L, L_min)) at `sample` and path feed `feed_mm_per_min`: the factor the
+//! transfer that binds there (axial-depth scaling or chip load, with its contact length) puts on the
+//! straight-cut model; what a measured force is divided by to give the model's own force at those inputs
+//! (learning). axial_depth_ratio when F̂ is not positive or the sample is not engaged.
+double force_transfer_factor(const model::ResponseSurfaceModel& model, const geometry::EngagementSample& sample,
+                             double load_ratio, double feed_mm_per_min, int flutes, double spindle_rpm);
+
 //! t_m (mm) at `sample` for path feed `feed_mm_per_min`.
 double chip_thickness_mm(const geometry::EngagementSample& sample, double feed_mm_per_min, int flutes,
                          double spindle_rpm);

@@ -158,6 +158,7 @@ struct PlannedSample {
   double chip_factor = 0.0;             //!< k = t_m / f_z (XY feed per tooth), in [0, 1]
   double contact_length_mm = 0.0;       //!< L = r α_en, mm
   double axial_depth_mm = 0.0;          //!< axial depth of cut, mm
+  double load_ratio = 0.0;              //!< C / C_ref of the chip-load transfer (feed_limit.hpp), 0: none
   double feed_limit_mm_per_min = 0.0;   //!< the feed limit of step 1, mm/min
   FeedLimitReason limit_reason = FeedLimitReason::kAirFeed;  //!< what sets feed_limit_mm_per_min
   bool extrapolated = false;            //!< the force model is used outside its fitted range here

@@ -63,10 +63,27 @@ struct SafetyViolation {
   double material_height_mm = 0.0;         //!< height of material in contact above the tip, mm
 };
 
-//! Every program move that breaks an invariant, with its worst place (the largest F / allowed), in
-//! program order; empty when the program is safe. Requires the input's pointers set and a consistent
-//! program path (asserted: plan() and tests call it on programs they made).
-std::vector<SafetyViolation> check_safety(const geometry::Program& program, const SafetyCheckInput& input);
+//! The check's samples along the program with the feed their engagement allows.
+struct AllowedFeed {
+  double s_mm = 0.0;                 //!< arc length along the program, mm
+  int move_index = 0;                //!< program move the sample belongs to
+  //! The largest feed allowed there, mm/min: the smaller of the force and plunge limits where the tool
+  //! meets material; +∞ where it does not; 0 where no feed is safe (a rapid in material, an unknown
+  //! engagement).
+  double mm_per_min = 0.0;
+};
+
+//! What check_safety finds.
+struct SafetyCheck {
+  //! Every program move that breaks an invariant, with its worst place (the largest F / allowed), in
+  //! program order; empty when the program is safe.
+  std::vector<SafetyViolation> violations;
+  std::vector<AllowedFeed> allowed;  //!< every sample of the check, in program order
+};
+
+//! Checks `program` (file comment). Requires the input's pointers set and a consistent program path
+//! (asserted: plan() and tests call it on programs they made).
+SafetyCheck check_safety(const geometry::Program& program, const SafetyCheckInput& input);
 
 //! One sentence naming the violation: the move, its line when known, s, x, y, z, F and the limit.
 std::string describe(const SafetyViolation& violation);
