@@ -163,7 +163,8 @@ PlannedCycle plan_cycle(const PlanCommandOptions& o, const PlanInputs& in, const
 // The program only when the target can be met everywhere, or the constant-feed one when asked for.
 ProgramChoice choose_program(const PlanCommandOptions& o, const planner::PlanResult& result) {
   ProgramChoice choice;
-  choice.planned = result.status != planner::PlanStatus::kTargetNotMet && !o.constant_feed_mm_per_min;
+  choice.planned = result.status != planner::PlanStatus::kTargetNotMet && result.status != planner::PlanStatus::kUnsafe &&
+                   !o.constant_feed_mm_per_min;
   choice.constant = o.constant_feed_mm_per_min.has_value();
   return choice;
 }
@@ -357,9 +358,14 @@ int run_plan_command(const PlanCommandOptions& o) {
   print_plan_notes(planned.result, out);
   print_kept_outputs(out);
   if (!out.program.any()) {
-    const planner::TargetAdvice advice = planner::target_advice(planned.geometry, planned.settings, planned.result);
-    std::cerr << "feedplan: failed: the target cannot be met everywhere (see the note above); no program written to "
-              << o.program_path << " — " << advice.text << borrowed_model_advice(*model) << "\n";
+    if (planned.result.status == planner::PlanStatus::kUnsafe) {
+      std::cerr << "feedplan: failed: the plan is unsafe (see the note above); no program written to " << o.program_path
+                << "\n";
+    } else {
+      const planner::TargetAdvice advice = planner::target_advice(planned.geometry, planned.settings, planned.result);
+      std::cerr << "feedplan: failed: the target cannot be met everywhere (see the note above); no program written to "
+                << o.program_path << " — " << advice.text << borrowed_model_advice(*model) << "\n";
+    }
     return kExitFailed;
   }
   return 0;

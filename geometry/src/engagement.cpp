@@ -267,13 +267,11 @@ void exclude_earlier_pieces(Sampler& sampler, std::size_t current, Vec2 p, doubl
   remaining = detail::subtract_union(remaining, cuts, kMinEngagedRad);
 }
 
-// The engaged world angles at the sample: the initial material at the evaluation height, less what
+// The engaged world angles at the sample on height `height`: the initial material there, less what
 // the travelled piece and the earlier pieces swept.
-AngleIntervals engaged_angles(Sampler& sampler, const MoveSampling& m, double f, const EngagementSample& sample) {
+AngleIntervals engaged_angles(Sampler& sampler, const MoveSampling& m, double f, const EngagementSample& sample,
+                              double height) {
   const Vec2 p = detail::to_vec(sample.position);
-  const double height = sampler.options.evaluation_z_mm
-                            ? *sampler.options.evaluation_z_mm
-                            : sample.position.z_mm + std::max(0.5 * m.move.axial_depth_mm, 1e-6);
   AngleIntervals remaining;
   if (height > sample.position.z_mm) remaining = detail::initial_material(sampler.stock, p, sampler.r, height);
   if (!remaining.empty()) {
@@ -296,6 +294,97 @@ void summarise_intervals(const EngagementProfile& profile, double r, EngagementS
     sample.chip_area_ratio = chip_area_ratio(first, end);
   }
   sample.contact_length_mm = r * sample.engagement_rad;
+}
+
+// Heights closer than this to the tip or the stock faces are not evaluated (a face is not material).
+constexpr double kLayerOffsetMm = 1e-6;
+// Two engaged sets whose interval ends differ by less than this are the same set.
+constexpr double kSameSetRad = 1e-9;
+
+bool same_set(const AngleIntervals& a, const AngleIntervals& b) {
+  if (a.size() != b.size()) return false;
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    if (std::abs(a[i].lo - b[i].lo) > kSameSetRad || std::abs(a[i].hi - b[i].hi) > kSameSetRad) return false;
+  }
+  return true;
+}
+
+// One height of the bisection and the engaged set there.
+struct HeightSet {
+  double z_mm;
+  AngleIntervals set;
+};
+
+// A band found by the bisection: the set at its bottom, and the height where it ends.
+struct Band {
+  HeightSet bottom;
+  double top_z_mm;
+};
+
+// The bands between two evaluated heights: equal sets (or heights closer than the resolution) make
+// one band with the lower set; otherwise the middle is evaluated. Appends the bands' bottoms in order.
+void bisect_layers(Sampler& sampler, const MoveSampling& m, double f, const EngagementSample& sample,
+                   const HeightSet& lower, const HeightSet& upper, std::vector<Band>& bands) {
+  if (lower.set.empty()) return;  // nothing above an empty height either
+  if (same_set(lower.set, upper.set) || upper.z_mm - lower.z_mm <= sampler.options.layer_resolution_mm) {
+    if (!bands.empty() && same_set(bands.back().bottom.set, lower.set)) {
+      bands.back().top_z_mm = upper.z_mm;
+    } else {
+      bands.push_back({lower, upper.z_mm});
+    }
+    return;
+  }
+  const double middle_z = 0.5 * (lower.z_mm + upper.z_mm);
+  const HeightSet middle{middle_z, engaged_angles(sampler, m, f, sample, middle_z)};
+  bisect_layers(sampler, m, f, sample, lower, middle, bands);
+  if (!middle.set.empty()) bisect_layers(sampler, m, f, sample, middle, upper, bands);
+}
+
+// Appends one layer (its intervals and totals) to the profile.
+EngagementLayer store_layer(Sampler& sampler, const Band& band, double bottom_z_mm, double top_z_mm,
+                            double feed_direction_rad) {
+  EngagementProfile& profile = sampler.profile;
+  EngagementLayer layer;
+  layer.bottom_z_mm = bottom_z_mm;
+  layer.top_z_mm = top_z_mm;
+  layer.interval_begin = static_cast<int>(profile.intervals.size());
+  to_immersion(band.bottom.set, feed_direction_rad, profile.intervals);
+  layer.interval_count = static_cast<int>(profile.intervals.size()) - layer.interval_begin;
+  const EngagedInterval* first = profile.intervals.data() + layer.interval_begin;
+  for (int k = 0; k < layer.interval_count; ++k) layer.engagement_rad += first[k].exit_rad - first[k].entry_rad;
+  layer.chip_factor = chip_factor(first, first + layer.interval_count);
+  return layer;
+}
+
+// Every layer of material the tool meets at the sample, from just above the tip (or the stock bottom)
+// up to the stock top; the sample's own intervals and totals are the lowest layer's.
+void engage_layers(Sampler& sampler, const MoveSampling& m, double f, EngagementSample& sample) {
+  const Stock& stock = sampler.stock;
+  const double low_z = std::max(sample.position.z_mm, stock.z_bottom_mm) + kLayerOffsetMm;
+  const double high_z = stock.z_top_mm - kLayerOffsetMm;
+  EngagementProfile& profile = sampler.profile;
+  if (!(high_z > low_z)) {
+    summarise_intervals(profile, sampler.r, sample);
+    return;
+  }
+  const HeightSet lower{low_z, engaged_angles(sampler, m, f, sample, low_z)};
+  std::vector<Band> bands;
+  if (!lower.set.empty()) {
+    const HeightSet upper{high_z, engaged_angles(sampler, m, f, sample, high_z)};
+    bisect_layers(sampler, m, f, sample, lower, upper, bands);
+  }
+  to_immersion(lower.set, sample.feed_direction_rad, profile.intervals);
+  summarise_intervals(profile, sampler.r, sample);
+  if (bands.empty()) return;
+  sample.layer_begin = static_cast<int>(profile.layers.size());
+  for (std::size_t k = 0; k < bands.size(); ++k) {
+    const double bottom_z = k == 0 ? low_z - kLayerOffsetMm : bands[k].bottom.z_mm;
+    const double top_z = k + 1 == bands.size() && bands[k].top_z_mm >= high_z ? stock.z_top_mm : bands[k].top_z_mm;
+    profile.layers.push_back(store_layer(sampler, bands[k], bottom_z, top_z, sample.feed_direction_rad));
+  }
+  sample.layer_count = static_cast<int>(bands.size());
+  sample.material_height_mm = profile.layers.back().top_z_mm - sample.position.z_mm;
+  sample.axial_depth_mm = sample.material_height_mm;
 }
 
 // A rapid or air move that meets material: one warning, at its first such sample.
@@ -324,8 +413,13 @@ void sample_move(Sampler& sampler, std::size_t i, double s_start_mm) {
     const double f = static_cast<double>(k) / steps;
     EngagementSample sample = place_sample(sampler, m, f);
     sample.interval_begin = static_cast<int>(profile.intervals.size());
-    to_immersion(engaged_angles(sampler, m, f, sample), sample.feed_direction_rad, profile.intervals);
-    summarise_intervals(profile, sampler.r, sample);
+    if (sampler.options.evaluation_z_mm) {
+      to_immersion(engaged_angles(sampler, m, f, sample, *sampler.options.evaluation_z_mm), sample.feed_direction_rad,
+                   profile.intervals);
+      summarise_intervals(profile, sampler.r, sample);
+    } else {
+      engage_layers(sampler, m, f, sample);
+    }
     warn_of_contact_in_air(sampler, m, sample);
     profile.samples.push_back(sample);
   }

@@ -15,7 +15,7 @@ namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 // The tool is in contact where the measured peak envelope exceeds this share of its (robust) maximum.
-constexpr double kContactFraction = 0.1;
+constexpr double kContactFraction = 0.03;
 
 }  // namespace
 

@@ -20,7 +20,7 @@ double spindle_rpm_for(const force_log::ForceLog& log, const planner::PlanResult
 //! Bins of `bin_s` in one revolution at `rpm`, made odd for a centred window; 1 without a speed.
 int revolution_bins(double rpm, double bin_s);
 
-//! 1 where the measured peak envelope (running maximum over `width` bins) exceeds 10 % of its maximum
+//! 1 where the measured peak envelope (running maximum over `width` bins) exceeds 3 % of its maximum
 //! (the 99.9th percentile, so single spikes do not set it), 0 elsewhere, NaN without data.
 std::vector<double> in_contact(const std::vector<double>& force_bins, int width);
 

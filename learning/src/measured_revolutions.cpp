@@ -239,8 +239,9 @@ LearningSample learning_sample(const WindowContext& c, const force_log::Revoluti
   sample.chip_mm = planner::chip_thickness_mm(at.place, at.feed_mm_per_min, c.flutes, c.spindle_rpm);
   sample.contact_length_mm = planner::model_contact_length_mm(c.model, planned.contact_length_mm);
   sample.force_n = peak.peak_xy_n;
-  if (c.options.scale_to_model_axial_depth) {
-    sample.force_n /= planner::axial_depth_ratio(c.model, planned.axial_depth_mm);
+  if (c.options.transfer_to_model) {
+    sample.force_n /= planner::force_transfer_factor(c.model, at.place, planned.load_ratio, at.feed_mm_per_min,
+                                                     c.flutes, c.spindle_rpm);
   }
   sample.weight = 1.0;
   sample.s_mm = 0.5 * (w.s0 + w.s1);

@@ -45,7 +45,8 @@ ConstantFeedPrediction predict_constant_feed(const PlanGeometry& geometry, const
   out.cutting_time_s = run.cutting_time_s;
   for (std::size_t i = 0; i < samples.size(); ++i) {
     const double correction = settings.force_correction.empty() ? 1.0 : settings.force_correction[i];
-    out.peak_force_n = std::max(out.peak_force_n, correction * predicted_force_n(settings.model, samples[i],
+    const double load_ratio = chip_load_ratio(settings.model, geometry.engagement, samples[i], geometry.tool);
+    out.peak_force_n = std::max(out.peak_force_n, correction * predicted_force_n(settings.model, samples[i], load_ratio,
                                                                                  run.speed_mm_per_s[i] * 60.0,
                                                                                  geometry.tool.flutes, settings.spindle_rpm));
   }

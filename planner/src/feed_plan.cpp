@@ -11,6 +11,7 @@
 #include "feedplan/model/model_prediction.hpp"
 #include "feedplan/planner/controller_model.hpp"
 #include "feedplan/planner/feed_limit.hpp"
+#include "feedplan/planner/safety_check.hpp"
 #include "feedplan/planner/speed_profile.hpp"
 
 namespace feedplan::planner {
@@ -73,6 +74,7 @@ std::string to_string(PlanStatus status) {
     case PlanStatus::kOk: return "ok";
     case PlanStatus::kExtrapolated: return "extrapolated";
     case PlanStatus::kTargetNotMet: return "target not met";
+    case PlanStatus::kUnsafe: return "unsafe";
   }
   return "?";
 }
@@ -86,6 +88,7 @@ std::string to_string(FeedLimitReason reason) {
     case FeedLimitReason::kAirFeed: return "air";
     case FeedLimitReason::kMinFeed: return "min feed";
     case FeedLimitReason::kRapid: return "rapid";
+    case FeedLimitReason::kPlunge: return "plunge";
   }
   return "?";
 }
@@ -104,6 +107,7 @@ PlanGeometry analyse(const geometry::ToolPath& path, const geometry::Stock& stoc
   if (!problems.empty()) throw InputError(std::move(problems));
   PlanGeometry result;
   result.path = path;
+  result.stock = stock;
   result.tool = tool;
   geometry::EngagementOptions options;
   options.ds_mm = ds_mm;
@@ -173,6 +177,9 @@ std::vector<InputProblem> validate(const PlanSettings& settings, const geometry:
 
 namespace {
 
+// Plans of the program before one the safety check refuses is reported unsafe.
+constexpr int kSafetyPasses = 4;
+
 // What every step of plan() reads: the inputs, and the values derived from them once.
 struct PlanContext {
   PlanContext(const PlanGeometry& geometry, const PlanSettings& settings);
@@ -192,8 +199,10 @@ struct PlanContext {
   const double rpm;
   const double air_feed;                      // mm/min
   const ForceUncertainty* const uncertainty;  // null: the plain model
+  const geometry::Tool& tool;
   std::vector<double> s;                      // s_mm of every sample
   std::vector<int> move_first;                // first_samples(path, engagement)
+  std::vector<double> load_ratio;             // chip_load_ratio of every sample (feed_limit.hpp)
   // The sample the bound is evaluated on: with a correction c measured along the path, the entry factor
   // is max(ρ, c) in all (force_bound.hpp), so its chip-area ratio becomes max(ρ / c, 1).
   // Copies only when both apply (ρ ≥ 1 already without a correction).
@@ -211,8 +220,10 @@ PlanContext::PlanContext(const PlanGeometry& geometry, const PlanSettings& setti
       air_feed(settings.options.air_feed_mm_per_min > 0.0 ? settings.options.air_feed_mm_per_min
                                                           : settings.machine.max_feed_mm_per_min),
       uncertainty(settings.uncertainty ? &*settings.uncertainty : nullptr),
+      tool(geometry.tool),
       s(n),
-      move_first(first_samples(path, engagement)) {
+      move_first(first_samples(path, engagement)),
+      load_ratio(n) {
   assert(!samples.empty());
   if (uncertainty && uncertainty->off_straight_cut && !settings.force_correction.empty()) {
     corrected_bound_samples = samples;
@@ -220,7 +231,10 @@ PlanContext::PlanContext(const PlanGeometry& geometry, const PlanSettings& setti
       corrected_bound_samples[i].chip_area_ratio = std::max(samples[i].chip_area_ratio / correction(i), 1.0);
     }
   }
-  for (std::size_t i = 0; i < n; ++i) s[i] = samples[i].s_mm;
+  for (std::size_t i = 0; i < n; ++i) {
+    s[i] = samples[i].s_mm;
+    load_ratio[i] = chip_load_ratio(settings.model, engagement, samples[i], tool);
+  }
 }
 
 // Throws InputError with every problem validate() finds, and a force correction of another path.
@@ -271,11 +285,18 @@ double feed_limit_at(const PlanContext& c, const std::vector<double>& centripeta
     planned.feed_limit_mm_per_min = machine.rapid_feed_mm_per_min;
     return machine.rapid_feed_mm_per_min;
   }
-  const SampleFeedLimit limit = sample_feed_limit(c.settings.model, c.bound_sample(i),
+  const SampleFeedLimit limit = sample_feed_limit(c.settings.model, c.bound_sample(i), c.load_ratio[i],
                                                   c.settings.target_force_n / c.correction(i), c.flutes, c.rpm,
                                                   c.air_feed, c.uncertainty);
   double feed = limit.feed_mm_per_min;
   FeedLimitReason reason = limit.reason;
+  if (is_engaged(sample)) {
+    const double plunge = plunge_feed_limit_mm_per_min(move, c.tool, c.rpm);
+    if (plunge < feed) {
+      feed = plunge;
+      reason = FeedLimitReason::kPlunge;
+    }
+  }
   if (feed > machine.max_feed_mm_per_min) {
     feed = machine.max_feed_mm_per_min;
     if (reason != FeedLimitReason::kAirFeed) reason = FeedLimitReason::kMaxFeed;
@@ -323,6 +344,7 @@ FeedLimits limit_feeds(const PlanContext& c, PlanResult& result) {
   result.samples.resize(c.n);
   for (std::size_t i = 0; i < c.n; ++i) {
     result.samples[i] = planned_engagement(c.samples[i]);
+    result.samples[i].load_ratio = c.load_ratio[i];
     limits.mm_per_min[i] = feed_limit_at(c, limits.centripetal, i, result.samples[i], limits.target_below_model);
   }
   hold_feed_limit_before_rapids(c, limits.mm_per_min);
@@ -451,10 +473,11 @@ FirstProblems predict_samples(const PlanContext& c, const ControllerRun& run, Pl
     planned.chip_thickness_mm =
         planned.engaged ? chip_thickness_mm(samples[i], planned.feed_mm_per_min, c.flutes, c.rpm) : 0.0;
     planned.predicted_force_n =
-        c.correction(i) * predicted_force_n(settings.model, samples[i], planned.feed_mm_per_min, c.flutes, c.rpm);
+        c.correction(i) *
+        predicted_force_n(settings.model, samples[i], c.load_ratio[i], planned.feed_mm_per_min, c.flutes, c.rpm);
     planned.upper_force_n = c.uncertainty ? c.correction(i) * upper_force_n(settings.model, c.bound_sample(i),
-                                                                            planned.feed_mm_per_min, c.flutes, c.rpm,
-                                                                            c.uncertainty)
+                                                                            c.load_ratio[i], planned.feed_mm_per_min,
+                                                                            c.flutes, c.rpm, c.uncertainty)
                                           : planned.predicted_force_n;
     planned.within_model_range = planned.engaged && !model::chip_outside(settings.model.range, planned.chip_thickness_mm) &&
                                  !model::contact_length_outside(settings.model.range, planned.contact_length_mm);
@@ -505,7 +528,7 @@ double baseline_feed_mm_per_min(const PlanContext& c, const PlanResult& result) 
     double feed = machine.max_feed_mm_per_min;
     for (std::size_t i = 0; i < c.n; ++i) {
       if (!result.samples[i].engaged) continue;
-      const SampleFeedLimit limit = sample_feed_limit(c.settings.model, c.samples[i],
+      const SampleFeedLimit limit = sample_feed_limit(c.settings.model, c.samples[i], c.load_ratio[i],
                                                       summary.max_predicted_force_n / c.correction(i), c.flutes,
                                                       c.rpm, c.air_feed);
       if (limit.reason == FeedLimitReason::kAirFeed) continue;
@@ -542,6 +565,7 @@ void plan_baseline(const PlanContext& c, const BlockRunner& runner, PlanResult& 
   for (std::size_t i = 0; i < c.n; ++i) {
     baseline.peak_force_n =
         std::max(baseline.peak_force_n, c.correction(i) * predicted_force_n(c.settings.model, c.samples[i],
+                                                                             c.load_ratio[i],
                                                                              base_run.speed_mm_per_s[i] * 60.0,
                                                                              c.flutes, c.rpm));
   }
@@ -585,7 +609,7 @@ std::string extrapolation_message(const PlanContext& c, const FirstProblems& fir
   return "the model extrapolates where it sets the feed at " + std::to_string(summary.extrapolated_samples) +
          " samples, first at " + where(e) + " (L = " + fixed(e.contact_length_mm, 3) + " mm, fitted " +
          fixed(range.contact_length_min_mm, 3) + "–" + fixed(range.contact_length_max_mm, 3) + " mm; t_m fitted " +
-         fixed(range.chip_min_mm, 4) + "–" + fixed(range.chip_max_mm, 4) + " mm; a_p " + num(e.axial_depth_mm) +
+         fixed(range.chip_min_mm, 4) + "–" + fixed(range.chip_max_mm, 4) + " mm; a_p " + fixed(e.axial_depth_mm, 3) +
          " mm, fitted at " + num(settings.model.axial_depth_mm) + " mm)";
 }
 
@@ -615,21 +639,93 @@ void report_outcome(const PlanContext& c, const FeedLimits& limits, const FirstP
   for (const std::string& warning : c.engagement.warnings) result.messages.push_back(warning);
 }
 
+// The safety check (safety_check.hpp) on the written program.
+SafetyCheck check_program(const PlanContext& c, const PlanGeometry& geometry, const PlanResult& result) {
+  SafetyCheckInput input;
+  input.stock = &geometry.stock;
+  input.tool = &geometry.tool;
+  input.settings = &c.settings;
+  input.correction_s_mm = c.s;
+  input.ds_mm = c.settings.options.ds_mm;
+  // --mode regulate promises F within the merge tolerance of the limit (feed_plan.hpp), not below it.
+  if (c.settings.options.mode == PlanMode::kRegulate) {
+    input.relative_tolerance = std::max(input.relative_tolerance, c.settings.options.merge_tolerance);
+  }
+  return check_safety(result.program, input);
+}
+
+// The check samples between two planner samples where the limit is lower than at both: every check sample
+// of a program move that breaks an invariant lowers the limits of the two planner samples around it to
+// the feed the check allows there (on feed moves; a rapid in material or an unknown engagement is not
+// mended by a feed). True when a limit was lowered.
+bool hold_check_allowances(const PlanContext& c, const SafetyCheck& check, FeedLimits& limits, PlanResult& result) {
+  std::vector<bool> violating(result.program.path.moves.size(), false);
+  for (const SafetyViolation& v : check.violations) violating[static_cast<std::size_t>(v.move_index)] = true;
+  bool lowered = false;
+  for (const AllowedFeed& allowed : check.allowed) {
+    if (!violating[static_cast<std::size_t>(allowed.move_index)]) continue;
+    if (!(allowed.mm_per_min > 0.0) || !std::isfinite(allowed.mm_per_min)) continue;
+    const auto after = std::upper_bound(c.s.begin(), c.s.end(), allowed.s_mm);
+    const std::size_t i = after == c.s.begin() ? 0 : static_cast<std::size_t>(after - c.s.begin()) - 1;
+    for (std::size_t j = i; j <= std::min(i + 1, c.n - 1); ++j) {
+      const auto& move = c.path.moves[static_cast<std::size_t>(c.samples[j].move_index)];
+      if (move.kind == geometry::MoveKind::kRapid || !(limits.mm_per_min[j] > allowed.mm_per_min * (1.0 + 1e-9))) {
+        continue;
+      }
+      limits.mm_per_min[j] = allowed.mm_per_min;
+      result.samples[j].feed_limit_mm_per_min = allowed.mm_per_min;
+      result.samples[j].limit_reason = FeedLimitReason::kForce;
+      lowered = true;
+    }
+  }
+  return lowered;
+}
+
+// Steps 2 and 3 and the program under the current limits; the check on it.
+SafetyCheck plan_checked_program(const PlanContext& c, const PlanGeometry& geometry, const FeedLimits& limits,
+                                 CommandProfile& command, PlanResult& result) {
+  command = plan_command_profile(c, limits, result);
+  split_into_blocks(c, command, result);
+  result.program = {};
+  write_program(c, result);
+  return check_program(c, geometry, result);
+}
+
+// A plan the check still refuses is unsafe, named at its first places.
+void report_unsafe(const SafetyCheck& check, PlanResult& result) {
+  const std::vector<SafetyViolation>& violations = check.violations;
+  if (violations.empty()) return;
+  result.status = PlanStatus::kUnsafe;
+  constexpr std::size_t kNamed = 3;
+  std::string text = "unsafe: " + std::to_string(violations.size()) +
+                     " program moves run faster than their engagement allows (or rapid through material): ";
+  for (std::size_t k = 0; k < std::min(kNamed, violations.size()); ++k) {
+    text += (k > 0 ? "; " : "") + describe(violations[k]);
+  }
+  if (violations.size() > kNamed) text += "; …";
+  result.messages.insert(result.messages.begin(), text);
+}
+
 }  // namespace
 
-// The steps of the method in feed_plan.hpp, in order.
+// The steps of the method in feed_plan.hpp, in order; steps 2 and 3 again (at most kSafetyPasses times in
+// all) while the safety check finds places between the planner's samples that need a lower feed.
 PlanResult plan(const PlanGeometry& geometry, const PlanSettings& settings) {
   check_plan_input(geometry, settings);
   const PlanContext context(geometry, settings);
   PlanResult result;
-  const FeedLimits limits = limit_feeds(context, result);
-  const CommandProfile command = plan_command_profile(context, limits, result);
-  split_into_blocks(context, command, result);
+  FeedLimits limits = limit_feeds(context, result);
+  CommandProfile command;
+  SafetyCheck check = plan_checked_program(context, geometry, limits, command, result);
+  for (int pass = 1; pass < kSafetyPasses && !check.violations.empty(); ++pass) {
+    if (!hold_check_allowances(context, check, limits, result)) break;
+    check = plan_checked_program(context, geometry, limits, command, result);
+  }
   const BlockRunner runner(context, limits, command.accel_mm_per_s2);
   const FirstProblems first = predict(context, limits, runner, result);
   plan_baseline(context, runner, result);
-  write_program(context, result);
   report_outcome(context, limits, first, result);
+  report_unsafe(check, result);
   return result;
 }
 

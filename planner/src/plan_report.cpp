@@ -446,7 +446,7 @@ PlanReport parse_plan_report(std::string_view json_text, const std::string& sour
   PlanReport report;
   report.format_version = read_format_version(reader, root, source_name);
   report.status = enum_from_text(root, "status",
-                                 std::array{PlanStatus::kOk, PlanStatus::kExtrapolated, PlanStatus::kTargetNotMet},
+                                 std::array{PlanStatus::kOk, PlanStatus::kExtrapolated, PlanStatus::kTargetNotMet, PlanStatus::kUnsafe},
                                  PlanStatus::kOk);
   report.messages = root.texts("messages");
   read_origin(root, report.context);

@@ -115,7 +115,9 @@ TEST_F(HonestSummaryCliTest, SimulateLeadsWithTheLargestPeakAnywhereAndWhereItIs
   });
   ASSERT_NE(largest, revolutions.rows.end());
   EXPECT_NEAR(headline_n, (*largest)[peak_column], 0.051) << r.output;
-  EXPECT_GT(headline_n, 1.5 * 300.0) << "the sample's largest peak is far above the target";
+  // Every revolution, the entry into solid material included, within +5 % of the target (the first helix
+  // turn is cut at the feed its engagement on every layer allows, not at the air feed).
+  EXPECT_LE(headline_n, 1.05 * 300.0) << r.output;
 
   // Where: the force log's tool position in the middle of that revolution.
   const double t_mid_s = 0.5 * ((*largest)[revolutions.column("t_start_s")] + (*largest)[revolutions.column("t_end_s")]);
@@ -134,9 +136,8 @@ TEST_F(HonestSummaryCliTest, SimulateLeadsWithTheLargestPeakAnywhereAndWhereItIs
 // --- a borrowed model is a status, and plans cautiously ----------------------------------------------
 
 // A Ø8 tool planned with the Ø10 model: borrowed by |10 − 8| / 8 = 25 % (by hand), so r = 0.25 / 2 and
-// the plan holds the model's force at most target / 1.25 = 240 N. On the virtual machine (whose Ø8 tool
-// cuts with fewer teeth in contact than the Ø10 model expects at the same t_m and L) the steady
-// revolutions then stay within 5 % of the target; planned on the model alone they overshoot by > 15 %.
+// the plan holds the model's force at most target / 1.25 = 240 N. On the virtual machine the cautious
+// plan's largest peak stays at or below the target and below that of the plan on the model alone.
 TEST_F(HonestSummaryCliTest, ABorrowedDiameterIsAStatusAndIsPlannedCautiously) {
   const fs::path spec = edited_sample("trochoid.yaml", {{"diameter_mm: 10", "diameter_mm: 8"},
                                                         {"name: \"SC EM D10 Z4\"", "name: \"SC EM D8 Z4\""},
@@ -154,16 +155,19 @@ TEST_F(HonestSummaryCliTest, ABorrowedDiameterIsAStatusAndIsPlannedCautiously) {
   EXPECT_NE(report_text.find("\"diameter 10 mm for 8 mm\""), std::string::npos);
   EXPECT_NEAR(number_after(report_text, "\"relative_uncertainty\": "), 0.125, 1e-12);
 
-  const RunResult cautious = run_feedplan(plan_args(spec, dir_ / "p.nc") + " --simulate --json");
+  const RunResult cautious_json = run_feedplan(plan_args(spec, dir_ / "p.nc") + " --json");
+  ASSERT_EQ(cautious_json.exit_code, 0) << cautious_json.output;
+  EXPECT_NE(cautious_json.output.find("\"model_match\": \"borrowed\""), std::string::npos) << cautious_json.output;
+  const RunResult cautious = run_feedplan(plan_args(spec, dir_ / "p.nc") + " --simulate");
   ASSERT_EQ(cautious.exit_code, 0) << cautious.output;
-  EXPECT_NE(cautious.output.find("\"model_match\": \"borrowed\""), std::string::npos) << cautious.output;
-  EXPECT_LT(number_after(cautious.output, "\"steady_max_abs_error_percent\": "), 5.0) << cautious.output;
+  const double cautious_peak_n = number_after(cautious.output, "virtual machine: largest per-revolution peak: ");
+  EXPECT_LE(cautious_peak_n, 300.0) << cautious.output;
 
   const RunResult alone = run_feedplan(plan_args(spec, dir_ / "p.nc") + " --simulate --model-uncertainty 0");
   ASSERT_EQ(alone.exit_code, 0) << alone.output;
   EXPECT_NE(alone.output.find("status: ok, model borrowed (NOT planned cautiously: --model-uncertainty 0)"),
             std::string::npos) << alone.output;
-  EXPECT_GT(number_after(alone.output, "steady revolutions: max |error| "), 15.0) << alone.output;
+  EXPECT_GT(number_after(alone.output, "virtual machine: largest per-revolution peak: "), cautious_peak_n) << alone.output;
 }
 
 // A stored tool's name does not make a model exact: the spec's Ø8 tool named like the Ø10 one borrows.

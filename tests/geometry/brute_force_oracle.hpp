@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <optional>
 #include <vector>
 
 #include "feedplan/geometry/engagement.hpp"
@@ -174,7 +175,9 @@ class EngagementOracle {
     const Move& move = path_.moves[move_index];
     const Point3 pos = point_at(move, f);
     p_ = {pos.x_mm, pos.y_mm};
-    height_ = pos.z_mm + std::max(0.5 * move.axial_depth_mm, 1e-6);
+    // The lowest layer, just above the tip: what compute_engagement reports as the sample's engagement
+    // (every higher layer's engaged set lies inside it).
+    height_ = height_above_tip_mm_ ? pos.z_mm + *height_above_tip_mm_ : pos.z_mm + 1e-6;
     move_index_ = move_index;
     current_ = make_earlier(move, f, r_);
     clip(current_, height_);
@@ -201,6 +204,12 @@ class EngagementOracle {
   Earlier current_;
   XY p_{};
   double height_ = 0;
+
+ public:
+  //! Evaluate at this height above the tip instead of the lowest layer (unset: the lowest layer).
+  std::optional<double> height_above_tip_mm_;
+
+ private:
 };
 
 }  // namespace feedplan::geometry::oracle

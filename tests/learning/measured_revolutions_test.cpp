@@ -17,6 +17,7 @@
 #include "feedplan/cycles/cycle.hpp"
 #include "feedplan/cycles/spec_reader.hpp"
 #include "feedplan/learning/log_alignment.hpp"
+#include "feedplan/core/angle.hpp"
 #include "feedplan/learning/measured_revolutions.hpp"
 #include "feedplan/planner/feed_plan.hpp"
 #include "feedplan/planner/peak_comparison.hpp"
@@ -96,6 +97,13 @@ const force_log::RevolutionPeak* true_revolution(double t_start_s) {
   return nullptr;
 }
 
+// The machine's largest speed over [t0_s, t0_s + span_s], mm/s.
+double fastest_mm_per_s(double t0_s, double span_s) {
+  double fastest = 0.0;
+  for (int k = 0; k <= 20; ++k) fastest = std::max(fastest, run().motion.state_at_time(t0_s + span_s * k / 20).speed_mm_per_s);
+  return fastest;
+}
+
 // The analytic straight cut on the walls (docs/method.md §5.1).
 double wall_engagement_rad() { return std::acos(1.0 - kRadialDepthMm / kToolRadiusMm); }
 
@@ -112,13 +120,14 @@ bool on_steady_wall(double s0_mm, double s1_mm) {
 
 TEST(MeasuredRevolutions, PeaksAreTheSimulatorsAndInputsTheAnalyticStraightCut) {
   ASSERT_EQ(run().alignment.status, AlignmentStatus::kOk) << run().alignment.message;
+  MeasuredRevolutionOptions raw;  // the measured peaks as they are (the transfer: next tests)
+  raw.transfer_to_model = false;
   const MeasuredRevolutions m =
-      measured_revolutions(run().result.log, run().alignment, run().plan, run().model, kFlutes, kRpm);
+      measured_revolutions(run().result.log, run().alignment, run().plan, run().model, kFlutes, kRpm, raw);
   ASSERT_GT(m.samples.size(), 20u) << m.message;
   ASSERT_EQ(m.samples.size(), m.sample_t_start_s.size());
   EXPECT_EQ(m.skipped_nan, 0);
   const double period_s = 60.0 / kRpm;
-  const double ratio = kAxialDepthMm / run().model.axial_depth_mm;
   int steady = 0;
   std::vector<double> errors;
   for (std::size_t k = 0; k < m.samples.size(); ++k) {
@@ -126,15 +135,18 @@ TEST(MeasuredRevolutions, PeaksAreTheSimulatorsAndInputsTheAnalyticStraightCut) 
     const double t0 = m.sample_t_start_s[k];
     const force_log::RevolutionPeak* truth = true_revolution(t0);
     ASSERT_NE(truth, nullptr) << "t " << t0;
-    // The dynamometer (2 N noise) against the true force at every internal step.
-    const double error = sample.force_n * ratio / truth->peak_xy_n - 1.0;
-    EXPECT_NEAR(error, 0.0, 0.04) << "t " << t0;
+    // The dynamometer (2 N noise) against the true force at every internal step: within 6 % where the
+    // force changes inside the window (the tool entering or leaving; the simulator's window starts up to
+    // one internal step later), the median within 1 % (below).
+    const double error = sample.force_n / truth->peak_xy_n - 1.0;
+    EXPECT_NEAR(error, 0.0, 0.06) << "t " << t0;
     errors.push_back(std::abs(error));
-    // The middle of the path the machine covered in the revolution (the estimated force delay, about
-    // 1 ms, moves it by up to 0.1 mm at the fastest cutting feed here, 80 mm/s).
+    // The middle of the path the machine covered in the revolution (the estimated force delay — the true
+    // one is a fraction of a millisecond — moves it by |delay| times the speed there).
     const double s0 = run().motion.state_at_time(t0).s_mm;
     const double s1 = run().motion.state_at_time(t0 + period_s).s_mm;
-    EXPECT_NEAR(sample.s_mm, 0.5 * (s0 + s1), 0.15) << "t " << t0;
+    EXPECT_NEAR(sample.s_mm, 0.5 * (s0 + s1), 0.05 + std::abs(run().alignment.delay_s) * fastest_mm_per_s(t0, period_s))
+        << "t " << t0;
     if (!on_steady_wall(s0, s1)) continue;
     ++steady;
     const double feed_mm_per_min = run().motion.state_at_time(t0 + 0.5 * period_s).speed_mm_per_s * 60.0;
@@ -157,10 +169,11 @@ TEST(MeasuredRevolutions, EveryAlignedRevolutionIsThereForThePeakComparison) {
       measured_revolutions(run().result.log, run().alignment, run().plan, run().model, kFlutes, kRpm);
   const double period_s = 60.0 / kRpm;
   const double duration_s = run().result.log.rows.back().t_s - run().result.log.rows.front().t_s;
-  // Complete windows of force_log::revolution_peaks' rule; all aligned (the log starts and ends on the path).
+  // Complete windows of force_log::revolution_peaks' rule; all aligned (the log starts and ends on the path)
+  // but the first, which the estimated force delay may move before the log's start.
   const int complete = static_cast<int>(std::floor(duration_s / period_s + 1e-6));
   EXPECT_NEAR(static_cast<double>(m.revolutions.size()), complete, 1.0);
-  EXPECT_EQ(m.skipped_not_aligned, 0);
+  EXPECT_LE(m.skipped_not_aligned, 1);
   EXPECT_EQ(static_cast<int>(m.revolutions.size()), static_cast<int>(m.samples.size()) + m.skipped_not_engaged);
   for (const auto& rev : m.revolutions) EXPECT_LE(rev.s_start_mm, rev.s_end_mm);
   const planner::PeakComparison c = planner::compare_peaks(run().plan, run().spec.target_force_n, m.revolutions);
@@ -184,7 +197,9 @@ TEST(MeasuredRevolutions, ForceDelayIsUndoneWhenPlacingRevolutions) {
                   run().motion.state_at_time(t_start_s - 0.05 + period_s).s_mm);
   };
   for (std::size_t k = 0; k < m.samples.size(); ++k) {
-    EXPECT_NEAR(m.samples[k].s_mm, true_middle_mm(m.sample_t_start_s[k]), 0.15);
+    const double t0 = m.sample_t_start_s[k] - 0.05;
+    EXPECT_NEAR(m.samples[k].s_mm, true_middle_mm(m.sample_t_start_s[k]),
+                0.05 + std::abs(alignment.delay_s - 0.05) * fastest_mm_per_s(t0, period_s));
   }
   // Without the shift the places would be 50 ms of travel (over a millimetre) late.
   Alignment unshifted = alignment;
@@ -216,17 +231,32 @@ TEST(MeasuredRevolutions, FeedFromTheAlignmentWhenTheLogHasNone) {
   EXPECT_GE(steady, 10);
 }
 
-TEST(MeasuredRevolutions, ForcesScaleToTheModelsAxialDepthUnlessAskedNot) {
+TEST(MeasuredRevolutions, ForcesTransferToTheModelsStraightCutUnlessAskedNot) {
+  // On the steady 6 mm wall the planner puts the chip-load transfer on the 10 mm model (feed_limit.hpp):
+  // the 10 mm cut's 30° flute spans 66° of immersion, more than the wall's α = 45.6°, the 6 mm cut's
+  // w = 6 tan β / r = 39.7°, so the peak chip held at once is (cos(π − α) − cos(π − α + w)) / (1 − cos α)
+  // of the 10 mm cut's (the closed form of FeedPlan.AxialDepthScalesTheForceByTheChipLoad), not 6/10.
   MeasuredRevolutionOptions raw;
-  raw.scale_to_model_axial_depth = false;
+  raw.transfer_to_model = false;
   const MeasuredRevolutions scaled =
       measured_revolutions(run().result.log, run().alignment, run().plan, run().model, kFlutes, kRpm);
   const MeasuredRevolutions unscaled =
       measured_revolutions(run().result.log, run().alignment, run().plan, run().model, kFlutes, kRpm, raw);
   ASSERT_EQ(scaled.samples.size(), unscaled.samples.size());
+  const double alpha = wall_engagement_rad();
+  const double w = kAxialDepthMm * std::tan(30.0 * kPi / 180.0) / kToolRadiusMm;
+  const double ratio = (std::cos(kPi - alpha) - std::cos(kPi - alpha + w)) / (1.0 - std::cos(alpha));
+  ASSERT_GT(ratio, kAxialDepthMm / 10.0);
+  int steady = 0;
   for (std::size_t k = 0; k < scaled.samples.size(); ++k) {
-    EXPECT_NEAR(scaled.samples[k].force_n, unscaled.samples[k].force_n * 10.0 / 6.0, 1e-9);
+    EXPECT_GT(scaled.samples[k].force_n, 0.0);
+    const double t0 = scaled.sample_t_start_s[k];
+    if (!on_steady_wall(run().motion.state_at_time(t0).s_mm, run().motion.state_at_time(t0 + 60.0 / kRpm).s_mm)) continue;
+    ++steady;
+    // The peak over the spindle angle is sampled (geometry::kChipLoadSteps per tooth period): within 0.5 %.
+    EXPECT_NEAR(scaled.samples[k].force_n * ratio, unscaled.samples[k].force_n, 0.005 * unscaled.samples[k].force_n);
   }
+  EXPECT_GE(steady, 10);
 }
 
 TEST(MeasuredRevolutions, ARevolutionWithANanForceIsSkipped) {
@@ -273,8 +303,10 @@ const LearningSample* revolution_at(const MeasuredRevolutions& m, double t_s) {
 }
 
 TEST(MeasuredRevolutions, ToothPeriodsDivideEachRevolutionIntoZ) {
+  MeasuredRevolutionOptions raw;  // measured peaks (the transfer factor differs between places)
+  raw.transfer_to_model = false;
   const MeasuredRevolutions m =
-      measured_revolutions(run().result.log, run().alignment, run().plan, run().model, kFlutes, kRpm);
+      measured_revolutions(run().result.log, run().alignment, run().plan, run().model, kFlutes, kRpm, raw);
   ASSERT_GT(m.tooth_periods.size(), kFlutes * m.samples.size() / 2) << m.message;
   for (std::size_t k = 0; k < m.tooth_periods.size(); ++k) {
     const ToothPeriodPeak& p = m.tooth_periods[k];

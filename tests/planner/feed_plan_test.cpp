@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "feedplan/core/angle.hpp"
 #include "feedplan/core/input_error.hpp"
 #include "feedplan/cycles/cycle.hpp"
 #include "feedplan/cycles/spec_reader.hpp"
@@ -106,10 +107,11 @@ TEST(FeedPlan, StraightWallFeedEqualsClosedForm) {
   const std::vector<double> feeds = steady_wall_feeds(result, alpha);
   ASSERT_EQ(feeds.size(), 2u);  // both walls
   // Rounded down to 1 mm/min; where the wall's block ends at the first samples of the slow-down for
-  // the arc, their (lower) limit sets F: at most 0.5 % below.
+  // the arc, their (lower) limit sets F: at most 2 % below (the arc's entry, where the engaged arc
+  // grows at the front, is limited through its chip load — feed_limit.hpp — and slows down earlier).
   for (double feed : feeds) {
     EXPECT_LE(feed, feed_closed_form);
-    EXPECT_GE(feed, std::floor(feed_closed_form * 0.995));
+    EXPECT_GE(feed, std::floor(feed_closed_form * 0.98));
   }
   EXPECT_EQ(*std::max_element(feeds.begin(), feeds.end()), std::floor(feed_closed_form));
 }
@@ -207,19 +209,28 @@ TEST(FeedPlan, ModelExtrapolationIsAStatus) {
   EXPECT_THAT(::testing::PrintToString(result.messages), ::testing::HasSubstr("extrapolates"));
 }
 
-TEST(FeedPlan, AxialDepthScalesTheForce) {
-  // The same cycle at half the axial depth: the model (fitted at 10 mm) is scaled by 0.5, so the feed
-  // on the walls is the one for twice the target.
+TEST(FeedPlan, AxialDepthScalesTheForceByTheChipLoad) {
+  // The same cycle at half the axial depth. Linear scaling would say half the force (the feed for twice
+  // the target); but the 10 mm cut the model was fitted at wraps its 30° flute over 66° of immersion,
+  // more than the wall's α = 45.6°, while a 5 mm cut wraps 33°: the peak uncut chip held at once is
+  // ∫ sin φ dφ / (tan β / r) over the immersions the flute spans inside [π − α, π] (Altintas' flute lag),
+  // i.e. (cos(π − α) − cos(π − α + w)) / (1 − cos α) of the 10 mm cut's, w = 5 tan β / r — the force
+  // scales by that ratio (feed_limit.hpp, the chip-load transfer), not by 0.5.
   cycles::CycleSpec spec = testing::corner_spec();
   const auto model = testing::s50c_like_model(/*linear=*/true);
   spec.axial_depth_mm = 5.0;
   const PlanResult half = plan(geometry_for(spec), settings_for(spec, model));
   const double alpha = std::acos(1.0 - 1.5 / 5.0);
-  const double t_m = model.chip_center_mm + model.chip_scale_mm * (2.0 * spec.target_force_n - model.beta[0]) / model.beta[1];
-  const double expected = std::floor(t_m / std::sin(alpha) * 4 * 2800.0);
+  const double w = 5.0 * std::tan(deg_to_rad(30.0)) / 5.0;
+  const double ratio = (std::cos(kPi - alpha) - std::cos(kPi - alpha + w)) / (1.0 - std::cos(alpha));
+  ASSERT_GT(ratio, 0.5);
+  const double t_m =
+      model.chip_center_mm + model.chip_scale_mm * (spec.target_force_n / ratio - model.beta[0]) / model.beta[1];
+  const double expected = t_m / std::sin(alpha) * 4 * 2800.0;
   const std::vector<double> feeds = steady_wall_feeds(half, alpha);
   ASSERT_EQ(feeds.size(), 2u);
-  EXPECT_EQ(*std::max_element(feeds.begin(), feeds.end()), expected);
+  // The peak over the spindle angle is sampled (kChipLoadSteps per tooth period): within 0.5 %.
+  EXPECT_NEAR(*std::max_element(feeds.begin(), feeds.end()), expected, 0.005 * expected);
 }
 
 TEST(FeedPlan, NonsenseSettingsAreInputErrorsNamingTheField) {

@@ -50,7 +50,9 @@ namespace feedplan::learning {
 //! Which revolutions count and how forces are scaled.
 struct MeasuredRevolutionOptions {
   double min_engagement_rad = 0.05;        //!< smaller planned engagement at the peak's place: not engaged, rad (≥ 0)
-  bool scale_to_model_axial_depth = true;  //!< divide forces by a_p / a_p,model (planner::axial_depth_ratio)
+  //! Divide forces by the factor the planner puts on the straight-cut model there (planner::
+  //! force_transfer_factor: the axial-depth scaling or the chip-load transfer, whichever binds)
+  bool transfer_to_model = true;
 };
 
 //! One tooth period's peak (step 5).

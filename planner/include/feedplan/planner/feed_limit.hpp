@@ -13,12 +13,27 @@
 // the fitted range the model is extrapolated as it is, and the sample is flagged.
 //
 // Axial depth: the model has no axial-depth term; it was fitted at a_p,model (ResponseSurfaceModel::
-// axial_depth_mm). Forces scale with the axial depth in contact, so at a sample cut at a_p the planner
-// uses F̂ · a_p / a_p,model (1 when either is unknown). Outside kAxialDepthRatioRange that scaling counts
-// as an extrapolation.
+// axial_depth_mm). Forces scale with the axial depth in contact, so at a sample cut at a_p (the height of
+// material in contact above the tip, on every layer: geometry/engagement.hpp) the planner uses
+// F̂(t_m, max(L, L_min)) · a_p / a_p,model (1 when either is unknown). Outside kAxialDepthRatioRange that
+// scaling counts as an extrapolation.
+//
+// Engagements a straight cut does not have: a model fitted at a_p,model has the helix lag of its flutes
+// averaged in — at a thinner cut (a helix turn, one pitch deep) the teeth hold more chip per mm of depth
+// than a_p / a_p,model says; on a helix the lowest layers are cut over up to 180° (beyond the fitted
+// contact lengths); at entries the engaged arc lies at the front. The force grows with the uncut chip
+// the teeth hold at once, so the model also transfers as F̂(t_m, L') · C / C_ref (geometry/chip_load.hpp):
+// C the sample's peak chip load over all its layers, C_ref that of the straight cut of depth a_p,model
+// with the same t_m and L' = L clamped to the fitted range. The planner takes the larger of the two
+// (the chip-load transfer is never allowed to lower a force the linear scaling predicts: both are
+// estimates outside the data, and the cautious one is kept). On straight cuts at a_p,model both are F̂.
+//
+// Descending into material (plunges, ramps, helices): the Z feed per tooth is at most the tool's
+// plunge feed per tooth (geometry::Tool::plunge_feed_per_tooth_mm): F ≤ f_z,plunge · Z · n / |dz/ds|.
 
 #include "feedplan/geometry/engagement.hpp"
 #include "feedplan/geometry/move.hpp"
+#include "feedplan/geometry/tool.hpp"
 #include "feedplan/model/feed_solve.hpp"
 #include "feedplan/model/response_surface_model.hpp"
 #include "feedplan/planner/feed_plan.hpp"
@@ -46,6 +61,15 @@ struct SampleFeedLimit {
 //! a_p / a_p,model for `axial_depth_mm`, or 1 when either depth is not positive.
 double axial_depth_ratio(const model::ResponseSurfaceModel& model, double axial_depth_mm);
 
+//! C / C_ref of the chip-load transfer (see the file comment) at `sample` of `profile` for `tool`; 0 when
+//! the sample makes no chip or has no layers (the transfer does not apply).
+double chip_load_ratio(const model::ResponseSurfaceModel& model, const geometry::EngagementProfile& profile,
+                       const geometry::EngagementSample& sample, const geometry::Tool& tool);
+
+//! The largest path feed (mm/min) at which `move` descends no faster than the tool's plunge feed per tooth
+//! allows at `spindle_rpm`; +∞ when the move does not descend.
+double plunge_feed_limit_mm_per_min(const geometry::Move& move, const geometry::Tool& tool, double spindle_rpm);
+
 //! The feed (mm/min) at which `model` predicts `target_force_n` at `sample` (engaged, cutting), by
 //! model::solve_feed on the chip factor × XY speed ratio, with the axial-depth scaling above. A sample
 //! that is not engaged or makes no chip gets `air_feed_mm_per_min` with reason kAirFeed. A solution
@@ -55,19 +79,29 @@ double axial_depth_ratio(const model::ResponseSurfaceModel& model, double axial_
 //! F̂ + z·σ (force_bound.hpp, same axial-depth scaling) meets the target, found by bisection (F̂ + z·σ
 //! rises with the feed on the rising branch); when even a vanishing feed exceeds the target,
 //! target_below_model is set.
+//! `load_ratio` is chip_load_ratio for the sample (0: only the linear axial scaling).
 SampleFeedLimit sample_feed_limit(const model::ResponseSurfaceModel& model, const geometry::EngagementSample& sample,
-                                  double target_force_n, int flutes, double spindle_rpm, double air_feed_mm_per_min,
-                                  const ForceUncertainty* uncertainty = nullptr);
+                                  double load_ratio, double target_force_n, int flutes, double spindle_rpm,
+                                  double air_feed_mm_per_min, const ForceUncertainty* uncertainty = nullptr);
 
 //! F̂ + z·σ (× the chip-area ratio ρ when uncertainty->off_straight_cut) at `sample` and path feed
 //! `feed_mm_per_min` (F̂ without `uncertainty`), with the axial-depth scaling; 0 when the sample is not engaged.
 double upper_force_n(const model::ResponseSurfaceModel& model, const geometry::EngagementSample& sample,
-                     double feed_mm_per_min, int flutes, double spindle_rpm, const ForceUncertainty* uncertainty);
+                     double load_ratio, double feed_mm_per_min, int flutes, double spindle_rpm,
+                     const ForceUncertainty* uncertainty);
 
-//! F̂ (N) the model predicts at `sample` when the tool runs at path feed `feed_mm_per_min`, with the
-//! axial-depth scaling; 0 when the sample is not engaged.
+//! F̂ (N) the model predicts at `sample` when the tool runs at path feed `feed_mm_per_min`: the larger of
+//! the axial-depth scaling and the chip-load transfer with `load_ratio` (file comment); 0 when the
+//! sample is not engaged.
 double predicted_force_n(const model::ResponseSurfaceModel& model, const geometry::EngagementSample& sample,
-                         double feed_mm_per_min, int flutes, double spindle_rpm);
+                         double load_ratio, double feed_mm_per_min, int flutes, double spindle_rpm);
+
+//! predicted_force_n / F̂(t_m, max(L, L_min)) at `sample` and path feed `feed_mm_per_min`: the factor the
+//! transfer that binds there (axial-depth scaling or chip load, with its contact length) puts on the
+//! straight-cut model; what a measured force is divided by to give the model's own force at those inputs
+//! (learning). axial_depth_ratio when F̂ is not positive or the sample is not engaged.
+double force_transfer_factor(const model::ResponseSurfaceModel& model, const geometry::EngagementSample& sample,
+                             double load_ratio, double feed_mm_per_min, int flutes, double spindle_rpm);
 
 //! t_m (mm) at `sample` for path feed `feed_mm_per_min`.
 double chip_thickness_mm(const geometry::EngagementSample& sample, double feed_mm_per_min, int flutes,
@@ -77,7 +111,8 @@ double chip_thickness_mm(const geometry::EngagementSample& sample, double feed_m
 //! max(L, range.contact_length_min_mm) (see the file comment), mm.
 double model_contact_length_mm(const model::ResponseSurfaceModel& model, double contact_length_mm);
 
-//! True when the sample is on a cutting move with some engagement (what the force model applies to).
+//! True when the tool meets material at the sample, on any layer and on any kind of move (what the
+//! force model and the plunge limit apply to; an air move that meets material is cutting).
 bool is_engaged(const geometry::EngagementSample& sample);
 
 }  // namespace feedplan::planner

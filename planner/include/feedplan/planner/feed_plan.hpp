@@ -84,6 +84,7 @@ struct PlanOptions {
 //! Everything about the path that does not depend on the feed: computed once, planned many times.
 struct PlanGeometry {
   geometry::ToolPath path;                  //!< the tool-centre path (moves, parts)
+  geometry::Stock stock;                    //!< the material before the path (what the safety check cuts)
   geometry::Tool tool;                      //!< the end mill
   geometry::EngagementProfile engagement;   //!< engagement along the path (docs/method.md §5.1–5.2)
 };
@@ -123,9 +124,12 @@ enum class PlanStatus {
   kOk,             //!< the target is held wherever the model binds, inside the model's fitted range
   kExtrapolated,   //!< somewhere the feed comes from the model outside its fitted range (t_m, L or axial depth)
   kTargetNotMet,   //!< somewhere even the minimum feed is predicted above the target: planned at the minimum feed
+  //! the safety check (safety_check.hpp) found a feed move of the program running above the feed its
+  //! engagement allows, or a rapid through material: no program may be written
+  kUnsafe,
 };
 
-//! "ok", "extrapolated", "target not met".
+//! "ok", "extrapolated", "target not met", "unsafe".
 std::string to_string(PlanStatus status);
 
 //! What limits the feed at a sample.
@@ -137,9 +141,10 @@ enum class FeedLimitReason {
   kAirFeed,      //!< no engagement: the air feed
   kMinFeed,      //!< the target would need less than the machine's minimum feed: the minimum feed
   kRapid,        //!< a rapid move (G0)
+  kPlunge,       //!< the tool's plunge feed per tooth while descending into material
 };
 
-//! "force", "model range", "max feed", "centripetal", "air", "min feed", "rapid".
+//! "force", "model range", "max feed", "centripetal", "air", "min feed", "rapid", "plunge".
 std::string to_string(FeedLimitReason reason);
 
 //! One engagement sample with its plan.
@@ -153,6 +158,7 @@ struct PlannedSample {
   double chip_factor = 0.0;             //!< k = t_m / f_z (XY feed per tooth), in [0, 1]
   double contact_length_mm = 0.0;       //!< L = r α_en, mm
   double axial_depth_mm = 0.0;          //!< axial depth of cut, mm
+  double load_ratio = 0.0;              //!< C / C_ref of the chip-load transfer (feed_limit.hpp), 0: none
   double feed_limit_mm_per_min = 0.0;   //!< the feed limit of step 1, mm/min
   FeedLimitReason limit_reason = FeedLimitReason::kAirFeed;  //!< what sets feed_limit_mm_per_min
   bool extrapolated = false;            //!< the force model is used outside its fitted range here

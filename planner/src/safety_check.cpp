@@ -1,0 +1,134 @@
+#include "feedplan/planner/safety_check.hpp"
+
+#include <algorithm>
+#include <cassert>
+#include <cmath>
+#include <limits>
+
+#include "feedplan/core/angle.hpp"
+#include "feedplan/core/number_text.hpp"
+#include "feedplan/geometry/engagement.hpp"
+#include "feedplan/planner/feed_limit.hpp"
+
+namespace feedplan::planner {
+
+namespace {
+
+// The force correction at arc length s: the larger of the two plan samples around it (1 without one).
+double correction_at(const SafetyCheckInput& input, double s_mm) {
+  const auto& values = input.settings->force_correction;
+  const auto& at = input.correction_s_mm;
+  if (values.empty() || at.size() != values.size()) return 1.0;
+  const auto upper = std::lower_bound(at.begin(), at.end(), s_mm);
+  const auto k = static_cast<std::size_t>(upper - at.begin());
+  if (k == 0) return values.front();
+  if (k >= values.size()) return values.back();
+  return std::max(values[k - 1], values[k]);
+}
+
+// The largest feed the force model allows at the sample (the machine's minimum where none meets the target).
+double force_limit_mm_per_min(const SafetyCheckInput& input, const geometry::EngagementProfile& profile,
+                              const geometry::EngagementSample& sample) {
+  const PlanSettings& settings = *input.settings;
+  const double correction = correction_at(input, sample.s_mm);
+  const ForceUncertainty* uncertainty = settings.uncertainty ? &*settings.uncertainty : nullptr;
+  geometry::EngagementSample bound_sample = sample;
+  if (uncertainty && uncertainty->off_straight_cut) {
+    bound_sample.chip_area_ratio = std::max(sample.chip_area_ratio / correction, 1.0);
+  }
+  const double load_ratio = chip_load_ratio(settings.model, profile, sample, *input.tool);
+  const SampleFeedLimit limit =
+      sample_feed_limit(settings.model, bound_sample, load_ratio, settings.target_force_n / correction,
+                        input.tool->flutes, settings.spindle_rpm, std::numeric_limits<double>::infinity(), uncertainty);
+  if (limit.target_below_model) return settings.machine.min_feed_mm_per_min;
+  return std::max(limit.feed_mm_per_min, settings.machine.min_feed_mm_per_min);
+}
+
+// The feed allowed at one sample and the invariant that sets it.
+struct SampleAllowance {
+  double mm_per_min = std::numeric_limits<double>::infinity();
+  SafetyProblem problem = SafetyProblem::kAboveForceLimit;
+};
+
+SampleAllowance allowance(const SafetyCheckInput& input, const geometry::EngagementProfile& profile,
+                          const geometry::EngagementSample& sample, const geometry::Move& move) {
+  if (!std::isfinite(sample.engagement_rad) || !std::isfinite(sample.chip_factor) ||
+      !std::isfinite(sample.material_height_mm)) {
+    return {0.0, SafetyProblem::kEngagementUnknown};
+  }
+  if (!is_engaged(sample)) return {};
+  if (move.kind == geometry::MoveKind::kRapid) return {0.0, SafetyProblem::kRapidInMaterial};
+  const double plunge = plunge_feed_limit_mm_per_min(move, *input.tool, input.settings->spindle_rpm);
+  const double force = force_limit_mm_per_min(input, profile, sample);
+  if (plunge < force) return {plunge, SafetyProblem::kAbovePlungeLimit};
+  return {force, SafetyProblem::kAboveForceLimit};
+}
+
+// How bad a violation is, for keeping a move's worst one.
+double severity(const SafetyViolation& v) {
+  return v.allowed_mm_per_min > 0.0 ? v.feed_mm_per_min / v.allowed_mm_per_min : std::numeric_limits<double>::infinity();
+}
+
+}  // namespace
+
+std::string to_string(SafetyProblem problem) {
+  switch (problem) {
+    case SafetyProblem::kRapidInMaterial: return "rapid through material";
+    case SafetyProblem::kAboveForceLimit: return "above the force limit";
+    case SafetyProblem::kAbovePlungeLimit: return "above the plunge limit";
+    case SafetyProblem::kEngagementUnknown: return "engagement unknown";
+  }
+  return "?";
+}
+
+SafetyCheck check_safety(const geometry::Program& program, const SafetyCheckInput& input) {
+  assert(input.stock && input.tool && input.settings && input.ds_mm > 0.0);
+  assert(program.blocks.size() == program.path.moves.size());
+  geometry::EngagementOptions options;
+  options.ds_mm = input.ds_mm;
+  const geometry::EngagementProfile profile =
+      geometry::compute_engagement(program.path, *input.stock, input.tool->radius_mm(), options);
+  SafetyCheck check;
+  std::vector<SafetyViolation>& violations = check.violations;
+  check.allowed.reserve(profile.samples.size());
+  const double slack = 1.0 + input.relative_tolerance;
+  int last_move = -1;
+  for (const geometry::EngagementSample& sample : profile.samples) {
+    const auto m = static_cast<std::size_t>(sample.move_index);
+    const geometry::Move& move = program.path.moves[m];
+    const double feed = move.kind == geometry::MoveKind::kRapid ? input.settings->machine.rapid_feed_mm_per_min
+                                                                : program.blocks[m].feed_mm_per_min;
+    const SampleAllowance allowed = allowance(input, profile, sample, move);
+    check.allowed.push_back({sample.s_mm, sample.move_index, allowed.mm_per_min});
+    if (!(feed > allowed.mm_per_min * slack)) continue;
+    const SafetyViolation found{allowed.problem, sample.move_index,     program.blocks[m].source_line,
+                                sample.s_mm,     sample.position,       feed,
+                                allowed.mm_per_min, sample.engagement_rad, sample.material_height_mm};
+    if (sample.move_index != last_move) {
+      violations.push_back(found);
+      last_move = sample.move_index;
+    } else if (severity(found) > severity(violations.back())) {
+      violations.back() = found;
+    }
+  }
+  return check;
+}
+
+std::string describe(const SafetyViolation& v) {
+  std::string text = "program move " + std::to_string(v.move_index);
+  if (v.source_line > 0) text += " (line " + std::to_string(v.source_line) + ")";
+  text += " at s = " + fixed_number_text(v.s_mm, 2) + " mm (x " + fixed_number_text(v.position.x_mm, 3) + ", y " +
+          fixed_number_text(v.position.y_mm, 3) + ", z " + fixed_number_text(v.position.z_mm, 3) + "): " +
+          to_string(v.problem);
+  if (v.problem == SafetyProblem::kRapidInMaterial) {
+    return text + " — a G0 meets material (engaged " + fixed_number_text(rad_to_deg(v.engagement_rad), 1) +
+           " deg, " + fixed_number_text(v.material_height_mm, 3) + " mm of material above the tip)";
+  }
+  if (v.problem == SafetyProblem::kEngagementUnknown) return text + " — it is not taken for air";
+  return text + ", F " + fixed_number_text(v.feed_mm_per_min, 0) + " mm/min where the engagement allows " +
+         fixed_number_text(v.allowed_mm_per_min, 0) + " mm/min (engaged " +
+         fixed_number_text(rad_to_deg(v.engagement_rad), 1) + " deg on " +
+         fixed_number_text(v.material_height_mm, 3) + " mm of material)";
+}
+
+}  // namespace feedplan::planner
