@@ -461,38 +461,13 @@ std::vector<InputProblem> structural_then_semantic(SpecReader& in, std::vector<I
 // Parses YAML text; malformed YAML is an InputError naming the source, line and column, and so is a
 // document that expands beyond kMaxSpecYamlNodes through its aliases.
 YAML::Node load_yaml(const std::string& yaml_text, const std::string& source_name) {
-  YAML::Node root;
-  try {
-    root = YAML::Load(yaml_text);
-  } catch (const YAML::Exception& e) {
-    std::string where;
-    if (!e.mark.is_null()) {
-      where = " at line " + std::to_string(e.mark.line + 1) + ", column " + std::to_string(e.mark.column + 1);
-    }
-    throw InputError(source_name, "is not valid YAML" + where + ": " + e.msg);
-  }
-  if (yaml_expands_beyond(root, kMaxSpecYamlNodes)) {
-    throw InputError(source_name, "expands to more than " + std::to_string(kMaxSpecYamlNodes) +
-                                      " YAML nodes through its aliases (*name), counting each use: a cycle spec has "
-                                      "a few dozen (a stock polygon one per vertex); write it without the aliases");
-  }
-  return root;
+  return load_bounded_yaml<YAML::Exception>([](const std::string& text) { return YAML::Load(text); }, yaml_text,
+                                            source_name, kMaxSpecYamlNodes,
+                                            "a cycle spec has a few dozen (a stock polygon one per vertex)");
 }
 
 std::string read_text_file(const std::filesystem::path& path, const std::string& what) {
-  namespace fs = std::filesystem;
-  std::error_code ec;
-  if (!fs::exists(path, ec)) throw InputError(path.string(), "cannot be read: no such file");
-  if (fs::is_directory(path, ec)) throw InputError(path.string(), "cannot be read: it is a directory, not " + what);
-  std::ifstream file(path, std::ios::binary);
-  if (!file) throw InputError(path.string(), "cannot be read: permission denied or I/O error");
-  std::string text;
-  if (!read_at_most(file, kMaxSpecFileBytes, text)) {
-    throw InputError(path.string(), "is larger than " + byte_size_text(kMaxSpecFileBytes) + ": not " + what +
-                                        " (a spec is a few hundred bytes, a stock of 10 000 vertices some 300 KiB)");
-  }
-  if (file.bad()) throw InputError(path.string(), "cannot be read: I/O error");
-  return text;
+  return read_input_file(path, {what, kMaxSpecFileBytes, "a spec is a few hundred bytes, a stock of 10 000 vertices some 300 KiB"});
 }
 
 }  // namespace

@@ -35,18 +35,8 @@ ForceLog read_force_log(const std::string& text, const std::string& source_name)
 }
 
 ForceLog load_force_log(const std::string& path, std::size_t max_file_bytes) {
-  namespace fs = std::filesystem;
-  std::error_code ec;
-  if (!fs::exists(path, ec)) throw InputError(path, "cannot be read: no such file (expected a force log)");
-  if (fs::is_directory(path, ec)) throw InputError(path, "cannot be read: it is a directory, not a force log");
-  std::ifstream file(path, std::ios::binary);
-  if (!file) throw InputError(path, "cannot be read: permission denied or I/O error");
-  std::string text;
-  if (!read_at_most(file, max_file_bytes, text)) {
-    throw InputError(path, "is larger than " + byte_size_text(max_file_bytes) +
-                               ": split the recording into parts of at most that size");
-  }
-  if (file.bad()) throw InputError(path, "cannot be read: I/O error");
+  const std::string text =
+      read_input_file(path, {"a force log", max_file_bytes, "split the recording into parts of at most that size"});
   return read_force_log(text, path);
 }
 

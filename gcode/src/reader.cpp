@@ -624,17 +624,8 @@ geometry::Program read_program(const std::string& text, const std::string& sourc
 }
 
 geometry::Program load_program(const std::filesystem::path& path, const ReaderOptions& options) {
-  std::error_code ec;
-  if (!std::filesystem::exists(path, ec)) throw InputError(path.string(), "does not exist");
-  if (std::filesystem::is_directory(path, ec)) throw InputError(path.string(), "is a directory, not a G-code file");
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(path.string(), "cannot be opened for reading");
-  std::string text;
-  if (!read_at_most(in, options.max_file_bytes, text)) {
-    throw InputError(path.string(), "is larger than " + byte_size_text(options.max_file_bytes) +
-                                        " (ReaderOptions::max_file_bytes): not a program of a milling cycle");
-  }
-  if (in.bad()) throw InputError(path.string(), "could not be read");
+  const std::string text =
+      read_input_file(path, {"a G-code program of a milling job", options.max_file_bytes, "ReaderOptions::max_file_bytes"});
   return read_program(text, path.string(), options);
 }
 

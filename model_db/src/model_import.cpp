@@ -9,6 +9,7 @@
 
 #include "catalog_rows.hpp"
 #include "cutting_test_rows.hpp"
+#include "feedplan/core/bounded_read.hpp"
 #include "feedplan/core/json_document.hpp"
 #include "feedplan/core/json_fields.hpp"
 #include "feedplan/core/number_text.hpp"
@@ -735,16 +736,13 @@ ImportSummary import_json(Store& store, std::string_view json_text, const Import
   return Importer(store.impl(), options).run(document);
 }
 
+// Bytes an export file may hold (10 000 model versions are about 20 MiB).
+constexpr std::size_t kMaxExportFileBytes = std::size_t{256} << 20;
+
 ImportSummary import_from_file(Store& store, const std::filesystem::path& path, const ImportOptions& options) {
-  std::error_code ec;
-  if (!std::filesystem::is_regular_file(path, ec)) {
-    throw InputError(path.string(), "cannot be read: no such file (expected a model database export, JSON)");
-  }
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream text;
-  text << in.rdbuf();
-  if (!in) throw InputError(path.string(), "cannot be read");
-  return import_json(store, text.str(), options, path.string());
+  const std::string text = read_input_file(path, {"a model database export, JSON", kMaxExportFileBytes,
+                                                  "an export of 10 000 model versions is about 20 MiB"});
+  return import_json(store, text, options, path.string());
 }
 
 }  // namespace feedplan::model_db

@@ -463,18 +463,8 @@ PlanReport parse_plan_report(std::string_view json_text, const std::string& sour
 }
 
 PlanReport read_plan_report(const std::filesystem::path& path) {
-  std::error_code ec;
-  if (!std::filesystem::is_regular_file(path, ec)) {
-    throw InputError(path.string(), "cannot be read: no such file (expected a plan report, JSON)");
-  }
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(path.string(), "cannot be read");
-  std::string text;
-  if (!read_at_most(in, kMaxPlanReportFileBytes, text)) {
-    throw InputError(path.string(), "is larger than " + byte_size_text(kMaxPlanReportFileBytes) +
-                                        ": not a plan report (a plan of 100 000 blocks writes about 20 MiB)");
-  }
-  if (in.bad()) throw InputError(path.string(), "cannot be read (read error)");
+  const std::string text = read_input_file(
+      path, {"a plan report, JSON", kMaxPlanReportFileBytes, "a plan of 100 000 blocks writes about 20 MiB"});
   return parse_plan_report(text, path.string());
 }
 

@@ -13,6 +13,7 @@
 #include <sstream>
 #include <system_error>
 
+#include "feedplan/core/bounded_read.hpp"
 #include "feedplan/core/did_you_mean.hpp"
 #include "feedplan/core/joined_text.hpp"
 #include "feedplan/core/number_text.hpp"
@@ -318,17 +319,15 @@ InputProblem unknown_material_problem(const MaterialLibrary& library, const std:
   return {field, message};
 }
 
+// Nodes a material library may expand to (1 000 materials of about 30 nodes, with room to spare).
+constexpr std::size_t kMaxMaterialYamlNodes = 100000;
+// Bytes a material library file may hold (1 000 materials are about 300 KiB).
+constexpr std::size_t kMaxMaterialFileBytes = std::size_t{4} << 20;
+
 MaterialLibrary read_materials(const std::string& yaml_text, const std::string& source_name) {
-  YAML::Node loaded;
-  try {
-    loaded = YAML::Load(yaml_text);
-  } catch (const YAML::Exception& e) {
-    std::string where;
-    if (!e.mark.is_null()) {
-      where = " at line " + std::to_string(e.mark.line + 1) + ", column " + std::to_string(e.mark.column + 1);
-    }
-    throw InputError(source_name, "is not valid YAML" + where + ": " + e.msg);
-  }
+  const YAML::Node loaded = load_bounded_yaml<YAML::Exception>(
+      [](const std::string& text) { return YAML::Load(text); }, yaml_text, source_name, kMaxMaterialYamlNodes,
+      "a material library has about 30 per material");
   // Const access only: a non-const operator[] may add the key it looks up.
   const YAML::Node& root = loaded;
   const std::string expected = "expected a material library: materials: [{name, aliases, description, source, "
@@ -381,16 +380,9 @@ MaterialLibrary read_materials(const std::string& yaml_text, const std::string& 
 }
 
 MaterialLibrary load_materials(const std::string& path) {
-  namespace fs = std::filesystem;
-  std::error_code ec;
-  if (!fs::exists(path, ec)) throw InputError(path, "cannot be read: no such file (expected a material library)");
-  if (fs::is_directory(path, ec)) throw InputError(path, "cannot be read: it is a directory, not a material library");
-  std::ifstream file(path, std::ios::binary);
-  if (!file) throw InputError(path, "cannot be read: permission denied or I/O error");
-  std::ostringstream text;
-  text << file.rdbuf();
-  if (file.bad()) throw InputError(path, "cannot be read: I/O error");
-  return read_materials(text.str(), path);
+  const std::string text =
+      read_input_file(path, {"a material library", kMaxMaterialFileBytes, "a library of 1 000 materials is about 300 KiB"});
+  return read_materials(text, path);
 }
 
 }  // namespace feedplan::sim

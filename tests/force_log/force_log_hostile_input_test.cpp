@@ -68,7 +68,7 @@ TEST(ForceLogHostileInput, FilesAreReadUpToTheSizeLimit) {
     ADD_FAILURE() << "no InputError";
   } catch (const InputError& error) {
     EXPECT_EQ(std::string(error.what()),
-              "/dev/zero is larger than 1 MiB: split the recording into parts of at most that size");
+              "/dev/zero is larger than 1 MiB: not a force log (split the recording into parts of at most that size)");
   }
 }
 

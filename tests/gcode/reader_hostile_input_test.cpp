@@ -71,7 +71,7 @@ TEST(ReaderHostileInput, FilesAreReadUpToTheirSizeLimit) {
     load_program("/dev/zero", options);
     ADD_FAILURE() << "no InputError";
   } catch (const InputError& error) {
-    EXPECT_THAT(error.what(), HasSubstr("/dev/zero is larger than 1 MiB (ReaderOptions::max_file_bytes)"));
+    EXPECT_THAT(error.what(), HasSubstr("/dev/zero is larger than 1 MiB: not a G-code program of a milling job (ReaderOptions::max_file_bytes)"));
   }
 }
 

@@ -440,7 +440,7 @@ TEST(ReaderFiles, MissingFileOrDirectoryIsAnInputErrorNamingThePath) {
     load_program(missing);
     FAIL() << "accepted";
   } catch (const InputError& error) {
-    EXPECT_EQ(std::string(error.what()), missing + " does not exist");
+    EXPECT_EQ(std::string(error.what()), missing + " cannot be read: no such file (expected a G-code program of a milling job)");
   }
   try {
     load_program(FEEDPLAN_TEST_DATA_DIR);

@@ -282,5 +282,25 @@ TEST(MaterialLibraryErrors, FileProblemsNameThePath) {
   }
 }
 
+// Six levels of ten aliases: 10⁶ nodes from 300 bytes. Refused after counting 100 000, with the way out.
+TEST(MaterialLibraryErrors, AnAliasBombIsRefusedBeforeItExpands) {
+  const std::string bomb =
+      "a: &a [1, 1, 1, 1, 1, 1, 1, 1, 1, 1]\n"
+      "b: &b [*a, *a, *a, *a, *a, *a, *a, *a, *a, *a]\n"
+      "c: &c [*b, *b, *b, *b, *b, *b, *b, *b, *b, *b]\n"
+      "d: &d [*c, *c, *c, *c, *c, *c, *c, *c, *c, *c]\n"
+      "e: &e [*d, *d, *d, *d, *d, *d, *d, *d, *d, *d]\n"
+      "f: &f [*e, *e, *e, *e, *e, *e, *e, *e, *e, *e]\n"
+      "materials: *f\n";
+  try {
+    read_materials(bomb, "bomb.yaml");
+    FAIL() << "no error";
+  } catch (const InputError& e) {
+    EXPECT_EQ(std::string(e.what()),
+              "bomb.yaml expands to more than 100000 YAML nodes through its aliases (*name), counting each use: a "
+              "material library has about 30 per material; write it without the aliases");
+  }
+}
+
 }  // namespace
 }  // namespace feedplan::sim

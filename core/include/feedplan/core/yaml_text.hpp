@@ -9,6 +9,8 @@
 #include <string>
 #include <vector>
 
+#include "feedplan/core/input_error.hpp"
+
 namespace feedplan {
 
 //! The longest value text a problem shows, in bytes before "…": a list of thousands of numbers in the
@@ -85,6 +87,31 @@ bool yaml_expands_beyond(const YamlNode& node, std::size_t max_nodes) {
     }
   }
   return false;
+}
+
+//! The document `load(yaml_text)` parses (a lambda calling YAML::Load), as an InputError naming
+//! `source_name` when the text is not YAML (`Exception` is YAML::Exception: line and column) or expands
+//! to more than `max_nodes` nodes through its aliases (`typical`: how many nodes a document of this kind
+//! has, for the message).
+template <typename Exception, typename Load>
+auto load_bounded_yaml(Load load, const std::string& yaml_text, const std::string& source_name, std::size_t max_nodes,
+                       const std::string& typical) {
+  decltype(load(yaml_text)) root;
+  try {
+    root = load(yaml_text);
+  } catch (const Exception& e) {
+    std::string where;
+    if (!e.mark.is_null()) {
+      where = " at line " + std::to_string(e.mark.line + 1) + ", column " + std::to_string(e.mark.column + 1);
+    }
+    throw InputError(source_name, "is not valid YAML" + where + ": " + e.msg);
+  }
+  if (yaml_expands_beyond(root, max_nodes)) {
+    throw InputError(source_name, "expands to more than " + std::to_string(max_nodes) +
+                                      " YAML nodes through its aliases (*name), counting each use: " + typical +
+                                      "; write it without the aliases");
+  }
+  return root;
 }
 
 //! The 1-based line of `node` in its document, or 0 when it has none (a node built in code).
