@@ -8,6 +8,8 @@
 
 #include "calibration_command.hpp"
 #include "database_path.hpp"
+#include "learning_pair.hpp"
+#include "model_choice.hpp"
 #include "output_files.hpp"
 #include "output_path.hpp"
 #include "feedplan/core/input_error.hpp"
@@ -59,6 +61,7 @@ struct ModelVersions {
 
 // The plan again, as it was cut.
 struct RemadePlan {
+  planner::PlanSettings settings;  // the report's, with the cautious bound it was planned on
   planner::PlanGeometry geometry;  // path and engagement
   planner::PlanResult plan;        // the plan
 };
@@ -142,20 +145,37 @@ model_db::ModelRecord planned_model(const model_db::Store& store, const LearnOpt
                                    there + " — " + advice);
 }
 
-// The plan's model must still be the active version, since the learned version is filed as its child:
-// said before learning, and checked again when storing (Store::add_learned_model).
-void require_planned_model_active(const model_db::Store& store, const model_db::ModelRecord& before) {
-  const auto active = store.active_model(before.tool_name, before.material_name);
+// The plan's model must still be the active version of the pair learned into, since the learned version
+// is filed as its child; a borrowed plan's pair must have no model yet (one made since would be the
+// plan's model now): said before learning, and checked again when storing (Store::add_learned_model).
+void require_learnable(const model_db::Store& store, const model_db::ModelRecord& before, const LearningPair& pair) {
+  const auto active = store.active_model(pair.tool_name, pair.material_name);
   if (active && active->id != before.id) throw model_db::StaleModelError(before, *active);
 }
 
+// The report's settings with the cautious bound F̂ + z·σ the plan held when it recorded a relative
+// uncertainty (a borrowed model, or --model-uncertainty): the covariance is the planned version's, as
+// the plan command takes it from the database.
+planner::PlanSettings settings_as_planned(const planner::PlanReport& report, const model_db::ModelRecord& before) {
+  planner::PlanSettings settings = report.settings;
+  if (report.context.model_relative_uncertainty > 0.0) {
+    planner::ForceUncertainty uncertainty;
+    uncertainty.covariance = before.fit.covariance;
+    uncertainty.sigmas = kBorrowedModelSigmas;
+    uncertainty.relative = report.context.model_relative_uncertainty;
+    settings.uncertainty = uncertainty;
+  }
+  return settings;
+}
+
 // The plan again (deterministic from the spec and the report's settings); it must be the one cut.
-RemadePlan remake_plan(const LearnInputs& in) {
+RemadePlan remake_plan(const LearnInputs& in, const model_db::ModelRecord& before) {
   const planner::PlanReport& report = in.report;
   const cycles::Cycle cycle = cycles::generate(in.spec);
   RemadePlan remade;
+  remade.settings = settings_as_planned(report, before);
   remade.geometry = planner::analyse(cycle.path, cycle.stock, in.spec.tool, report.settings.options.ds_mm);
-  remade.plan = planner::plan(remade.geometry, report.settings);
+  remade.plan = planner::plan(remade.geometry, remade.settings);
   if (remade.plan.blocks.size() != report.blocks.size()) {
     throw InputError("blocks", "the plan re-made from " + report.context.spec_path + " has " +
                                    std::to_string(remade.plan.blocks.size()) + " blocks, the report " +
@@ -167,16 +187,17 @@ RemadePlan remake_plan(const LearnInputs& in) {
 // Learn: RLS and the batch refit over every earlier step of this tool and material and these logs.
 // Throws InputError naming the logs that are not of this program or whose units look wrong.
 learning::ModelUpdate learn_from_logs(const LearnOptions& o, const LearnInputs& in, const model_db::Store& store,
-                                      const model_db::ModelRecord& before, const planner::PlanResult& plan) {
+                                      const model_db::ModelRecord& before, const LearningPair& pair,
+                                      const RemadePlan& remade) {
   std::optional<model::Covariance> prior_covariance;
   if (before.fit.covariance(0, 0) > 0.0) prior_covariance = before.fit.covariance;
-  // Every earlier learning step of this tool and material (stored with its samples): the refit spans them all.
+  // Every earlier learning step of the pair learned into (stored with its samples): the refit spans them all.
   std::vector<learning::LearningSample> earlier;
-  for (const model_db::LearnedSample& stored : store.learned_samples(before.tool_name, before.material_name)) {
+  for (const model_db::LearnedSample& stored : store.learned_samples(pair.tool_name, pair.material_name)) {
     earlier.push_back({stored.chip_mm, stored.contact_length_mm, stored.force_n, stored.weight, stored.s_mm});
   }
   const learning::ModelUpdate update =
-      learning::update_model(plan, in.report.settings, in.spec.tool.flutes, in.logs, earlier, prior_covariance);
+      learning::update_model(remade.plan, remade.settings, in.spec.tool.flutes, in.logs, earlier, prior_covariance);
   std::vector<InputProblem> problems;
   for (std::size_t i = 0; i < update.logs.size(); ++i) {
     const auto status = update.logs[i].alignment.status;
@@ -204,8 +225,9 @@ learning::PathLearning learn_along_this_path(const planner::PlanReport& report, 
 Replanned replan(const LearnInputs& in, const RemadePlan& remade, const learning::ModelUpdate& update) {
   const planner::PlanReport& report = in.report;
   Replanned next;
-  next.settings = report.settings;
+  next.settings = remade.settings;
   next.settings.model = update.model;
+  if (next.settings.uncertainty) next.settings.uncertainty->covariance = update.covariance;
   next.along_path = learn_along_this_path(report, remade.plan, update);
   next.settings.force_correction = next.along_path.correction;
   next.plan = planner::plan(remade.geometry, next.settings);
@@ -218,10 +240,11 @@ Replanned replan(const LearnInputs& in, const RemadePlan& remade, const learning
 
 // Store the learned version with its learning entry and samples (one transaction); returns it as stored.
 model_db::ModelRecord store_learned_model(const LearnOptions& o, const LearnInputs& in, model_db::Store& store,
-                                          const model_db::ModelRecord& before, const learning::ModelUpdate& update) {
+                                          const model_db::ModelRecord& before, const LearningPair& pair,
+                                          const learning::ModelUpdate& update) {
   model_db::ModelRecord learned;
-  learned.tool_name = before.tool_name;
-  learned.material_name = before.material_name;
+  learned.tool_name = pair.tool_name;
+  learned.material_name = pair.material_name;
   learned.model = update.model;
   learned.fit.n = update.batch.n;
   learned.fit.rmse_n = update.batch.rms_error_after_n;
@@ -229,6 +252,10 @@ model_db::ModelRecord store_learned_model(const LearnOptions& o, const LearnInpu
   learned.fit.standard_errors = update.batch.standard_error_n;
   learned.source = model_db::ModelSource::kLearned;
   learned.note = o.note.empty() ? "learned from " + std::to_string(in.logs.size()) + " log(s) of " + in.spec.cycle : o.note;
+  if (pair.borrowed && o.note.empty()) {
+    learned.note += ", starting from the borrowed model of " + before.tool_name + " in " + before.material_name + " v" +
+                    std::to_string(before.version);
+  }
   model_db::LearningEntry entry;
   entry.model_id_before = before.id;
   entry.part_name = fs::path(o.plan_path).filename().string();
@@ -249,6 +276,8 @@ planner::PlanReportContext next_context(const LearnOptions& o, const LearnInputs
   planner::PlanReportContext context = in.report.context;
   context.model_id = stored.id;
   context.model_version = stored.version;
+  context.model_tool = stored.tool_name;  // the spec's own pair after learning from a borrowed model
+  context.model_material = stored.material_name;
   context.program_path = o.program_path;
   context.spec_path = stored_path(in.spec_path);  // absolute: the next learn finds both from any folder
   context.database_path = stored_path(in.db_path);
@@ -334,9 +363,10 @@ int run_learn_command(const LearnOptions& o) {
   model_db::Store store = model_db::Store::open(in.db_path, model_db::OpenMode::kExisting);
   ModelVersions models;
   models.before = planned_model(store, o, in);
-  require_planned_model_active(store, models.before);
-  const RemadePlan remade = remake_plan(in);
-  const learning::ModelUpdate update = learn_from_logs(o, in, store, models.before, remade.plan);
+  const LearningPair pair = learning_pair(store, in.db_path, in.spec, models.before, in.report.context.model_match_status);
+  require_learnable(store, models.before, pair);
+  const RemadePlan remade = remake_plan(in, models.before);
+  const learning::ModelUpdate update = learn_from_logs(o, in, store, models.before, pair, remade);
   for (const std::string& message : update.messages) std::cerr << "feedplan: " << message << "\n";
   if (update.status != learning::ModelUpdateStatus::kOk) {
     std::cerr << "feedplan: failed: nothing to learn from; the database is unchanged\n";
@@ -351,7 +381,7 @@ int run_learn_command(const LearnOptions& o) {
     std::cerr << "feedplan: failed: " << files.error() << "; the database is unchanged\n";
     return 1;
   }
-  models.after = store_learned_model(o, in, store, models.before, update);
+  models.after = store_learned_model(o, in, store, models.before, pair, update);
   stage_learn_reports(o, in, models.after, update, next, files);
   if (auto error = files.commit(); !error.empty()) {
     std::cerr << "feedplan: failed: " << error << "; the learned version v" << models.after.version << " (id "

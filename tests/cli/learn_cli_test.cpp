@@ -291,6 +291,72 @@ TEST_F(LearnCliTest, TheNextPartLearnsOnFromThePathLearningOfTheFirst) {
   EXPECT_GT(remeasured, 100);  // part 2 ran other feeds at the same places
 }
 
+// A Ø8 corner planned with the Ø10 model (borrowed): learning must not change the Ø10's model. It is
+// refused with the command that registers the Ø8 tool; following that advice, the learned version is the
+// first of the Ø8 tool in S50C (its history's step names the Ø10 v1 it started from), the Ø10's stays
+// as it was, and the next part learns on into the Ø8's own model.
+TEST_F(LearnCliTest, ABorrowedModelLearnsIntoTheSpecsOwnToolNotTheLenders) {
+  std::string text = read_text(kSamples + "/corner.yaml");
+  for (const auto& [from, to] : std::vector<std::pair<std::string, std::string>>{
+           {"diameter_mm: 10", "diameter_mm: 8"}, {"name: \"SC EM D10 Z4\"", "name: \"SC EM D8 Z4\""}}) {
+    const auto at = text.find(from);
+    ASSERT_NE(at, std::string::npos) << from;
+    text.replace(at, from.size(), to);
+  }
+  const fs::path spec = write_spec("corner_d8.yaml", text);
+  const fs::path report = dir_ / "d8.json";
+  const fs::path log = dir_ / "d8_log.csv";
+  plan_and_cut(spec.string(), dir_ / "d8.nc", report, log);
+  ASSERT_NE(read_text(report).find("\"match_status\": \"borrowed\""), std::string::npos);
+  const std::string learn = "learn " + report.string() + " " + log.string() + " -o " + next_.string() + " --db " + db_;
+  const std::string advice = "feedplan db add-tool \"SC EM D8 Z4\" --diameter-mm 8 --flutes 4 --helix-deg 30 --db " + db_;
+  expect_refused(learn, 2, {"tool.name", "borrowed the model of SC EM D10 Z4 in S50C v1", advice});
+
+  const RunResult registered = run_feedplan(advice.substr(std::string("feedplan ").size()));
+  ASSERT_EQ(registered.exit_code, 0) << registered.output;
+  const fs::path next_report = dir_ / "d8_next.json";
+  const RunResult learned = run_feedplan(learn + " --report " + next_report.string());
+  ASSERT_EQ(learned.exit_code, 0) << learned.output;
+
+  const json lender = json_of(run_feedplan("db history " + kToolMaterial + " --db " + db_ + " --json").output);
+  ASSERT_EQ(lender["versions"].size(), 1u);
+  EXPECT_EQ(lender["versions"][0]["active"], true);
+  const std::string d8 = "--tool \"SC EM D8 Z4\" --material S50C";
+  const json own = json_of(run_feedplan("db history " + d8 + " --db " + db_ + " --json").output);
+  ASSERT_EQ(own["versions"].size(), 1u) << own.dump();
+  EXPECT_EQ(own["versions"][0]["source"], "learned");
+  EXPECT_EQ(own["versions"][0]["active"], true);
+  ASSERT_EQ(own["learning"].size(), 1u) << own.dump();
+  const json exported = json::parse(content());
+  ASSERT_EQ(exported["learning_history"].size(), 1u);
+  EXPECT_EQ(exported["learning_history"][0]["model_before"]["tool"], "SC EM D10 Z4");
+  EXPECT_EQ(exported["learning_history"][0]["model_after"]["tool"], "SC EM D8 Z4");
+
+  // The next part: cut with the new plan, learned into the Ø8's model (version 2, parent 1).
+  const fs::path log_2 = dir_ / "d8_log_2.csv";
+  ASSERT_EQ(run_feedplan("simulate " + next_.string() + " --spec " + spec.string() + " --log " + log_2.string()).exit_code, 0);
+  const RunResult second = run_feedplan("learn " + next_report.string() + " " + log_2.string() + " -o " +
+                                        (dir_ / "d8_3.nc").string() + " --db " + db_);
+  ASSERT_EQ(second.exit_code, 0) << second.output;
+  const json own_2 = json_of(run_feedplan("db history " + d8 + " --db " + db_ + " --json").output);
+  ASSERT_EQ(own_2["versions"].size(), 2u) << own_2.dump();
+  EXPECT_EQ(own_2["versions"][1]["parent_version"], 1);
+  EXPECT_EQ(json_of(run_feedplan("db history " + kToolMaterial + " --db " + db_ + " --json").output)["versions"].size(), 1u);
+}
+
+// A Ø8 tool named like the stored Ø10 one borrows its model; its cut cannot be filed under that name.
+TEST_F(LearnCliTest, ABorrowedModelUnderTheSameToolNameIsNotOverwritten) {
+  std::string text = read_text(kSamples + "/corner.yaml");
+  text.replace(text.find("diameter_mm: 10"), std::string("diameter_mm: 10").size(), "diameter_mm: 8");
+  const fs::path spec = write_spec("corner_d8_same_name.yaml", text);
+  const fs::path report = dir_ / "d8.json";
+  const fs::path log = dir_ / "d8_log.csv";
+  plan_and_cut(spec.string(), dir_ / "d8.nc", report, log);
+  expect_refused("learn " + report.string() + " " + log.string() + " -o " + next_.string() + " --db " + db_, 2,
+                 {"tool.name", "the spec's tool is a Ø8 4-flute 30° helix", "Ø10 4-flute 30° helix",
+                  "give the spec's tool a name of its own"});
+}
+
 TEST_F(LearnCliTest, ALogOfAnotherProgramIsRefused) {
   std::string text = read_text(kSamples + "/corner.yaml");
   const std::string angle = "corner_angle_deg: 90";
