@@ -129,9 +129,11 @@ class ProgramOracle {
   }
 
  private:
-  // Some point of the engaged arcs (every 0.5° inside them) has material at least δ deep (on the lowest
-  // layer, where the oracle is after material_height_mm).
-  bool deep_material_on_circle(const std::vector<geometry::oracle::Arc>& arcs) const {
+  // Some point of the engaged arcs (every 0.5° inside them) has material at least δ deep, δ above the tip.
+  bool deep_material_on_circle(const std::vector<geometry::oracle::Arc>& arcs) {
+    const double height = truth_.tip_z_mm() + kDepthToleranceMm;
+    if (height > stock_.z_top_mm) return false;
+    truth_.set_height(height);
     const double step = 2.0 * kPi / kCircleSamples;
     for (const auto& a : arcs) {
       const double width = a.end_rad - a.begin_rad;
