@@ -37,10 +37,20 @@ std::vector<InputProblem> validate_tool(const geometry::Tool& tool, const std::s
     problems.push_back({field + ".flutes", "= " + std::to_string(tool.flutes) + ": must be in [1, 32] — the number of teeth"});
   }
   check(problems, field + ".helix_deg", tool.helix_deg, {0, true, 60, false}, "the helix angle of the flutes");
+  // 0 is the default (geometry::Tool); a spec that gives the field gives a value in range.
+  if (tool.max_plunge_feed_per_tooth_mm != 0.0) {
+    check(problems, field + ".max_plunge_feed_per_tooth_mm", tool.max_plunge_feed_per_tooth_mm,
+          plunge_feed_per_tooth_range(tool), kPlungeFeedPerToothMeaning);
+  }
   return problems;
 }
 
 namespace detail {
+
+Range plunge_feed_per_tooth_range(const geometry::Tool& tool) {
+  const bool diameter_known = std::isfinite(tool.diameter_mm) && tool.diameter_mm > 0.0;
+  return diameter_known ? Range{0.0, false, tool.diameter_mm, true} : above(0.0);
+}
 
 std::vector<InputProblem> validate_common(const CycleSpec& spec) {
   std::vector<InputProblem> problems;

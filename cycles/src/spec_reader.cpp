@@ -65,6 +65,15 @@ class SpecReader : public YamlFieldReader<YAML::Node> {
     return number(map, path, key, false, kNaN, meaning);
   }
 
+  // A number that may be left out (0), but when given must lie in `range` (0 is "not given" in the struct).
+  double in_range_if_given(const YAML::Node& map, const std::string& path, const std::string& key,
+                           const detail::Range& range, const std::string& meaning) {
+    if (!map[key]) return 0.0;
+    const double value = number(map, path, key, false, 0.0, meaning);
+    detail_check(child(path, key), value, range, meaning);
+    return value;
+  }
+
   // A number that may be left out, but when given must be > 0 (0 means "not given" in the struct).
   double positive_if_given(const YAML::Node& map, const std::string& path, const std::string& key,
                            const std::string& meaning) {
@@ -318,16 +327,21 @@ bool read_cycle_name(SpecReader& in, const YAML::Node& root, CycleSpec& spec) {
 // The tool section; a missing or malformed one leaves the diameter NaN.
 void read_tool(SpecReader& in, const YAML::Node& root, geometry::Tool& tool_spec) {
   if (const YAML::Node tool = root["tool"]) {
-    if (in.mapping(tool, "tool", {"diameter_mm", "flutes", "helix_deg", "name"})) {
+    if (in.mapping(tool, "tool", {"diameter_mm", "flutes", "helix_deg", "max_plunge_feed_per_tooth_mm", "name"})) {
       tool_spec.diameter_mm = in.number(tool, "tool", "diameter_mm", true, kNaN, "cutting diameter of the end mill in mm");
       tool_spec.flutes = in.integer(tool, "tool", "flutes", true, 4, "number of teeth");
       tool_spec.helix_deg = in.number(tool, "tool", "helix_deg", false, 30.0, "helix angle in deg");
+      // Absent: 0, the default of geometry::Tool. Given, it is checked here, where a given 0 is still
+      // told apart from an absent field.
+      tool_spec.max_plunge_feed_per_tooth_mm =
+          in.in_range_if_given(tool, "tool", "max_plunge_feed_per_tooth_mm",
+                               detail::plunge_feed_per_tooth_range(tool_spec), detail::kPlungeFeedPerToothMeaning);
       tool_spec.name = in.text(tool, "tool", "name", false, "free text shown in reports");
     } else {
       tool_spec.diameter_mm = kNaN;
     }
   } else {
-    in.text(root, "", "tool", true, "the end mill: {diameter_mm, flutes, helix_deg, name}");
+    in.text(root, "", "tool", true, "the end mill: {diameter_mm, flutes, helix_deg, max_plunge_feed_per_tooth_mm, name}");
     tool_spec.diameter_mm = kNaN;
   }
 }

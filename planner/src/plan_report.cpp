@@ -221,6 +221,17 @@ void read_origin(const Node& root, PlanReportContext& context) {
   context.tool.diameter_mm = tool.number("diameter_mm");
   context.tool.flutes = tool.count("flutes", 1);
   context.tool.helix_deg = tool.number("helix_deg");
+  // Written only for a tool with its own plunge feed (absent: 0, the default); when present, in (0, D].
+  if (const auto* given = tool.member("max_plunge_feed_per_tooth_mm", JsonPresence::kOptional)) {
+    const double plunge_mm = tool.number("max_plunge_feed_per_tooth_mm");  // reports a value that is not a number
+    const double diameter_mm = context.tool.diameter_mm;
+    if (given->is_number() && !(plunge_mm > 0.0 && plunge_mm <= diameter_mm)) {
+      tool.report(tool.child_path("max_plunge_feed_per_tooth_mm"),
+                  "= " + shortest_number_text(plunge_mm) + ": must be in (0, " + shortest_number_text(diameter_mm) +
+                      "] mm (a feed per tooth at most the tool diameter)");
+    }
+    context.tool.max_plunge_feed_per_tooth_mm = plunge_mm;
+  }
   context.material = root.text("material");
 }
 
@@ -349,6 +360,9 @@ std::string plan_report_json(const PlanResult& result, const PlanSettings& setti
                       {"diameter_mm", json_number(context.tool.diameter_mm)},
                       {"flutes", context.tool.flutes},
                       {"helix_deg", json_number(context.tool.helix_deg)}};
+  if (context.tool.max_plunge_feed_per_tooth_mm != 0.0) {
+    root["tool"]["max_plunge_feed_per_tooth_mm"] = json_number(context.tool.max_plunge_feed_per_tooth_mm);
+  }
   root["material"] = context.material;
   root["model"] = model_json(settings.model, context);
   root["target_force_n"] = json_number(settings.target_force_n);

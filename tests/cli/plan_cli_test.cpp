@@ -102,6 +102,47 @@ TEST_F(PlanCliTest, NonsenseMachineLimitsInTheSpecAreBadInput) {
   EXPECT_FALSE(fs::exists(program));
 }
 
+// The tool's own plunge feed per tooth from the spec: every move that descends below the stock top runs at
+// most at f_z,plunge · Z · n · length / descent (recomputed from the program read back), it binds somewhere
+// (the default 0.0025 · D would allow more there), and the report keeps it; beyond the diameter it is bad input.
+// The program holds z to 0.001 mm, so moves descending less than 0.1 mm are left out (their written descent
+// is off by up to 1 %; the planner limited the exact one).
+TEST_F(PlanCliTest, TheSpecsPlungeFeedPerToothLimitsTheDescent) {
+  std::string text = read_text(kSamples + "/helical_boring.yaml");
+  const std::string tool = "tool: {diameter_mm: 10, flutes: 4,";
+  ASSERT_NE(text.find(tool), std::string::npos);
+  const fs::path spec = write_spec("slow_plunge.yaml", std::string(text).replace(text.find(tool), tool.size(),
+                                                                                   tool + " max_plunge_feed_per_tooth_mm: 0.002,"));
+  const fs::path program = dir_ / "p.nc";
+  const fs::path report = dir_ / "p.json";
+  const RunResult r = run_feedplan("plan " + spec.string() + " --db " + db_ + " -o " + program.string() + " --report " +
+                                   report.string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(read_text(report).find("\"max_plunge_feed_per_tooth_mm\": 0.002"), std::string::npos);
+  const feedplan::geometry::Program read = feedplan::gcode::load_program(program);
+  int descending = 0;
+  int binding = 0;
+  for (std::size_t m = 0; m < read.path.moves.size(); ++m) {
+    const feedplan::geometry::Move& move = read.path.moves[m];
+    const double descent_mm = move.start.z_mm - move.end.z_mm;
+    if (move.kind == feedplan::geometry::MoveKind::kRapid || descent_mm < 0.1 || move.end.z_mm >= 0.0) continue;
+    ++descending;
+    const double limit = 0.002 * 4 * 2800 * feedplan::geometry::length_mm(move) / descent_mm;
+    EXPECT_LE(read.blocks[m].feed_mm_per_min, limit * 1.01) << "move " << m;
+    binding += read.blocks[m].feed_mm_per_min > 0.95 * limit;
+  }
+  EXPECT_GT(descending, 0);
+  EXPECT_GT(binding, 0);
+
+  const fs::path bad = write_spec("bad_plunge.yaml", std::string(text).replace(text.find(tool), tool.size(),
+                                                                               tool + " max_plunge_feed_per_tooth_mm: 11,"));
+  const RunResult refused = run_feedplan("plan " + bad.string() + " --db " + db_ + " -o " + (dir_ / "q.nc").string());
+  EXPECT_EQ(refused.exit_code, 2) << refused.output;
+  EXPECT_NE(refused.output.find("tool.max_plunge_feed_per_tooth_mm (line 4) = 11: must be in (0, 10]"), std::string::npos)
+      << refused.output;
+  EXPECT_FALSE(fs::exists(dir_ / "q.nc"));
+}
+
 TEST_F(PlanCliTest, NoModelForTheMaterialFails) {
   std::string text = read_text(kSamples + "/corner.yaml");
   text.replace(text.find("material: S50C"), std::string("material: S50C").size(), "material: Al7075-T6");

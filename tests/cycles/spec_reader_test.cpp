@@ -78,6 +78,60 @@ TEST(SpecReader, OptionalFieldsTakeTheirDocumentedDefaults) {
   EXPECT_EQ(c.direction, Direction::kCcw);
 }
 
+// The tool's plunge feed per tooth: absent, the default 0.0025 · D; given, the tool's own (geometry::Tool).
+TEST(SpecReader, ReadsTheToolsOwnPlungeFeedPerTooth) {
+  const std::string trochoid = "cycle: trochoid\naxial_depth_mm: 10\n"
+                               "trochoid: {start: [0, 0], end: [9, 0], loop_radius_mm: 5, pitch_mm: 1}\n";
+  const CycleSpec own = read_cycle_spec(
+      "tool: {diameter_mm: 10, flutes: 4, max_plunge_feed_per_tooth_mm: 0.04}\n" + trochoid, "own.yaml");
+  EXPECT_EQ(own.tool.max_plunge_feed_per_tooth_mm, 0.04);
+  EXPECT_EQ(own.tool.plunge_feed_per_tooth_mm(), 0.04);
+  const CycleSpec at_diameter = read_cycle_spec(
+      "tool: {diameter_mm: 10, flutes: 4, max_plunge_feed_per_tooth_mm: 10}\n" + trochoid, "limit.yaml");
+  EXPECT_EQ(at_diameter.tool.plunge_feed_per_tooth_mm(), 10.0);
+  const CycleSpec absent = read_cycle_spec(kTool + trochoid, "absent.yaml");
+  EXPECT_EQ(absent.tool.max_plunge_feed_per_tooth_mm, 0.0);
+  EXPECT_DOUBLE_EQ(absent.tool.plunge_feed_per_tooth_mm(), 0.025);
+}
+
+// Every refused value, with the whole message: field and line, the value, what was expected and why.
+TEST(SpecReader, RefusesAPlungeFeedPerToothOutsideZeroToTheDiameter) {
+  const auto only_problem = [](const std::string& value) {
+    const std::string yaml = "cycle: trochoid\n"
+                             "tool: {diameter_mm: 10, flutes: 4, max_plunge_feed_per_tooth_mm: " + value + "}\n"
+                             "axial_depth_mm: 10\n"
+                             "trochoid: {start: [0, 0], end: [9, 0], loop_radius_mm: 5, pitch_mm: 1}\n";
+    try {
+      read_cycle_spec(yaml, "plunge.yaml");
+    } catch (const InputError& e) {
+      if (e.problems().size() == 1) return to_string(e.problems().front());
+      return "more than one problem: " + std::string(e.what());
+    }
+    return std::string("no InputError");
+  };
+  const std::string why =
+      " — the largest feed per tooth along −Z while the tool descends into material, mm, at most the tool diameter "
+      "(leave it out for the default 0.0025 × diameter)";
+  const std::string field = "tool.max_plunge_feed_per_tooth_mm (line 2) = ";
+  EXPECT_EQ(only_problem("12"), field + "12: must be in (0, 10]" + why);
+  EXPECT_EQ(only_problem("0"), field + "0: must be in (0, 10]" + why);
+  EXPECT_EQ(only_problem("-0.01"), field + "-0.01: must be in (0, 10]" + why);
+  EXPECT_EQ(only_problem(".nan"), field + "nan: must be a finite number in (0, 10]" + why);
+  EXPECT_EQ(only_problem(".inf"), field + "inf: must be a finite number in (0, 10]" + why);
+  EXPECT_EQ(only_problem("fast"), field + "fast: must be a number — " + why.substr(5));
+}
+
+// A spec built in code is checked by the same rule (0 is the default there).
+TEST(SpecReader, ValidateToolChecksAPlungeFeedPerToothOfItsOwn) {
+  geometry::Tool tool{"D10", 10.0, 4, 30.0};
+  EXPECT_TRUE(validate_tool(tool).empty());
+  tool.max_plunge_feed_per_tooth_mm = 11.0;
+  const std::vector<InputProblem> problems = validate_tool(tool);
+  ASSERT_EQ(problems.size(), 1u);
+  EXPECT_EQ(problems.front().field, "tool.max_plunge_feed_per_tooth_mm");
+  EXPECT_EQ(problems.front().message.rfind("= 11: must be in (0, 10] — ", 0), 0u) << problems.front().message;
+}
+
 TEST(SpecReader, ReadsEveryCycleSection) {
   const CycleSpec spiral = read_cycle_spec(kTool + "cycle: spiral\naxial_depth_mm: 10\n"
                                                    "spiral: {center: [1, 2], initial_radius_mm: 8, final_radius_mm: 16, "

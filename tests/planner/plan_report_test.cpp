@@ -448,6 +448,37 @@ TEST(PlanReportRead, ToolOutsideTheSpecsRangesIsRejected) {
               Contains(problem("tool.helix_deg", "= -5: must be in [0, 60)")));
 }
 
+// A tool's own plunge feed per tooth goes into the report and comes back; the default is not written and
+// reads back as the default.
+TEST(PlanReportRoundTrip, TheToolsPlungeFeedPerToothComesBack) {
+  const CornerPlan& p = corner_plan();
+  PlanReportContext context = p.context;
+  context.tool.max_plunge_feed_per_tooth_mm = 0.0375;
+  const std::string text = plan_report_json(p.result, p.settings, context);
+  EXPECT_EQ(nlohmann::json::parse(text)["tool"]["max_plunge_feed_per_tooth_mm"], 0.0375);
+  const PlanReport report = parse_plan_report(text);
+  EXPECT_EQ(report.context.tool.max_plunge_feed_per_tooth_mm, 0.0375);
+  EXPECT_EQ(report.context.tool.plunge_feed_per_tooth_mm(), 0.0375);
+
+  ASSERT_EQ(p.context.tool.max_plunge_feed_per_tooth_mm, 0.0);
+  const std::string default_text = plan_report_json(p.result, p.settings, p.context);
+  EXPECT_FALSE(nlohmann::json::parse(default_text)["tool"].contains("max_plunge_feed_per_tooth_mm"));
+  const PlanReport default_report = parse_plan_report(default_text);
+  EXPECT_EQ(default_report.context.tool.max_plunge_feed_per_tooth_mm, 0.0);
+  EXPECT_DOUBLE_EQ(default_report.context.tool.plunge_feed_per_tooth_mm(), 0.0025 * p.context.tool.diameter_mm);
+}
+
+TEST(PlanReportRead, APlungeFeedPerToothOutsideZeroToTheDiameterIsRejected) {
+  const std::string expected = ": must be in (0, 10] mm (a feed per tooth at most the tool diameter)";
+  EXPECT_THAT(problems_after([](auto& j) { j["tool"]["max_plunge_feed_per_tooth_mm"] = 12; }),
+              Contains(problem("tool.max_plunge_feed_per_tooth_mm", "= 12" + expected)));
+  EXPECT_THAT(problems_after([](auto& j) { j["tool"]["max_plunge_feed_per_tooth_mm"] = 0; }),
+              Contains(problem("tool.max_plunge_feed_per_tooth_mm", "= 0" + expected)));
+  const std::vector<InputProblem> text = problems_after([](auto& j) { j["tool"]["max_plunge_feed_per_tooth_mm"] = "fast"; });
+  ASSERT_EQ(text.size(), 1u);
+  EXPECT_EQ(to_string(text.front()), "tool.max_plunge_feed_per_tooth_mm = \"fast\": must be a finite number");
+}
+
 TEST(PlanReportRead, BlocksOutOfOrderAreRejected) {
   EXPECT_THAT(problems_after([](auto& j) { j["blocks"][0]["last_sample"] = -1; }),
               Contains(Field(&InputProblem::field, "blocks[0].last_sample")));

@@ -39,7 +39,8 @@ struct Cycle {
                                    //!< 1.1 to 1 mm to end on the final radius (8 turns)"
 };
 
-//! Checks the tool on its own: diameter finite and > 0, flutes in [1, 32], helix angle in [0, 60) deg.
+//! Checks the tool on its own: diameter finite and > 0, flutes in [1, 32], helix angle in [0, 60) deg, and a
+//! plunge feed per tooth of its own (max_plunge_feed_per_tooth_mm ≠ 0; 0 is the default) in (0, diameter].
 //! Every problem's field starts with `field`.
 std::vector<InputProblem> validate_tool(const geometry::Tool& tool, const std::string& field = "tool");
 

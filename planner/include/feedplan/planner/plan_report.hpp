@@ -7,7 +7,8 @@
 //
 // JSON ("format": "feedplan-plan", "format_version": 1), keys in this order:
 //   format, format_version, status, messages[],
-//   spec, cycle, tool {name, diameter_mm, flutes, helix_deg}, material,
+//   spec, cycle, tool {name, diameter_mm, flutes, helix_deg, max_plunge_feed_per_tooth_mm (only when the
+//        tool has its own plunge feed per tooth; absent: the default of geometry::Tool)}, material,
 //   model {id, version, database, tool, material, match, beta[6], chip_center_mm, chip_scale_mm,
 //          contact_length_center_mm, contact_length_scale_mm,
 //          range {chip_min_mm, chip_max_mm, contact_length_min_mm, contact_length_max_mm},
@@ -59,7 +60,7 @@ inline constexpr int kPlanReportFormatVersion = 1;
 struct PlanReportContext {
   std::string spec_path;          //!< the cycle spec the plan came from (the CLI stores it absolute)
   std::string cycle;              //!< cycle name, e.g. "trochoid"
-  geometry::Tool tool;            //!< the end mill: name, diameter, flutes, helix
+  geometry::Tool tool;            //!< the end mill: name, diameter, flutes, helix, plunge feed per tooth
   std::string material;           //!< workpiece material name, e.g. "S50C"
   std::int64_t model_id = 0;      //!< row id of the stored model version used (0: not from a database)
   int model_version = 0;          //!< version number of that model
