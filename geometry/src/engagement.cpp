@@ -29,6 +29,8 @@ constexpr double kMinEngagedRad = 1e-9;
 constexpr int kCompactEvery = 4;
 // Air samples with more engagement than this are reported as meeting material.
 constexpr double kAirContactRad = 1e-6;
+// Heights closer than this to the tip or the stock faces are not evaluated (a face is not material).
+constexpr double kLayerOffsetMm = 1e-6;
 
 struct Box {
   Vec2 lo{1e300, 1e300};
@@ -223,15 +225,24 @@ EngagementSample place_sample(Sampler& sampler, const MoveSampling& m, double f)
 
 // The piece being travelled, from its start up to the tool (at fraction f of the move), taken from
 // `remaining`. Returns the piece's index.
-std::size_t exclude_travelled_piece(Sampler& sampler, const MoveSampling& m, double f, Vec2 p, double height,
-                                    AngleIntervals& remaining) {
-  const double r = sampler.r;
-  AngleIntervals& cuts = sampler.cuts;
+// The piece the tool travels at fraction f of the move: its index, and how far along it the tool is.
+struct TravelledPiece {
+  std::size_t index;
+  double g;  // fraction of the piece travelled
+};
+
+TravelledPiece travelled_piece(const Sampler& sampler, const MoveSampling& m, double f) {
   const auto& fractions = sampler.split.move_fractions[m.index];
   std::size_t piece_in_move = 0;
   while (piece_in_move + 2 < fractions.size() && f >= fractions[piece_in_move + 1]) ++piece_in_move;
-  const std::size_t current = sampler.split.move_first_piece[m.index] + piece_in_move;
-  const double g = (f - fractions[piece_in_move]) / (fractions[piece_in_move + 1] - fractions[piece_in_move]);
+  return {sampler.split.move_first_piece[m.index] + piece_in_move,
+          (f - fractions[piece_in_move]) / (fractions[piece_in_move + 1] - fractions[piece_in_move])};
+}
+
+std::size_t exclude_travelled_piece(Sampler& sampler, const MoveSampling& m, double f, Vec2 p, double r,
+                                    double height, AngleIntervals& remaining) {
+  AngleIntervals& cuts = sampler.cuts;
+  const auto [current, g] = travelled_piece(sampler, m, f);
   cuts.clear();
   if (g > 0.0) {
     const SweptPiece& piece = sampler.split.pieces[current];
@@ -248,8 +259,8 @@ std::size_t exclude_travelled_piece(Sampler& sampler, const MoveSampling& m, dou
 }
 
 // Earlier pieces, most recent first, culled by the box of what is still engaged, taken from `remaining`.
-void exclude_earlier_pieces(Sampler& sampler, std::size_t current, Vec2 p, double height, AngleIntervals& remaining) {
-  const double r = sampler.r;
+void exclude_earlier_pieces(Sampler& sampler, std::size_t current, Vec2 p, double r, double height,
+                            AngleIntervals& remaining) {
   AngleIntervals& cuts = sampler.cuts;
   Box box = arcs_box(remaining, p, r);
   int contributed = 0;
@@ -267,18 +278,48 @@ void exclude_earlier_pieces(Sampler& sampler, std::size_t current, Vec2 p, doubl
   remaining = detail::subtract_union(remaining, cuts, kMinEngagedRad);
 }
 
-// The engaged world angles at the sample on height `height`: the initial material there, less what
-// the travelled piece and the earlier pieces swept.
-AngleIntervals engaged_angles(Sampler& sampler, const MoveSampling& m, double f, const EngagementSample& sample,
-                              double height) {
+// The world angles of the circle of radius `radius_mm` about the sample (the tool circle, or one inside
+// it) that lie in material on height `height`: the initial material there, less what the travelled piece
+// and the earlier pieces swept.
+AngleIntervals material_angles(Sampler& sampler, const MoveSampling& m, double f, const EngagementSample& sample,
+                               double radius_mm, double height) {
   const Vec2 p = detail::to_vec(sample.position);
   AngleIntervals remaining;
-  if (height > sample.position.z_mm) remaining = detail::initial_material(sampler.stock, p, sampler.r, height);
+  if (height > sample.position.z_mm) remaining = detail::initial_material(sampler.stock, p, radius_mm, height);
   if (!remaining.empty()) {
-    const std::size_t current = exclude_travelled_piece(sampler, m, f, p, height, remaining);
-    exclude_earlier_pieces(sampler, current, p, height, remaining);
+    const std::size_t current = exclude_travelled_piece(sampler, m, f, p, radius_mm, height, remaining);
+    exclude_earlier_pieces(sampler, current, p, radius_mm, height, remaining);
   }
   return remaining;
+}
+
+// The engaged world angles of the tool circle at the sample on height `height`.
+AngleIntervals engaged_angles(Sampler& sampler, const MoveSampling& m, double f, const EngagementSample& sample,
+                              double height) {
+  return material_angles(sampler, m, f, sample, sampler.r, height);
+}
+
+// Circles inside the tool, as fractions of its radius, on which the end face looks for material.
+constexpr double kEndFaceCircles[] = {0.05, 0.25, 0.5, 0.75, 0.95};
+
+// True when the tool descends at the sample and its end face meets material inside the tool circle just
+// above the tip (the material it is plunging through) — material the circle does not reach (an island
+// under the tool, the rim of a pre-drilled hole). The piece being travelled is not subtracted: while
+// descending, its earlier part had its tip higher up and removed nothing down here, and its last
+// instants (tips within the height offset) would cover the whole disc.
+bool end_face_in_material(Sampler& sampler, const MoveSampling& m, double f, const EngagementSample& sample) {
+  if (!(m.move.end.z_mm < m.move.start.z_mm)) return false;
+  const double height = std::max(sample.position.z_mm, sampler.stock.z_bottom_mm) + kLayerOffsetMm;
+  if (!(height < sampler.stock.z_top_mm - kLayerOffsetMm)) return false;
+  const Vec2 p = detail::to_vec(sample.position);
+  const std::size_t current = travelled_piece(sampler, m, f).index;
+  for (const double fraction : kEndFaceCircles) {
+    AngleIntervals remaining = detail::initial_material(sampler.stock, p, fraction * sampler.r, height);
+    if (remaining.empty()) continue;
+    exclude_earlier_pieces(sampler, current, p, fraction * sampler.r, height, remaining);
+    if (!remaining.empty()) return true;
+  }
+  return false;
 }
 
 // The sample's totals from its engaged intervals (the last ones of the profile).
@@ -296,8 +337,6 @@ void summarise_intervals(const EngagementProfile& profile, double r, EngagementS
   sample.contact_length_mm = r * sample.engagement_rad;
 }
 
-// Heights closer than this to the tip or the stock faces are not evaluated (a face is not material).
-constexpr double kLayerOffsetMm = 1e-6;
 // Two engaged sets whose interval ends differ by less than this are the same set.
 constexpr double kSameSetRad = 1e-9;
 
@@ -419,6 +458,7 @@ void sample_move(Sampler& sampler, std::size_t i, double s_start_mm) {
       summarise_intervals(profile, sampler.r, sample);
     } else {
       engage_layers(sampler, m, f, sample);
+      if (sample.engagement_rad <= 0.0) sample.end_face_in_material = end_face_in_material(sampler, m, f, sample);
     }
     warn_of_contact_in_air(sampler, m, sample);
     profile.samples.push_back(sample);

@@ -101,6 +101,10 @@ void hold_upper_bound(const model::ResponseSurfaceModel& model, const geometry::
 
 bool is_engaged(const geometry::EngagementSample& sample) { return sample.engagement_rad > 0.0; }
 
+bool meets_material(const geometry::EngagementSample& sample) {
+  return is_engaged(sample) || sample.end_face_in_material;
+}
+
 double axial_depth_ratio(const model::ResponseSurfaceModel& model, double axial_depth_mm) {
   if (model.axial_depth_mm <= 0.0 || axial_depth_mm <= 0.0) return 1.0;
   return axial_depth_mm / model.axial_depth_mm;

@@ -290,7 +290,7 @@ double feed_limit_at(const PlanContext& c, const std::vector<double>& centripeta
                                                   c.air_feed, c.uncertainty);
   double feed = limit.feed_mm_per_min;
   FeedLimitReason reason = limit.reason;
-  if (is_engaged(sample)) {
+  if (meets_material(sample)) {
     const double plunge = plunge_feed_limit_mm_per_min(move, c.tool, c.rpm);
     if (plunge < feed) {
       feed = plunge;
@@ -646,7 +646,7 @@ SafetyCheck check_program(const PlanContext& c, const PlanGeometry& geometry, co
   input.tool = &geometry.tool;
   input.settings = &c.settings;
   input.correction_s_mm = c.s;
-  input.ds_mm = c.settings.options.ds_mm;
+  input.ds_mm = c.engagement.ds_mm;  // the spacing the plan was analysed at
   // --mode regulate promises F within the merge tolerance of the limit (feed_plan.hpp), not below it.
   if (c.settings.options.mode == PlanMode::kRegulate) {
     input.relative_tolerance = std::max(input.relative_tolerance, c.settings.options.merge_tolerance);

@@ -50,16 +50,24 @@ struct SampleAllowance {
   SafetyProblem problem = SafetyProblem::kAboveForceLimit;
 };
 
+// True when `move` goes straight up: the tool body (a cylinder above the tip) already occupies the
+// space it passes through, so it removes nothing — a retract from the end of a cut that still touches
+// the wall it just cut is not a collision.
+bool rises_straight_up(const geometry::Move& move) {
+  return move.end.z_mm > move.start.z_mm && geometry::xy_length_mm(move) < 1e-9;
+}
+
 SampleAllowance allowance(const SafetyCheckInput& input, const geometry::EngagementProfile& profile,
                           const geometry::EngagementSample& sample, const geometry::Move& move) {
   if (!std::isfinite(sample.engagement_rad) || !std::isfinite(sample.chip_factor) ||
       !std::isfinite(sample.material_height_mm)) {
     return {0.0, SafetyProblem::kEngagementUnknown};
   }
-  if (!is_engaged(sample)) return {};
+  if (!meets_material(sample) || rises_straight_up(move)) return {};
   if (move.kind == geometry::MoveKind::kRapid) return {0.0, SafetyProblem::kRapidInMaterial};
   const double plunge = plunge_feed_limit_mm_per_min(move, *input.tool, input.settings->spindle_rpm);
-  const double force = force_limit_mm_per_min(input, profile, sample);
+  const double force =
+      is_engaged(sample) ? force_limit_mm_per_min(input, profile, sample) : std::numeric_limits<double>::infinity();
   if (plunge < force) return {plunge, SafetyProblem::kAbovePlungeLimit};
   return {force, SafetyProblem::kAboveForceLimit};
 }

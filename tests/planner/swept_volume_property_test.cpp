@@ -371,7 +371,7 @@ std::vector<int> check_status_and_messages(const PlannedCase& c, double ds_mm, T
   input.settings = &c.settings;
   for (const PlannedSample& sample : c.result.samples) input.correction_s_mm.push_back(sample.s_mm);
   input.ds_mm = ds_mm;
-  const std::vector<SafetyViolation> violations = check_safety(c.result.program, input);
+  const std::vector<SafetyViolation> violations = check_safety(c.result.program, input).violations;
   std::vector<int> moves;
   for (const SafetyViolation& v : violations) moves.push_back(v.move_index);
   const bool unsafe = c.result.status == PlanStatus::kUnsafe;

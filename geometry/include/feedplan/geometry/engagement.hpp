@@ -77,6 +77,10 @@ struct EngagementSample {
   //! Height from the tool tip to the top of the highest layer with engaged material, mm (0 when not
   //! engaged, and with EngagementOptions::evaluation_z_mm)
   double material_height_mm = 0.0;
+  //! The tool descends here and its end face meets material inside the tool circle that the circle
+  //! itself does not reach (engagement_rad is 0): a plunge onto an island or the rim of a hole. Found on
+  //! concentric circles at 5 %, 25 %, 50 %, 75 % and 95 % of the radius, just above the tip.
+  bool end_face_in_material = false;
   int layer_begin = 0;               //!< first layer in EngagementProfile::layers
   int layer_count = 0;               //!< layers with engaged material, lowest first (0 when not engaged)
 };

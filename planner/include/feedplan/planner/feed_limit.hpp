@@ -115,4 +115,9 @@ double model_contact_length_mm(const model::ResponseSurfaceModel& model, double 
 //! force model and the plunge limit apply to; an air move that meets material is cutting).
 bool is_engaged(const geometry::EngagementSample& sample);
 
+//! True when the tool meets material at the sample with its circle on any layer (is_engaged) or, while
+//! descending, with its end face (geometry::EngagementSample::end_face_in_material): where the plunge
+//! limit applies and a rapid is a collision.
+bool meets_material(const geometry::EngagementSample& sample);
+
 }  // namespace feedplan::planner

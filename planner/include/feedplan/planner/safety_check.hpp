@@ -1,7 +1,6 @@
 #pragma once
-// The safety check every plan passes before it may be called ok (issue "never call an unsafe program
-// ok"): from the written program alone — its moves and their F words — and the stock it cuts, re-derive
-// where the tool is in material and what feed its engagement there allows, and name every place a feed
+// The safety check every plan passes before it may be called ok: from the written program alone — its
+// moves and their F words — and the stock it cuts, re-derive where the tool is in material and what feed its engagement there allows, and name every place a feed
 // move runs faster, or a rapid meets material.
 //
 // It shares none of the planner's bookkeeping (sample limits, blocks' smallest limits, the command
@@ -12,8 +11,12 @@
 //   2. a feed move that meets material on any layer — whatever the path called it (air, entry, plunge,
 //      ramp, helix) — runs at most at the feed the force model allows there at the target (the minimum
 //      feed of the machine where no feed meets the target, which the plan reports as target not met);
-//   3. a feed move that descends into material runs at most at the tool's plunge feed per tooth;
+//   3. a feed move that descends into material — with its circle, or with its end face onto material
+//      the circle does not reach (geometry::EngagementSample::end_face_in_material) — runs at most at
+//      the tool's plunge feed per tooth;
 //   4. an engagement that cannot be computed (not a number) is a violation, never air.
+// A move straight up (no XY travel) removes nothing — the tool body already fills the space it climbs
+// through — so a retract that still touches the wall it has just cut is not a rapid in material.
 // The planner's samples and the check's lie at different places along a move, and the limit changes
 // between them: a feed above the limit by no more than `relative_tolerance` is not reported.
 
