@@ -1,7 +1,7 @@
 #pragma once
 // The safety check every plan passes before it may be called ok: from the written program alone — its
-// moves and their F words — and the stock it cuts, re-derive where the tool is in material and what feed its engagement there allows, and name every place a feed
-// move runs faster, or a rapid meets material.
+// moves and their F words — and the stock it cuts, re-derive where the tool is in material and what feed
+// its engagement there allows, and name every place a feed move runs faster, or a rapid meets material.
 //
 // It shares none of the planner's bookkeeping (sample limits, blocks' smallest limits, the command
 // profile): it cuts the program's own moves on the stock again (geometry::compute_engagement, every
