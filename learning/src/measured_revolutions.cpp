@@ -240,8 +240,9 @@ LearningSample learning_sample(const WindowContext& c, const force_log::Revoluti
   sample.contact_length_mm = planner::model_contact_length_mm(c.model, planned.contact_length_mm);
   sample.force_n = peak.peak_xy_n;
   if (c.options.transfer_to_model) {
-    sample.force_n /= planner::force_transfer_factor(c.model, at.place, planned.load_ratio, at.feed_mm_per_min,
-                                                     c.flutes, c.spindle_rpm);
+    sample.transfer_factor = planner::force_transfer_factor(c.model, at.place, planned.load_ratio, at.feed_mm_per_min,
+                                                            c.flutes, c.spindle_rpm);
+    sample.force_n /= sample.transfer_factor;
   }
   sample.weight = 1.0;
   sample.s_mm = 0.5 * (w.s0 + w.s1);

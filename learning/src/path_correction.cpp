@@ -93,7 +93,9 @@ PathLearning learn_along_path(const planner::PlanResult& plan, const model::Resp
         const ToothPeriodPeak& p = periods[k];
         s_end_mm = std::max(s_end_mm, p.s_end_mm);
         if (!(p.sample.force_n > 0.0)) continue;
-        run.push_back({p.s_peak_mm, {p.sample.chip_mm, p.sample.contact_length_mm, p.runout_factor * p.sample.force_n,
+        // The measured peak itself (untransferred): it is carried to each plan sample's own transfer below.
+        run.push_back({p.s_peak_mm, {p.sample.chip_mm, p.sample.contact_length_mm,
+                                     p.runout_factor * p.sample.force_n * p.sample.transfer_factor,
                                      p.s_end_mm - p.s_start_mm}});
       }
       if (run.empty()) continue;
@@ -118,9 +120,14 @@ PathLearning learn_along_path(const planner::PlanResult& plan, const model::Resp
     const double w = 1.0 / count[i];
     const PathMeasurement& before = out.measurement[i];
     // The window: the longest seen here (the next plan may run as fast as any earlier one did).
-    const PathMeasurement now{w * sum[i].chip_mm, w * sum[i].contact_length_mm, w * sum[i].force_n,
+    // On the straight-cut model's terms at this sample: the measured force and the target both over the
+    // factor the planner puts on the model here (the chip-load or depth transfer), so that c · F̂ · factor
+    // meets the target where the measurement says it will.
+    const double factor = samples[i].transfer_factor > 0.0 ? samples[i].transfer_factor : 1.0;
+    const PathMeasurement now{w * sum[i].chip_mm, w * sum[i].contact_length_mm, w * sum[i].force_n / factor,
                               std::max(sum[i].window_mm, before.window_mm)};
-    out.place_correction[i] = place_correction(model, target_force_n, now, before, out.place_correction[i], !had_correction);
+    out.place_correction[i] =
+        place_correction(model, target_force_n / factor, now, before, out.place_correction[i], !had_correction);
     out.measurement[i] = now;
   }
   // Look ahead one tooth period: where the force rises along the path (an entry), the next plan slows

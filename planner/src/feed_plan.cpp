@@ -475,6 +475,8 @@ FirstProblems predict_samples(const PlanContext& c, const ControllerRun& run, Pl
     planned.predicted_force_n =
         c.correction(i) *
         predicted_force_n(settings.model, samples[i], c.load_ratio[i], planned.feed_mm_per_min, c.flutes, c.rpm);
+    planned.transfer_factor =
+        force_transfer_factor(settings.model, samples[i], c.load_ratio[i], planned.feed_mm_per_min, c.flutes, c.rpm);
     planned.upper_force_n = c.uncertainty ? c.correction(i) * upper_force_n(settings.model, c.bound_sample(i),
                                                                             c.load_ratio[i], planned.feed_mm_per_min,
                                                                             c.flutes, c.rpm, c.uncertainty)

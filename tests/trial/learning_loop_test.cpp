@@ -72,35 +72,35 @@ TEST_F(LearningLoop, ThirdCycleHoldsTheTargetWithinFivePercentOnSteadyCuts) {
   EXPECT_LE(third.steady_rms_error_percent, 2.5);
 }
 
-TEST_F(LearningLoop, LearningAlongThePathHoldsTheWallEntryWithinSixPercentByTheThirdCycle) {
+TEST_F(LearningLoop, LearningAlongThePathHoldsTheWallEntryWithinFivePercentByTheThirdCycle) {
   // Where the tool enters the wall the response surface alone cannot be right (t_m and L pair unlike
   // any straight cut); the chip-load transfer (planner/feed_limit.hpp) carries most of it, and repeated
-  // parts let the plan learn the rest at the place itself. Measured here: the model alone +5.2 %, +5.7 %
-  // over the target in cycles 3 and 4; along the path +1.9 %, +5.4 % (every revolution in the material).
+  // parts let the plan learn the rest at the place itself, on the model's terms at each place (the
+  // measured force and the target both over the planner's transfer factor there).
   LoopRequest request = corner_request(1.5, 600.0);
   request.cycles = 4;
   request.path_correction = true;
   const LoopResult along_path = run_learning_loop(request);
   for (int cycle : {3, 4}) {
     const auto& c = along_path.cycles[static_cast<std::size_t>(cycle - 1)].comparison;
-    EXPECT_LE(c.max_overshoot_percent, 6.0) << "cycle " << cycle;  // every revolution in the material
+    EXPECT_LE(c.max_overshoot_percent, 5.0) << "cycle " << cycle;  // every revolution in the material
     EXPECT_LE(c.max_abs_error_percent, 5.0) << "cycle " << cycle;
   }
 }
 
-TEST_F(LearningLoop, TrochoidLoopEntriesAtMostFivePercentOverByTheThirdCycle) {
+TEST_F(LearningLoop, TrochoidLoopEntriesWithinFivePercentByTheThirdCycle) {
   // Ten entries into the material per part, each rising from nothing to the target within a
   // revolution or two — the case learning per tooth period is for (seed 003, Table 2). By the third
-  // cycle no revolution is more than 5 % over the target; one entry is still 12 % under it (held
-  // revolutions' largest |error|), which costs time, not tool life.
+  // cycle every held revolution is within 5 % of the target; the largest peak anywhere in the cut (an
+  // entry revolution the plan does not hold at the target) is within 6 % over it.
   LoopRequest request = request_for("trochoid.yaml", 1.5, 500.0);
   request.cycles = 3;
   const LoopResult result = run_learning_loop(request);
   EXPECT_GT(result.cycles[0].comparison.max_overshoot_percent, 50.0);
   const auto& third = result.cycles[2].comparison;
   EXPECT_GT(third.in_cut, 800);
-  EXPECT_LE(third.max_overshoot_percent, 5.0);
-  EXPECT_LE(third.max_abs_error_percent, 15.0);
+  EXPECT_LE(third.max_overshoot_percent, 6.0);
+  EXPECT_LE(third.max_abs_error_percent, 5.0);
   EXPECT_LE(third.rms_error_percent, 2.0);
 }
 

@@ -17,6 +17,9 @@ struct LearningSample {
   double force_n = 0.0;            //!< measured peak XY force of the revolution, N, scaled to the model's axial depth
   double weight = 1.0;             //!< relative precision (> 0)
   double s_mm = 0.0;               //!< where on the planned path (middle of the revolution), mm
+  //! The factor force_n was divided by to stand for the straight-cut model's own force there
+  //! (planner::force_transfer_factor; 1 when not transferred): force_n × transfer_factor is the measured peak
+  double transfer_factor = 1.0;
 };
 
 //! Appends the problems with one sample's numbers to `problems`, fields named `prefix` + member

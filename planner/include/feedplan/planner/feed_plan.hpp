@@ -159,6 +159,9 @@ struct PlannedSample {
   double contact_length_mm = 0.0;       //!< L = r α_en, mm
   double axial_depth_mm = 0.0;          //!< axial depth of cut, mm
   double load_ratio = 0.0;              //!< C / C_ref of the chip-load transfer (feed_limit.hpp), 0: none
+  //! force_transfer_factor at the speed run here (feed_limit.hpp): predicted force over the straight-cut
+  //! model's own F̂(t_m, max(L, L_min)), before the force correction (1 where not engaged)
+  double transfer_factor = 1.0;
   double feed_limit_mm_per_min = 0.0;   //!< the feed limit of step 1, mm/min
   FeedLimitReason limit_reason = FeedLimitReason::kAirFeed;  //!< what sets feed_limit_mm_per_min
   bool extrapolated = false;            //!< the force model is used outside its fitted range here
