@@ -9,8 +9,10 @@
 // re-cut its track (a bore's flat bottom circle): from there on a layer's engagement is the lowest
 // layer's, and only the stretch before is computed for it (track_cover.hpp). A 10 mm deep pocket
 // bored with a 1 mm pitch then costs about one engagement of the path, not two hundred. Re-cut means
-// on the same track within `recut_tolerance_mm`: exactly, by default, as a G-code program read back
-// with 3 decimals rarely re-cuts its helix exactly (its arc centres move by up to 0.2 mm).
+// on the same track within `recut_tolerance_mm`: an arc's track is re-cut by arcs whose tracks lie
+// within it of the arc's circle, whatever their own centres. Exact, by default; a G-code program
+// read back from 3 decimals needs about 1.4 µm, the rounding of its points (its bottom circle's
+// pieces are written up to 0.7 µm off the helix's circle).
 //
 // Memory: every band samples the path at the same places, so the places are kept once; a sample's
 // arcs are kept once for all the bands in a row that have the same ones (16 bytes per arc, 6 bytes
