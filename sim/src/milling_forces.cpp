@@ -56,6 +56,48 @@ struct Teeth {
   std::size_t previous_teeth = 1;  // tooth passages the chip depends on
 };
 
+// The cosine and sine of tooth 0's world angle θ₀ + lag on successive slices: the first from std::cos
+// and std::sin, each next one turned from the one before through the lag between them. Slices lie a
+// layer apart, so one turn's cosine and sine serve them all: a lag step within kSameTurnRad of the
+// last one reuses it (the angle is then off by that much at most, and the next step makes up for it).
+class ToothZeroAngle {
+ public:
+  explicit ToothZeroAngle(double theta0_rad) : theta0_rad_(theta0_rad) {}
+
+  void move_to(double lag_rad) {
+    if (!started_) {
+      c_ = std::cos(theta0_rad_ + lag_rad);
+      s_ = std::sin(theta0_rad_ + lag_rad);
+      lag_rad_ = lag_rad;
+      started_ = true;
+      return;
+    }
+    const double step = lag_rad - lag_rad_;
+    if (std::abs(step - step_rad_) > kSameTurnRad) {
+      step_rad_ = step;
+      cos_step_ = std::cos(step);
+      sin_step_ = std::sin(step);
+    }
+    const double next_c = c_ * cos_step_ - s_ * sin_step_;
+    s_ = s_ * cos_step_ + c_ * sin_step_;
+    c_ = next_c;
+    lag_rad_ += step_rad_;
+  }
+  double cos() const { return c_; }
+  double sin() const { return s_; }
+
+ private:
+  static constexpr double kSameTurnRad = 1e-12;
+  double theta0_rad_;
+  bool started_ = false;
+  double lag_rad_ = 0.0;   // the lag c_ and s_ are at
+  double c_ = 1.0;
+  double s_ = 0.0;
+  double step_rad_ = 0.0;  // the last turn, and its cosine and sine
+  double cos_step_ = 1.0;
+  double sin_step_ = 0.0;
+};
+
 // The chip of tooth j at a point along (c, s): by how far it reaches beyond the circles the previous
 // teeth cut, mm (≤ 0: it cuts nothing).
 double chip_mm(const CutterGeometry& cutter, const CutterState& state, const Teeth& teeth, int j, double c, double s) {
@@ -74,22 +116,16 @@ double chip_mm(const CutterGeometry& cutter, const CutterState& state, const Tee
 
 // The force of every engaged tooth element of one slice, added to `force`. Tooth j's world angle is
 // θ₀ + lag + j·pitch and its immersion φ₀ − lag − j·pitch; the cosine and sine of its angle follow
-// from the first engaged tooth's by rotations through the pitch.
+// from tooth 0's (`tooth0`, at this slice's lag) by rotations through the pitch.
 void add_slice_force(Force3& force, const CutterGeometry& cutter, const CuttingCoefficients& k,
-                     const CutterState& state, const Teeth& teeth, const ForceSlice& slice) {
+                     const CutterState& state, const Teeth& teeth, const ForceSlice& slice, double lag,
+                     const ToothZeroAngle& tooth0) {
   const double dz = slice.thickness_mm;
-  const double lag = slice.height_above_tip_mm * teeth.lag_per_mm;
-  int at_tooth = -1;  // the tooth whose angle c, s hold; none yet
-  double c = 0.0;
-  double s = 0.0;
+  int at_tooth = 0;  // the tooth whose angle c, s hold
+  double c = tooth0.cos();
+  double s = tooth0.sin();
   for (int j = 0; j < teeth.count; ++j) {
     if (!engaged_at(slice.engaged, wrapped_immersion(teeth.phi0_rad - lag - j * teeth.pitch_rad))) continue;
-    if (at_tooth < 0) {
-      const double theta = teeth.theta0_rad + lag + j * teeth.pitch_rad;
-      c = std::cos(theta);
-      s = std::sin(theta);
-      at_tooth = j;
-    }
     for (; at_tooth < j; ++at_tooth) {
       const double next_c = c * teeth.cos_pitch - s * teeth.sin_pitch;
       s = s * teeth.cos_pitch + c * teeth.sin_pitch;
@@ -127,9 +163,12 @@ Force3 milling_force(const CutterGeometry& cutter, const CuttingCoefficients& co
   teeth.previous_teeth = runout ? std::min<std::size_t>(cutter.flutes, state.displacement_since_tooth_mm.size()) : 1;
 
   Force3 force;
+  ToothZeroAngle tooth0(teeth.theta0_rad);
   for (const auto& slice : slices) {
     if (slice.engaged.empty() || slice.thickness_mm <= 0.0) continue;
-    add_slice_force(force, cutter, coefficients, state, teeth, slice);
+    const double lag = slice.height_above_tip_mm * teeth.lag_per_mm;
+    tooth0.move_to(lag);
+    add_slice_force(force, cutter, coefficients, state, teeth, slice, lag, tooth0);
   }
   return force;
 }

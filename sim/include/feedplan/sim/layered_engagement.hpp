@@ -63,13 +63,18 @@ class LayeredEngagement {
   //! Engagement samples computed over all bands (one band along the whole path counts its samples).
   std::size_t samples_computed() const { return samples_computed_; }
 
-  //! A position along the path for the lookups below; keep one per layer band and advance it with s.
+  //! A position along the path for the lookups below: the last sample found. Every band samples the
+  //! path at the same places, so one cursor serves all layers.
   struct Cursor {
     std::size_t sample = 0;
   };
+  //! The sample nearest to arc length `s_mm`, searched from `cursor` (s may move forward or backward;
+  //! the search is short when it moves little); 0 when there are no samples.
+  std::size_t sample_at(double s_mm, Cursor& cursor) const;
   //! Engaged arcs (immersion angles relative to the feed direction, as in geometry::EngagedInterval)
-  //! of `layer` at the sample nearest to arc length `s_mm`. `cursor` must be the caller's cursor for
-  //! this layer's band (band_of); s may move forward or backward.
+  //! of the layers of `band` at `sample` (from sample_at); empty when there are no samples.
+  std::span<const geometry::EngagedInterval> band_intervals(int band, std::size_t sample) const;
+  //! Engaged arcs of `layer` at the sample nearest to arc length `s_mm` (sample_at, then band_intervals).
   std::span<const geometry::EngagedInterval> intervals_at(int layer, double s_mm, Cursor& cursor) const;
   int band_of(int layer) const { return layer_band_[layer]; }
 
