@@ -523,6 +523,49 @@ class Interpreter {
     }
   }
 
+  // Makes `m` (start and programmed end set) the arc of a G2/G3 block: its circle from R or from I J
+  // (arc_geometry.hpp), its end moved onto the circle when that moves less than the centre would.
+  // False, with the problem logged, when the words give no arc.
+  bool make_arc(const Block& block, int motion, Move& m) {
+    const bool ccw = motion == kG3;
+    const int turns = block.has('P') ? static_cast<int>(block.word('P')->value) : 1;
+    const Point2 start_xy = geometry::xy(m.start);
+    const Point2 end_xy = geometry::xy(m.end);
+    detail::ArcCircle arc;
+    std::string subject = detail::g_code_name(motion);
+    if (const Word* r = block.word('R')) {
+      subject += " " + r->text;
+      arc = detail::arc_from_radius(start_xy, end_xy, r->value * unit_mm(), ccw, turns, options_.arc_radius_tolerance_mm);
+    } else {
+      const Word* i = block.word('I');
+      const Word* j = block.word('J');
+      for (const Word* w : {i, j}) {
+        if (w != nullptr) subject += " " + w->text;
+      }
+      const double i_mm = i != nullptr ? i->value * unit_mm() : 0.0;
+      const double j_mm = j != nullptr ? j->value * unit_mm() : 0.0;
+      // LinuxCNC: I J are offsets from the programmed start, not from where a moved arc end left the path.
+      const Point2 programmed_start = geometry::xy(position_mm_);
+      const Point2 center = absolute_arc_center_ ? Point2{i_mm, j_mm}
+                                                 : Point2{programmed_start.x_mm + i_mm, programmed_start.y_mm + j_mm};
+      arc = detail::arc_from_center(programmed_start, start_xy, end_xy, center, ccw, turns,
+                                    options_.arc_radius_tolerance_mm);
+    }
+    if (!arc.problem.empty()) {
+      problems_.add(block.line, subject + ": " + arc.problem);
+      return false;
+    }
+    moved_centres_.add(arc.center_shift_mm, block.line);
+    moved_ends_.add(arc.end_shift_mm, block.line);
+    m.end.x_mm = arc.end.x_mm;
+    m.end.y_mm = arc.end.y_mm;
+    m.kind = MoveKind::kArc;
+    m.center = arc.center;
+    m.ccw = ccw;
+    m.sweep_rad = arc.sweep_rad;
+    return true;
+  }
+
   void move(const Block& block, int motion) {
     const int line = block.line;
     note_resolution(block);
@@ -554,45 +597,9 @@ class Interpreter {
         return;
       }
       m.kind = feed ? MoveKind::kLine : MoveKind::kRapid;
-    } else {
-      const bool ccw = motion == kG3;
-      const int turns = block.has('P') ? static_cast<int>(block.word('P')->value) : 1;
-      const Point2 start_xy = path_end_xy_;
-      const Point2 end_xy = geometry::xy(end);
-      detail::ArcCircle arc;
-      std::string subject = detail::g_code_name(motion);
-      if (const Word* r = block.word('R')) {
-        subject += " " + r->text;
-        arc = detail::arc_from_radius(start_xy, end_xy, r->value * unit_mm(), ccw, turns,
-                                      options_.arc_radius_tolerance_mm);
-      } else {
-        const Word* i = block.word('I');
-        const Word* j = block.word('J');
-        for (const Word* w : {i, j}) {
-          if (w != nullptr) subject += " " + w->text;
-        }
-        const double i_mm = i != nullptr ? i->value * unit_mm() : 0.0;
-        const double j_mm = j != nullptr ? j->value * unit_mm() : 0.0;
-        // LinuxCNC: I J are offsets from the programmed start, not from where a moved arc end left the path.
-        const Point2 programmed_start = geometry::xy(position_mm_);
-        const Point2 center = absolute_arc_center_ ? Point2{i_mm, j_mm}
-                                                   : Point2{programmed_start.x_mm + i_mm, programmed_start.y_mm + j_mm};
-        arc = detail::arc_from_center(programmed_start, start_xy, end_xy, center, ccw, turns,
-                                      options_.arc_radius_tolerance_mm);
-      }
-      if (!arc.problem.empty()) {
-        problems_.add(line, subject + ": " + arc.problem);
-        go_to(end);
-        return;
-      }
-      moved_centres_.add(arc.center_shift_mm, line);
-      moved_ends_.add(arc.end_shift_mm, line);
-      m.end.x_mm = arc.end.x_mm;
-      m.end.y_mm = arc.end.y_mm;
-      m.kind = MoveKind::kArc;
-      m.center = arc.center;
-      m.ccw = ccw;
-      m.sweep_rad = arc.sweep_rad;
+    } else if (!make_arc(block, motion, m)) {
+      go_to(end);
+      return;
     }
     if (!room_for_move(line)) return;
     m.cutting = feed;

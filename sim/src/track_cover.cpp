@@ -77,9 +77,9 @@ double distance_from_circle_mm(const geometry::Move& arc, const geometry::Point2
   std::vector<Interval> pieces;
   add_unwrapped(pieces, arc_span(arc));
   const double radius = geometry::arc_radius_mm(arc);
-  for (double angle = std::atan2(dy, dx), turn = 0; turn < 2; angle += kPi, ++turn) {
-    double wrapped = std::fmod(angle, kTwoPi);
-    if (wrapped < 0.0) wrapped += kTwoPi;
+  const double away = std::atan2(dy, dx);  // from `center` through the arc's centre
+  for (const double angle : {away, away + kPi}) {
+    const double wrapped = std::fmod(angle + kTwoPi, kTwoPi);  // in [0, 2π)
     if (!covers_span(pieces, {wrapped, 0.0}, 0.0)) continue;
     largest = std::max(largest, off(arc.center.x_mm + radius * std::cos(wrapped), arc.center.y_mm + radius * std::sin(wrapped)));
   }
