@@ -342,6 +342,7 @@ void print_simulation_json(const SimulateOptions& options, const geometry::Tool&
   out["step_s"] = s.step_s;
   out["stock_layers"] = s.stock_layers;
   out["engagement_bands"] = s.engagement_bands;
+  out["recut_tolerance_mm"] = s.recut_tolerance_mm;
   out["log"] = options.log_path;
   out["log_rows"] = s.log_rows;
   if (!options.plot_path.empty()) out["plot"] = options.plot_path;

@@ -82,11 +82,32 @@ struct Block {
   bool has_m(int code, int group) const { return m_by_group[group] == code; }
 };
 
+// How many arcs the reader had to move a point of (by more than kReportedShiftMm), and the largest move.
+struct ArcMoves {
+  int count = 0;
+  double largest_mm = 0.0;
+  int largest_line = 0;
+
+  void add(double shift_mm, int line) {
+    if (shift_mm <= kReportedShiftMm) return;
+    ++count;
+    if (shift_mm > largest_mm) {
+      largest_mm = shift_mm;
+      largest_line = line;
+    }
+  }
+  std::string text(const char* one, const char* many) const { return std::to_string(count) + (count == 1 ? one : many); }
+  std::string largest_text() const {
+    return "; the largest move is " + six_digit_number_text(largest_mm) + " mm, on line " + std::to_string(largest_line);
+  }
+};
+
 // The modal state of the controller while the program runs, and the program built so far.
 class Interpreter {
  public:
   Interpreter(const ReaderOptions& options, detail::ProblemLog& problems) : options_(options), problems_(problems) {
     position_mm_ = options.initial_position;
+    path_end_xy_ = geometry::xy(options.initial_position);
     program_.path.part_names = {"program"};
   }
 
@@ -114,11 +135,16 @@ class Interpreter {
                     "(ReaderOptions::require_program_end = false accepts it)");
     }
     program_.dwell_at_end_s = pending_dwell_s_;
-    if (shifted_arcs_ > 0) {
-      note(std::to_string(shifted_arcs_) + (shifted_arcs_ == 1 ? " arc centre was" : " arc centres were") +
+    if (moved_centres_.count > 0) {
+      note(moved_centres_.text(" arc centre was", " arc centres were") +
            " moved so that start and end lie on one circle (their radii differed within "
-           "ReaderOptions::arc_radius_tolerance_mm); the largest move is " + six_digit_number_text(largest_shift_mm_) +
-           " mm, on line " + std::to_string(largest_shift_line_));
+           "ReaderOptions::arc_radius_tolerance_mm)" + moved_centres_.largest_text());
+    }
+    if (moved_ends_.count > 0) {
+      note(moved_ends_.text(" arc end was", " arc ends were") +
+           " moved onto the circle about the programmed centre, a smaller move than the centre's "
+           "(their radii differed within ReaderOptions::arc_radius_tolerance_mm; LinuxCNC keeps both and drives a "
+           "spiral); the next move starts there" + moved_ends_.largest_text());
     }
   }
 
@@ -485,8 +511,64 @@ class Interpreter {
     return false;
   }
 
+  // The program's coordinate grid: the finest last digit of the block's X Y Z I J R words.
+  void note_resolution(const Block& block) {
+    for (const char letter : {'X', 'Y', 'Z', 'I', 'J', 'R'}) {
+      const Word* w = block.word(letter);
+      const std::size_t point = w != nullptr ? w->text.find('.') : std::string::npos;
+      if (point == std::string::npos || point + 1 == w->text.size()) continue;  // a whole number: exact
+      const double step_mm = std::pow(10.0, -static_cast<double>(w->text.size() - point - 1)) * unit_mm();
+      double& resolution = program_.coordinate_resolution_mm;
+      resolution = resolution > 0.0 ? std::min(resolution, step_mm) : step_mm;
+    }
+  }
+
+  // Makes `m` (start and programmed end set) the arc of a G2/G3 block: its circle from R or from I J
+  // (arc_geometry.hpp), its end moved onto the circle when that moves less than the centre would.
+  // False, with the problem logged, when the words give no arc.
+  bool make_arc(const Block& block, int motion, Move& m) {
+    const bool ccw = motion == kG3;
+    const int turns = block.has('P') ? static_cast<int>(block.word('P')->value) : 1;
+    const Point2 start_xy = geometry::xy(m.start);
+    const Point2 end_xy = geometry::xy(m.end);
+    detail::ArcCircle arc;
+    std::string subject = detail::g_code_name(motion);
+    if (const Word* r = block.word('R')) {
+      subject += " " + r->text;
+      arc = detail::arc_from_radius(start_xy, end_xy, r->value * unit_mm(), ccw, turns, options_.arc_radius_tolerance_mm);
+    } else {
+      const Word* i = block.word('I');
+      const Word* j = block.word('J');
+      for (const Word* w : {i, j}) {
+        if (w != nullptr) subject += " " + w->text;
+      }
+      const double i_mm = i != nullptr ? i->value * unit_mm() : 0.0;
+      const double j_mm = j != nullptr ? j->value * unit_mm() : 0.0;
+      // LinuxCNC: I J are offsets from the programmed start, not from where a moved arc end left the path.
+      const Point2 programmed_start = geometry::xy(position_mm_);
+      const Point2 center = absolute_arc_center_ ? Point2{i_mm, j_mm}
+                                                 : Point2{programmed_start.x_mm + i_mm, programmed_start.y_mm + j_mm};
+      arc = detail::arc_from_center(programmed_start, start_xy, end_xy, center, ccw, turns,
+                                    options_.arc_radius_tolerance_mm);
+    }
+    if (!arc.problem.empty()) {
+      problems_.add(block.line, subject + ": " + arc.problem);
+      return false;
+    }
+    moved_centres_.add(arc.center_shift_mm, block.line);
+    moved_ends_.add(arc.end_shift_mm, block.line);
+    m.end.x_mm = arc.end.x_mm;
+    m.end.y_mm = arc.end.y_mm;
+    m.kind = MoveKind::kArc;
+    m.center = arc.center;
+    m.ccw = ccw;
+    m.sweep_rad = arc.sweep_rad;
+    return true;
+  }
+
   void move(const Block& block, int motion) {
     const int line = block.line;
+    note_resolution(block);
     Point3 end = position_mm_;
     auto axis = [&](char letter, double start_mm, double& target_mm) {
       if (const Word* w = block.word(letter)) target_mm = (absolute_ ? 0.0 : start_mm) + w->value * unit_mm();
@@ -500,56 +582,24 @@ class Interpreter {
     }
 
     Move m;
-    m.start = position_mm_;
+    m.start = {path_end_xy_.x_mm, path_end_xy_.y_mm, position_mm_.z_mm};
     m.end = end;
     m.part = 0;
     const bool feed = motion != kG0;
     if (feed && (!feed_ok(line, motion) || !spindle_ok(line, motion))) {
-      position_mm_ = end;
+      go_to(end);
       return;
     }
     if (!is_arc(motion)) {
       if (end.x_mm == position_mm_.x_mm && end.y_mm == position_mm_.y_mm && end.z_mm == position_mm_.z_mm) return;
-      m.kind = feed ? MoveKind::kLine : MoveKind::kRapid;
-    } else {
-      const bool ccw = motion == kG3;
-      const int turns = block.has('P') ? static_cast<int>(block.word('P')->value) : 1;
-      const Point2 start_xy = geometry::xy(position_mm_);
-      const Point2 end_xy = geometry::xy(end);
-      detail::ArcCircle arc;
-      std::string subject = detail::g_code_name(motion);
-      if (const Word* r = block.word('R')) {
-        subject += " " + r->text;
-        arc = detail::arc_from_radius(start_xy, end_xy, r->value * unit_mm(), ccw, turns,
-                                      options_.arc_radius_tolerance_mm);
-      } else {
-        const Word* i = block.word('I');
-        const Word* j = block.word('J');
-        for (const Word* w : {i, j}) {
-          if (w != nullptr) subject += " " + w->text;
-        }
-        const double i_mm = i != nullptr ? i->value * unit_mm() : 0.0;
-        const double j_mm = j != nullptr ? j->value * unit_mm() : 0.0;
-        const Point2 center = absolute_arc_center_ ? Point2{i_mm, j_mm}
-                                                   : Point2{start_xy.x_mm + i_mm, start_xy.y_mm + j_mm};
-        arc = detail::arc_from_center(start_xy, end_xy, center, ccw, turns, options_.arc_radius_tolerance_mm);
-      }
-      if (!arc.problem.empty()) {
-        problems_.add(line, subject + ": " + arc.problem);
-        position_mm_ = end;
+      if (end.x_mm == m.start.x_mm && end.y_mm == m.start.y_mm && end.z_mm == m.start.z_mm) {
+        go_to(end);  // back onto the programmed position, where a moved arc end had left the path
         return;
       }
-      if (arc.center_shift_mm > kReportedShiftMm) {
-        ++shifted_arcs_;
-        if (arc.center_shift_mm > largest_shift_mm_) {
-          largest_shift_mm_ = arc.center_shift_mm;
-          largest_shift_line_ = line;
-        }
-      }
-      m.kind = MoveKind::kArc;
-      m.center = arc.center;
-      m.ccw = ccw;
-      m.sweep_rad = arc.sweep_rad;
+      m.kind = feed ? MoveKind::kLine : MoveKind::kRapid;
+    } else if (!make_arc(block, motion, m)) {
+      go_to(end);
+      return;
     }
     if (!room_for_move(line)) return;
     m.cutting = feed;
@@ -563,14 +613,22 @@ class Interpreter {
     program_.path.moves.push_back(m);
     program_.blocks.push_back(command);
     position_mm_ = end;
+    path_end_xy_ = geometry::xy(m.end);
     moved_ = true;
+  }
+
+  // The programmed position and the path both at `end` (after a block that adds no move).
+  void go_to(const Point3& end) {
+    position_mm_ = end;
+    path_end_xy_ = geometry::xy(end);
   }
 
   const ReaderOptions& options_;
   detail::ProblemLog& problems_;
   geometry::Program program_;
 
-  Point3 position_mm_;
+  Point3 position_mm_;  // the programmed position (LinuxCNC's current point), mm
+  Point2 path_end_xy_;  // where the last move ends in XY: the programmed position, or an arc end moved onto its circle
   bool inch_ = false;
   bool units_set_ = false;
   bool unit_note_given_ = false;
@@ -593,9 +651,8 @@ class Interpreter {
   std::optional<int> g43_tool_;         // H of the G43 in effect
   int g43_line_ = 0;
   double pending_dwell_s_ = 0.0;
-  int shifted_arcs_ = 0;  // arcs whose centre moved by more than kReportedShiftMm
-  double largest_shift_mm_ = 0.0;
-  int largest_shift_line_ = 0;
+  ArcMoves moved_centres_;  // arcs put on one circle by moving the centre
+  ArcMoves moved_ends_;     // … by moving the end point
   bool percent_opened_ = false;
   bool too_many_moves_ = false;  // max_moves reached: reading stops
   bool ended_ = false;

@@ -448,7 +448,7 @@ class Writer {
   // Writes G2/G3 from the position as written to `end` about `center` and returns true, if the
   // rounded words describe the intended arc: radii that agree within what LinuxCNC and our reader
   // accept, and the swept angle — as LinuxCNC computes it from the programmed centre and as our reader
-  // does after moving the centre onto the bisector — within 4 last digits of arc length of `sweep`.
+  // does after putting both ends on one circle — within 4 last digits of arc length of `sweep`.
   // Returns false, writing nothing, otherwise.
   bool try_arc(const Point2& center, double radius, double sweep, bool ccw, const Point3& end,
                double feed_mm_per_min) {
@@ -496,7 +496,7 @@ class Writer {
     const double sweep_tolerance_mm = 4.0 * step_mm_;
     const double linuxcnc_sweep = detail::sweep_rad(start_xy, end_xy, c, ccw, 1);
     if (std::abs(linuxcnc_sweep - sweep) * radius > sweep_tolerance_mm) return false;
-    const detail::ArcCircle reader_arc = detail::arc_from_center(start_xy, end_xy, c, ccw, 1, 1.0);
+    const detail::ArcCircle reader_arc = detail::arc_from_center(start_xy, start_xy, end_xy, c, ccw, 1, 1.0);
     if (!reader_arc.problem.empty() || std::abs(reader_arc.sweep_rad - sweep) * radius > sweep_tolerance_mm) {
       return false;
     }

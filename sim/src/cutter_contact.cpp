@@ -25,7 +25,6 @@ CutterContact::CutterContact(const SimulationRequest& request, const LayeredEnga
       flute_top_(request.options.flute_length_mm > 0.0 ? request.options.flute_length_mm : 1e300),
       history_(static_cast<std::size_t>(steps_per_tooth) * (previous_teeth_ + 1) * 8 + 16),
       displacement_(previous_teeth_),
-      cursors_(layers.band_count()),
       band_arcs_(layers.band_count()),
       band_stamp_(layers.band_count(), -1) {}
 
@@ -53,13 +52,14 @@ ContactForce CutterContact::force(long long step, const MotionState& state, doub
 // of one band share one engagement look-up per step.
 void CutterContact::collect_slices(long long step, double tip_mm, double s_mm) {
   slices_.clear();
+  const std::size_t sample = layers_.sample_at(s_mm, cursor_);
   for (int layer = 0; layer < layers_.layer_count(); ++layer) {
     const double lo = std::max(layers_.layer_bottom_mm(layer), tip_mm);
     const double hi = std::min(layers_.layer_top_mm(layer), tip_mm + flute_top_);
     if (hi <= lo) continue;
     const int band = layers_.band_of(layer);
     if (band_stamp_[band] != step) {
-      band_arcs_[band] = layers_.intervals_at(layer, s_mm, cursors_[band]);
+      band_arcs_[band] = layers_.band_intervals(band, sample);
       band_stamp_[band] = step;
     }
     if (band_arcs_[band].empty()) continue;

@@ -51,7 +51,7 @@ class CutterContact {
   PassageHistory history_;
   std::vector<geometry::Point2> displacement_;
   std::vector<ForceSlice> slices_;
-  std::vector<LayeredEngagement::Cursor> cursors_;
+  LayeredEngagement::Cursor cursor_;
   std::vector<std::span<const geometry::EngagedInterval>> band_arcs_;
   std::vector<long long> band_stamp_;
 };

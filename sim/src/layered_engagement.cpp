@@ -183,16 +183,26 @@ std::span<const geometry::EngagedInterval> LayeredEngagement::sample_intervals(c
   return {intervals_.data() + owner.interval_begin[i], owner.interval_count[i]};
 }
 
-std::span<const geometry::EngagedInterval> LayeredEngagement::intervals_at(int layer, double s_mm,
-                                                                           Cursor& cursor) const {
+std::size_t LayeredEngagement::sample_at(double s_mm, Cursor& cursor) const {
   const std::size_t count = s_mm_.size();
-  if (count == 0) return {};
+  if (count == 0) return 0;
   std::size_t i = std::min(cursor.sample, count - 1);
   while (i + 1 < count && s_mm_[i + 1] <= s_mm) ++i;
   while (i > 0 && s_mm_[i] > s_mm) --i;
   if (i + 1 < count && s_mm_[i + 1] - s_mm < s_mm - s_mm_[i]) ++i;
   cursor.sample = i;
-  return sample_intervals(bands_[layer_band_[layer]], i);
+  return i;
+}
+
+std::span<const geometry::EngagedInterval> LayeredEngagement::band_intervals(int band, std::size_t sample) const {
+  if (s_mm_.empty()) return {};
+  return sample_intervals(bands_[band], sample);
+}
+
+std::span<const geometry::EngagedInterval> LayeredEngagement::intervals_at(int layer, double s_mm,
+                                                                           Cursor& cursor) const {
+  const std::size_t sample = sample_at(s_mm, cursor);
+  return band_intervals(layer_band_[layer], sample);
 }
 
 }  // namespace feedplan::sim

@@ -18,6 +18,20 @@ double immersion_of(double feed_direction_rad, double world_angle_rad) {
   return phi - 0.5 * kPi;
 }
 
+// φ wrapped into [−π/2, 3π/2) as immersion_of does, cheaply when φ is within a turn of that range
+// (a tooth pitch or a helix lag away from a wrapped angle).
+double wrapped_immersion(double phi) {
+  if (phi < -0.5 * kPi) {
+    phi += kTwoPi;
+  } else if (phi >= 1.5 * kPi) {
+    phi -= kTwoPi;
+  }
+  if (phi >= -0.5 * kPi && phi < 1.5 * kPi) return phi;
+  phi = std::fmod(phi + 0.5 * kPi, kTwoPi);
+  if (phi < 0.0) phi += kTwoPi;
+  return phi - 0.5 * kPi;
+}
+
 bool engaged_at(std::span<const geometry::EngagedInterval> arcs, double phi) {
   for (const auto& arc : arcs) {
     if (phi > arc.entry_rad && phi < arc.exit_rad) return true;
@@ -30,45 +44,131 @@ double size_factor(const CuttingCoefficients& k, double h_mm) {
   return std::pow(std::max(h_mm, k.size_min_chip_mm) / k.size_reference_chip_mm, -k.size_exponent);
 }
 
+// What every slice's teeth share at this instant.
+struct Teeth {
+  int count = 0;
+  double pitch_rad = 0.0;
+  double cos_pitch = 1.0;
+  double sin_pitch = 0.0;
+  double lag_per_mm = 0.0;  // helix lag of the flutes per mm above the tip, rad
+  double theta0_rad = 0.0;  // world angle of tooth 0 at the tip, −Ω within one turn
+  double phi0_rad = 0.0;    // its immersion
+  std::size_t previous_teeth = 1;  // tooth passages the chip depends on
+};
+
+// The cosine and sine of tooth 0's world angle θ₀ + lag on successive slices: the first from std::cos
+// and std::sin, each next one turned from the one before through the lag between them. Slices lie a
+// layer apart, so one turn's cosine and sine serve them all: a lag step within kSameTurnRad of the
+// last one reuses it (the angle is then off by that much at most, and the next step makes up for it).
+class ToothZeroAngle {
+ public:
+  explicit ToothZeroAngle(double theta0_rad) : theta0_rad_(theta0_rad) {}
+
+  void move_to(double lag_rad) {
+    if (!started_) {
+      c_ = std::cos(theta0_rad_ + lag_rad);
+      s_ = std::sin(theta0_rad_ + lag_rad);
+      lag_rad_ = lag_rad;
+      started_ = true;
+      return;
+    }
+    const double step = lag_rad - lag_rad_;
+    if (std::abs(step - step_rad_) > kSameTurnRad) {
+      step_rad_ = step;
+      cos_step_ = std::cos(step);
+      sin_step_ = std::sin(step);
+    }
+    const double next_c = c_ * cos_step_ - s_ * sin_step_;
+    s_ = s_ * cos_step_ + c_ * sin_step_;
+    c_ = next_c;
+    lag_rad_ += step_rad_;
+  }
+  double cos() const { return c_; }
+  double sin() const { return s_; }
+
+ private:
+  static constexpr double kSameTurnRad = 1e-12;
+  double theta0_rad_;
+  bool started_ = false;
+  double lag_rad_ = 0.0;   // the lag c_ and s_ are at
+  double c_ = 1.0;
+  double s_ = 0.0;
+  double step_rad_ = 0.0;  // the last turn, and its cosine and sine
+  double cos_step_ = 1.0;
+  double sin_step_ = 0.0;
+};
+
+// The chip of tooth j at a point along (c, s): by how far it reaches beyond the circles the previous
+// teeth cut, mm (≤ 0: it cuts nothing).
+double chip_mm(const CutterGeometry& cutter, const CutterState& state, const Teeth& teeth, int j, double c, double s) {
+  const int n = teeth.count;
+  double h = 1e300;
+  for (std::size_t k = 1; k <= teeth.previous_teeth; ++k) {
+    const auto& d = state.displacement_since_tooth_mm[k - 1];
+    double reach = d.x_mm * c + d.y_mm * s;
+    if (!cutter.runout_mm.empty()) {
+      reach += cutter.runout_mm[j] - cutter.runout_mm[((j - static_cast<int>(k)) % n + n) % n];
+    }
+    h = std::min(h, reach);
+  }
+  return h;
+}
+
+// The force of every engaged tooth element of one slice, added to `force`. Tooth j's world angle is
+// θ₀ + lag + j·pitch and its immersion φ₀ − lag − j·pitch; the cosine and sine of its angle follow
+// from tooth 0's (`tooth0`, at this slice's lag) by rotations through the pitch.
+void add_slice_force(Force3& force, const CutterGeometry& cutter, const CuttingCoefficients& k,
+                     const CutterState& state, const Teeth& teeth, const ForceSlice& slice, double lag,
+                     const ToothZeroAngle& tooth0) {
+  const double dz = slice.thickness_mm;
+  int at_tooth = 0;  // the tooth whose angle c, s hold
+  double c = tooth0.cos();
+  double s = tooth0.sin();
+  for (int j = 0; j < teeth.count; ++j) {
+    if (!engaged_at(slice.engaged, wrapped_immersion(teeth.phi0_rad - lag - j * teeth.pitch_rad))) continue;
+    for (; at_tooth < j; ++at_tooth) {
+      const double next_c = c * teeth.cos_pitch - s * teeth.sin_pitch;
+      s = s * teeth.cos_pitch + c * teeth.sin_pitch;
+      c = next_c;
+    }
+    const double h = chip_mm(cutter, state, teeth, j, c, s);
+    if (!(h > 0.0)) continue;
+    const double scale = size_factor(k, h);
+    const double ft = (k.ktc_n_per_mm2 * scale * h + k.kte_n_per_mm) * dz;
+    const double fr = (k.krc_n_per_mm2 * scale * h + k.kre_n_per_mm) * dz;
+    const double fa = (k.kac_n_per_mm2 * scale * h + k.kae_n_per_mm) * dz;
+    force.fx_n += -ft * s - fr * c;
+    force.fy_n += ft * c - fr * s;
+    force.fz_n += fa;
+  }
+}
+
 }  // namespace
 
 Force3 milling_force(const CutterGeometry& cutter, const CuttingCoefficients& coefficients, const CutterState& state,
                      std::span<const ForceSlice> slices) {
   assert(cutter.flutes > 0 && cutter.radius_mm > 0.0);
   assert(!state.displacement_since_tooth_mm.empty());
-  const int n = cutter.flutes;
   const bool runout = !cutter.runout_mm.empty();
-  assert(!runout || static_cast<int>(cutter.runout_mm.size()) == n);
-  const std::size_t previous_teeth = runout ? std::min<std::size_t>(n, state.displacement_since_tooth_mm.size()) : 1;
-  const double pitch_rad = kTwoPi / n;
-  const double lag_per_mm = 2.0 * std::tan(deg_to_rad(cutter.helix_deg)) / (2.0 * cutter.radius_mm);
+  assert(!runout || static_cast<int>(cutter.runout_mm.size()) == cutter.flutes);
+  Teeth teeth;
+  teeth.count = cutter.flutes;
+  teeth.pitch_rad = kTwoPi / cutter.flutes;
+  teeth.cos_pitch = std::cos(teeth.pitch_rad);
+  teeth.sin_pitch = std::sin(teeth.pitch_rad);
+  teeth.lag_per_mm = 2.0 * std::tan(deg_to_rad(cutter.helix_deg)) / (2.0 * cutter.radius_mm);
+  // Reduced once here rather than per element: Ω grows by 2π every revolution.
+  teeth.theta0_rad = -std::fmod(state.spindle_angle_rad, kTwoPi);
+  teeth.phi0_rad = immersion_of(state.feed_direction_rad, teeth.theta0_rad);
+  teeth.previous_teeth = runout ? std::min<std::size_t>(cutter.flutes, state.displacement_since_tooth_mm.size()) : 1;
 
   Force3 force;
+  ToothZeroAngle tooth0(teeth.theta0_rad);
   for (const auto& slice : slices) {
     if (slice.engaged.empty() || slice.thickness_mm <= 0.0) continue;
-    const double dz = slice.thickness_mm;
-    for (int j = 0; j < n; ++j) {
-      const double theta = -state.spindle_angle_rad + j * pitch_rad + slice.height_above_tip_mm * lag_per_mm;
-      const double phi = immersion_of(state.feed_direction_rad, theta);
-      if (!engaged_at(slice.engaged, phi)) continue;
-      const double c = std::cos(theta);
-      const double s = std::sin(theta);
-      double h = 1e300;
-      for (std::size_t k = 1; k <= previous_teeth; ++k) {
-        const auto& d = state.displacement_since_tooth_mm[k - 1];
-        double reach = d.x_mm * c + d.y_mm * s;
-        if (runout) reach += cutter.runout_mm[j] - cutter.runout_mm[((j - static_cast<int>(k)) % n + n) % n];
-        h = std::min(h, reach);
-      }
-      if (!(h > 0.0)) continue;
-      const double scale = size_factor(coefficients, h);
-      const double ft = (coefficients.ktc_n_per_mm2 * scale * h + coefficients.kte_n_per_mm) * dz;
-      const double fr = (coefficients.krc_n_per_mm2 * scale * h + coefficients.kre_n_per_mm) * dz;
-      const double fa = (coefficients.kac_n_per_mm2 * scale * h + coefficients.kae_n_per_mm) * dz;
-      force.fx_n += -ft * s - fr * c;
-      force.fy_n += ft * c - fr * s;
-      force.fz_n += fa;
-    }
+    const double lag = slice.height_above_tip_mm * teeth.lag_per_mm;
+    tooth0.move_to(lag);
+    add_slice_force(force, cutter, coefficients, state, teeth, slice, lag, tooth0);
   }
   return force;
 }

@@ -93,7 +93,9 @@ void check_options(std::vector<InputProblem>& problems, const SimulationOptions&
         {"options.engagement_ds_mm", "= " + six_digit_number_text(o.engagement_ds_mm) + ": must be ≥ 0.001"});
   }
   check_positive(problems, "options.log_rate_hz", o.log_rate_hz, "force log sample rate");
-  check_non_negative(problems, "options.recut_tolerance_mm", o.recut_tolerance_mm, "distance of a re-cutting track");
+  if (o.recut_tolerance_mm) {
+    check_non_negative(problems, "options.recut_tolerance_mm", *o.recut_tolerance_mm, "distance of a re-cutting track");
+  }
   check_non_negative(problems, "options.flute_length_mm", o.flute_length_mm, "0 means longer than any cut");
   check_non_negative(problems, "options.default_spindle_rpm", o.default_spindle_rpm, "spindle speed for blocks without S");
   if (!o.runout_mm.empty() && static_cast<int>(o.runout_mm.size()) != tool.flutes) {
@@ -153,6 +155,15 @@ double layer_thickness_mm(const geometry::ToolPath& path, double requested_mm) {
     }
   }
   return layer_mm;
+}
+
+// Tracks closer than this are one in a path that is not rounded (floating-point noise), mm.
+constexpr double kExactTrackMm = 1e-9;
+
+// How far apart two tracks may lie and count as one re-cut, mm (SimulationOptions::recut_tolerance_mm).
+double recut_tolerance_mm(const SimulationRequest& request) {
+  if (request.options.recut_tolerance_mm) return *request.options.recut_tolerance_mm;
+  return std::max(kExactTrackMm, std::sqrt(2.0) * request.program.coordinate_resolution_mm);
 }
 
 // The warning for the first feed move under M4, if any.
@@ -420,6 +431,7 @@ void summarize(SimulationResult& result, const SimulationRequest& request, const
   summary.layer_thickness_mm = layer_mm;
   summary.engagement_bands = layers.band_count();
   summary.engagement_samples = static_cast<long long>(layers.samples_computed());
+  summary.recut_tolerance_mm = recut_tolerance_mm(request);
 }
 
 }  // namespace
@@ -450,7 +462,7 @@ SimulationResult simulate(const SimulationRequest& request) {
   LayerOptions layer_options;
   layer_options.layer_thickness_mm = layer_mm;
   layer_options.ds_mm = request.options.engagement_ds_mm;
-  layer_options.recut_tolerance_mm = request.options.recut_tolerance_mm;
+  layer_options.recut_tolerance_mm = recut_tolerance_mm(request);
   layer_options.progress = [&progress](double done_mm, double total_mm) { progress.engagement(done_mm, total_mm); };
   const LayeredEngagement layers(request.program.path, request.stock, request.tool.radius_mm(), layer_options);
   result.warnings = layers.warnings();

@@ -27,13 +27,23 @@ bool union_covers(std::vector<Interval> pieces, double lo, double hi, double tol
   return started && reached >= hi - tolerance;
 }
 
-// The counter-clockwise angular span of an arc's XY track: start angle in [0, 2π) and length ≤ 2π.
-Interval arc_span(const geometry::Move& move) {
-  const geometry::Point3& from = move.ccw ? move.start : move.end;
-  double start = std::atan2(from.y_mm - move.center.y_mm, from.x_mm - move.center.x_mm);
-  if (start < 0.0) start += kTwoPi;
-  return {start, std::min(move.sweep_rad, kTwoPi)};
+double angle_about(const geometry::Point2& center, const geometry::Point3& p) {
+  double angle = std::atan2(p.y_mm - center.y_mm, p.x_mm - center.x_mm);
+  if (angle < 0.0) angle += kTwoPi;
+  return angle;
 }
+
+// The counter-clockwise angular span, seen from `center`, of an arc whose track runs round `center`
+// (its own centre, or one within a tolerance of it): start angle in [0, 2π) and length ≤ 2π.
+Interval arc_span(const geometry::Move& move, const geometry::Point2& center) {
+  const double from = angle_about(center, move.ccw ? move.start : move.end);
+  const double to = angle_about(center, move.ccw ? move.end : move.start);
+  // The turn from `from` to `to` nearest to the arc's own sweep (equal to it about its own centre).
+  const double length = move.sweep_rad + std::remainder(to - from - move.sweep_rad, kTwoPi);
+  return {from, std::clamp(length, 0.0, kTwoPi)};
+}
+
+Interval arc_span(const geometry::Move& move) { return arc_span(move, move.center); }
 
 // A span [start, start + length] as pieces of [0, 2π).
 void add_unwrapped(std::vector<Interval>& pieces, const Interval& span) {
@@ -55,10 +65,31 @@ bool covers_span(const std::vector<Interval>& pieces, const Interval& span, doub
   });
 }
 
-bool same_circle(const geometry::Move& a, const geometry::Move& b, double tolerance_mm) {
-  return a.kind == geometry::MoveKind::kArc && b.kind == geometry::MoveKind::kArc &&
-         std::hypot(a.center.x_mm - b.center.x_mm, a.center.y_mm - b.center.y_mm) <= tolerance_mm &&
-         std::abs(geometry::arc_radius_mm(a) - geometry::arc_radius_mm(b)) <= tolerance_mm;
+// How far the XY track of `arc` strays from the circle of `radius_mm` about `center`, mm: the largest
+// |distance from the centre − radius| over the track. The distance is extreme at the arc's ends and
+// where the arc crosses the line through both centres.
+double distance_from_circle_mm(const geometry::Move& arc, const geometry::Point2& center, double radius_mm) {
+  auto off = [&](double x, double y) { return std::abs(std::hypot(x - center.x_mm, y - center.y_mm) - radius_mm); };
+  double largest = std::max(off(arc.start.x_mm, arc.start.y_mm), off(arc.end.x_mm, arc.end.y_mm));
+  const double dx = arc.center.x_mm - center.x_mm;
+  const double dy = arc.center.y_mm - center.y_mm;
+  if (dx == 0.0 && dy == 0.0) return largest;
+  std::vector<Interval> pieces;
+  add_unwrapped(pieces, arc_span(arc));
+  const double radius = geometry::arc_radius_mm(arc);
+  const double away = std::atan2(dy, dx);  // from `center` through the arc's centre
+  for (const double angle : {away, away + kPi}) {
+    const double wrapped = std::fmod(angle + kTwoPi, kTwoPi);  // in [0, 2π)
+    if (!covers_span(pieces, {wrapped, 0.0}, 0.0)) continue;
+    largest = std::max(largest, off(arc.center.x_mm + radius * std::cos(wrapped), arc.center.y_mm + radius * std::sin(wrapped)));
+  }
+  return largest;
+}
+
+// Whether the track of `other` runs along the circle of `arc` within `tolerance_mm` (arcs only).
+bool on_circle_of(const geometry::Move& arc, const geometry::Move& other, double tolerance_mm) {
+  if (other.kind != geometry::MoveKind::kArc) return false;
+  return distance_from_circle_mm(other, arc.center, geometry::arc_radius_mm(arc)) <= tolerance_mm;
 }
 
 bool has_xy_travel(const geometry::Move& move) { return geometry::xy_length_mm(move) > 1e-9; }
@@ -100,15 +131,16 @@ std::optional<std::size_t> TrackCover::covered_after(std::size_t k) const {
   return has_xy_travel(move) ? segment_covered_after(k) : point_covered_after(k);
 }
 
-// Arcs on the same circle (centre and radius), their angular spans together over the arc's.
+// Arcs along the same circle (their tracks within the tolerance of it, whatever their own centres),
+// their angular spans seen from its centre together over the arc's.
 std::optional<std::size_t> TrackCover::arc_covered_after(std::size_t k) const {
   const geometry::Move& arc = path_.moves[k];
   const Interval span = arc_span(arc);
   const double tolerance_rad = tolerance_mm_ / std::max(geometry::arc_radius_mm(arc), tolerance_mm_);
   std::vector<Interval> pieces;
   for (std::size_t j = 0; j < path_.moves.size(); ++j) {
-    if (j == k || !is_low(j) || !same_circle(arc, path_.moves[j], tolerance_mm_)) continue;
-    add_unwrapped(pieces, arc_span(path_.moves[j]));
+    if (j == k || !is_low(j) || !on_circle_of(arc, path_.moves[j], tolerance_mm_)) continue;
+    add_unwrapped(pieces, arc_span(path_.moves[j], arc.center));
     if (covers_span(pieces, span, tolerance_rad)) return j + 1;
   }
   return std::nullopt;

@@ -122,7 +122,7 @@ TEST_P(OracleAgreement, MovesFeedsAndSpindleMatchLinuxCnc) {
 
 INSTANTIATE_TEST_SUITE_P(Programs, OracleAgreement,
                          ::testing::Values("lines", "arcs_ij", "arcs_r", "helix", "incremental", "inch", "trochoid",
-                                           "format"),
+                                           "format", "rounded_arcs"),
                          [](const ::testing::TestParamInfo<const char*>& info) { return std::string(info.param); });
 
 // --- Programs the reader must reject -----------------------------------------------------------

@@ -230,6 +230,52 @@ TEST(Reader, NotesTheAssumedUnitAndMovedCentres) {
   EXPECT_TRUE(geometry::consistency_defects(p.path).empty());
 }
 
+TEST(Reader, ShortArcsKeepTheirProgrammedCentre) {
+  // The flat bottom circle of a helical bore (radius 3 about the origin) as a planner writes it at 3
+  // decimals: pieces whose rounded ends lie up to 0.36 µm off radius 3. Moving the centre of each
+  // short piece onto the bisector of its chord would move it by 3.7 to 7.5 µm (radius 3 ± 0.0075);
+  // LinuxCNC keeps every centre (0, 0) and drives spirals. The reader moves the centre of the first,
+  // long piece by 0.14 µm (less than its end would move) and keeps the others' centre, moving their
+  // ends onto the circle instead: every piece lies on one circle within a rounding of the written one.
+  const Program p = read(
+      "G21 G17 G90 G91.1 F1000\nG0 X3. Y0.\n"
+      "G3 X0.657 Y2.927 I-3. J0.\n"
+      "X0.312 Y2.984 I-0.657 J-2.927\n"
+      "X0.062 Y2.999 I-0.312 J-2.984\n"
+      "X-0.137 Y2.997 I-0.062 J-2.999\n"
+      "X-0.287 Y2.986 I0.137 J-2.997\n"
+      "M2\n");
+  ASSERT_EQ(p.path.moves.size(), 6u);
+  const double rounding_mm = 0.5e-3 * std::sqrt(2.0);  // half a last digit in X and in Y
+  const double written_end[][2] = {{0.657, 2.927}, {0.312, 2.984}, {0.062, 2.999}, {-0.137, 2.997}, {-0.287, 2.986}};
+  const geometry::Point2 first_center = p.path.moves[1].center;
+  for (std::size_t i = 1; i < p.path.moves.size(); ++i) {
+    SCOPED_TRACE("arc " + std::to_string(i));
+    const auto& arc = p.path.moves[i];
+    EXPECT_LE(std::hypot(arc.center.x_mm, arc.center.y_mm), rounding_mm);
+    EXPECT_LE(std::abs(geometry::arc_radius_mm(arc) - 3.0), rounding_mm);
+    EXPECT_LE(std::hypot(arc.end.x_mm - written_end[i - 1][0], arc.end.y_mm - written_end[i - 1][1]), rounding_mm);
+    if (i > 1) {  // the short pieces: the programmed centre itself, on the first piece's circle
+      EXPECT_NEAR(arc.center.x_mm, 0.0, kTight);
+      EXPECT_NEAR(arc.center.y_mm, 0.0, kTight);
+      EXPECT_NEAR(geometry::arc_radius_mm(arc), std::hypot(p.path.moves[1].end.x_mm, p.path.moves[1].end.y_mm), kTight);
+    }
+  }
+  EXPECT_NEAR(std::hypot(first_center.x_mm, first_center.y_mm), 0.136e-3, 0.001e-3);
+  EXPECT_TRUE(geometry::consistency_defects(p.path).empty());
+  ASSERT_EQ(p.notes.size(), 2u);
+  EXPECT_THAT(p.notes[0], HasSubstr("1 arc centre was moved so that start and end lie on one circle"));
+  EXPECT_THAT(p.notes[1], HasSubstr("4 arc ends were moved onto the circle about the programmed centre"));
+}
+
+TEST(Reader, CoordinateResolutionIsTheFinestWrittenDigit) {
+  EXPECT_EQ(read("G21 F100\nG1 X1 Y2.\nM2\n").coordinate_resolution_mm, 0.0);  // whole numbers only
+  EXPECT_DOUBLE_EQ(read("G21 F100\nG1 X1.5 Y2.25\nG1 Z-0.125\nM2\n").coordinate_resolution_mm, 0.001);
+  EXPECT_DOUBLE_EQ(read("G21 F100\nG0 X0 Y1.5\nG3 X0 Y-1.5 I0 J-1.5000\nM2\n").coordinate_resolution_mm, 1e-4);
+  EXPECT_DOUBLE_EQ(read("G20\nF10\nG1 X1.25\nM2\n").coordinate_resolution_mm, 0.254);  // 0.01 in
+  EXPECT_DOUBLE_EQ(read("G21 F100\nS1000.125 M3\nG1 X1.5\nM2\n").coordinate_resolution_mm, 0.1);  // S is no coordinate
+}
+
 TEST(Reader, SnippetsWithoutProgramEndAreAcceptedOnRequest) {
   ReaderOptions options;
   options.require_program_end = false;

@@ -69,6 +69,8 @@
 // moves cut and which move through air (that needs the stock: geometry/engagement does it);
 // axial_depth_mm is 0 for the same reason. All moves belong to part 0, named "program". Moves of
 // zero length (a G0/G1 to where the tool already is, or a block without axis words) are dropped.
+// Program::coordinate_resolution_mm is the last digit of the finest X Y Z I J R word of the moves
+// (`X1.25` in G21: 0.01 mm; in G20: 0.254 mm); whole numbers (`X3`, `X3.`) do not count.
 
 #include <cstddef>
 #include <filesystem>
@@ -82,10 +84,14 @@ namespace feedplan::gcode {
 //! How read_program treats the parts of a program the text leaves open.
 struct ReaderOptions {
   //! Largest |start radius − end radius| accepted on an I/J arc, and the largest amount by which
-  //! an R may fall short of half the chord, mm. Within it, the centre is moved onto the
-  //! perpendicular bisector of start and end (R arcs: R is taken as half the chord) so that both ends
-  //! lie on one circle; a note counts moves of more than 1 µm. LinuxCNC accepts I/J mismatches of
-  //! 0.05 mm and more (it drives a spiral); its limit for an R is 0.00005 in (0.00127 mm).
+  //! an R may fall short of half the chord, mm. LinuxCNC accepts I/J mismatches of 0.05 mm and more:
+  //! it keeps the programmed centre and end and drives a spiral; its limit for an R is 0.00005 in
+  //! (0.00127 mm). A Move is a circle, so within the tolerance the reader moves the one of centre and
+  //! end that moves less: the centre onto the perpendicular bisector of start and end (half circles:
+  //! by half the mismatch), or the end along its ray onto the circle about the programmed centre
+  //! (short arcs, whose bisector lies far from the centre; the next move starts there, and an end
+  //! moves by at most this tolerance). R arcs short of half the chord are taken as the half circle. A
+  //! note counts moves of more than 1 µm.
   double arc_radius_tolerance_mm = 0.002;
   geometry::Point3 initial_position{0.0, 0.0, 0.0};  //!< where the tool tip is before the first move, mm
   bool require_program_end = true;  //!< the text must end the program with M2, M30 or a closing %

@@ -32,6 +32,11 @@ struct Program {
   std::vector<BlockCommand> blocks;   //!< one per path.moves entry
   double dwell_at_end_s = 0.0;        //!< G4 dwell after the last move, s
   std::vector<std::string> notes;     //!< what a reader or planner wants the user to know (not errors)
+  //! The grid the coordinates were written on, mm: the last digit of the finest X Y Z I J R word of
+  //! a program read from text (0.001 for 3 decimals in mm). Every written point lies within half of
+  //! it, per axis, of where its writer meant it. 0 when the moves are not rounded (a generated path,
+  //! or text whose coordinates are all whole numbers).
+  double coordinate_resolution_mm = 0.0;
   std::string source_name;            //!< where the program came from (a file name), for messages; may be empty
 };
 

@@ -9,8 +9,10 @@
 // re-cut its track (a bore's flat bottom circle): from there on a layer's engagement is the lowest
 // layer's, and only the stretch before is computed for it (track_cover.hpp). A 10 mm deep pocket
 // bored with a 1 mm pitch then costs about one engagement of the path, not two hundred. Re-cut means
-// on the same track within `recut_tolerance_mm`: exactly, by default, as a G-code program read back
-// with 3 decimals rarely re-cuts its helix exactly (its arc centres move by up to 0.2 mm).
+// on the same track within `recut_tolerance_mm`: an arc's track is re-cut by arcs whose tracks lie
+// within it of the arc's circle, whatever their own centres. Exact, by default; a G-code program
+// read back from 3 decimals needs about 1.4 µm, the rounding of its points (its bottom circle's
+// pieces are written up to 0.7 µm off the helix's circle).
 //
 // Memory: every band samples the path at the same places, so the places are kept once; a sample's
 // arcs are kept once for all the bands in a row that have the same ones (16 bytes per arc, 6 bytes
@@ -61,13 +63,18 @@ class LayeredEngagement {
   //! Engagement samples computed over all bands (one band along the whole path counts its samples).
   std::size_t samples_computed() const { return samples_computed_; }
 
-  //! A position along the path for the lookups below; keep one per layer band and advance it with s.
+  //! A position along the path for the lookups below: the last sample found. Every band samples the
+  //! path at the same places, so one cursor serves all layers.
   struct Cursor {
     std::size_t sample = 0;
   };
+  //! The sample nearest to arc length `s_mm`, searched from `cursor` (s may move forward or backward;
+  //! the search is short when it moves little); 0 when there are no samples.
+  std::size_t sample_at(double s_mm, Cursor& cursor) const;
   //! Engaged arcs (immersion angles relative to the feed direction, as in geometry::EngagedInterval)
-  //! of `layer` at the sample nearest to arc length `s_mm`. `cursor` must be the caller's cursor for
-  //! this layer's band (band_of); s may move forward or backward.
+  //! of the layers of `band` at `sample` (from sample_at); empty when there are no samples.
+  std::span<const geometry::EngagedInterval> band_intervals(int band, std::size_t sample) const;
+  //! Engaged arcs of `layer` at the sample nearest to arc length `s_mm` (sample_at, then band_intervals).
   std::span<const geometry::EngagedInterval> intervals_at(int layer, double s_mm, Cursor& cursor) const;
   int band_of(int layer) const { return layer_band_[layer]; }
 

@@ -6,6 +6,7 @@
 
 #include <cstdint>
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -35,10 +36,13 @@ struct SimulationOptions {
   double flute_length_mm = 0.0;  //!< cutting length above the tip, mm; 0: longer than any cut
   double log_rate_hz = 10000.0;  //!< force log sample rate, Hz
   //! How far a flat track may lie from a helix track it re-cuts for the layers between to share the
-  //! lowest layer's engagement from there on, mm (LayerOptions::recut_tolerance_mm). The default is
-  //! exact. 0.2 lets a pocket read back from 3-decimal G-code share (10× faster), at the price of the
-  //! slivers its moved arc centres leave at the bore wall seen on every layer, not on the lowest.
-  double recut_tolerance_mm = 1e-9;
+  //! lowest layer's engagement from there on, mm (LayerOptions::recut_tolerance_mm). Unset: from the
+  //! program's number resolution, √2 × Program::coordinate_resolution_mm — how far apart two written
+  //! points of one intended track can lie, each rounded by half a digit per axis (1.4 µm for 3
+  //! decimals in mm) — and exact (1e-9 mm) for a path that is not rounded. Within it the upper
+  //! layers' material may differ from the lowest layer's by slivers thinner than the tolerance, which
+  //! the run then does not see (their edge forces).
+  std::optional<double> recut_tolerance_mm;
   //! Spindle speed for blocks that give none (no S word), rev/min; 0: such a block cutting is an error.
   double default_spindle_rpm = 0.0;
 };
@@ -98,6 +102,7 @@ struct SimulationSummary {
   double layer_thickness_mm = 0.0; //!< layer thickness used, mm
   int engagement_bands = 0;        //!< distinct engagement computations
   long long engagement_samples = 0;  //!< engagement samples computed over all bands
+  double recut_tolerance_mm = 0.0; //!< how far apart tracks counted as one re-cut (options.recut_tolerance_mm), mm
 };
 
 //! Result of a run. Warnings are things a user must see but that do not stop the run (a rapid into
