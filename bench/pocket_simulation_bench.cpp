@@ -1,6 +1,6 @@
 // Virtual machine at shop size: the pocket sample (samples/pocket.yaml: 60 × 40 × 10 mm, helical
-// bore, spiral, trochoid slots, finishing) planned at 650 N — the 5 112-line program of the issue
-// "Never call an unsafe program ok" — read back and run as `feedplan simulate` runs it: the force
+// bore, spiral, trochoid slots, finishing) planned at 650 N — a program of about 5 000 lines — read
+// back and run as `feedplan simulate` runs it: the force
 // log streamed to a file, the per-revolution peaks kept. Counters: simulated seconds, internal steps,
 // engagement samples computed, and the process's peak resident memory (run one benchmark per
 // process, --benchmark_filter, for its own peak).
