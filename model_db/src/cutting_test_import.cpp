@@ -13,6 +13,7 @@
 
 #include "feedplan/core/number_text.hpp"
 #include "feedplan/geometry/analytic_engagement.hpp"
+#include "feedplan/force_log/synchronous_average.hpp"
 #include "feedplan/force_log/revolution_peaks.hpp"
 #include "median.hpp"
 #include "revolution_signals.hpp"
@@ -314,6 +315,17 @@ void fill_statistics(const std::vector<force_log::RevolutionPeak>& peaks, const 
   record.peak_std_n = found > 1 ? std::sqrt(squares / (found - 1)) : 0.0;
 }
 
+//! The force over a revolution averaged over the steady revolutions.
+void fill_synchronous_average(const ForceColumns& columns, const std::vector<force_log::RevolutionPeak>& peaks,
+                              const SteadyRun& steady, CuttingTestRecord& record) {
+  const std::vector<force_log::RevolutionPeak> steady_peaks(peaks.begin() + static_cast<long>(steady.begin),
+                                                            peaks.begin() + static_cast<long>(steady.end));
+  force_log::SynchronousAverage average =
+      force_log::synchronous_average(columns.t_s, columns.fx_n, columns.fy_n, steady_peaks);
+  record.synchronous_fx_n = std::move(average.fx_n);
+  record.synchronous_fy_n = std::move(average.fy_n);
+}
+
 //! Model inputs (docs/method.md §5.1): straight cut, f_z at the tool centre.
 void fill_model_inputs(const CuttingTestConditions& conditions, const geometry::Tool& tool,
                        CuttingTestRecord& record) {
@@ -461,6 +473,7 @@ CuttingTestRecord import_cutting_test(const force_log::ForceLog& log, const Cutt
 
   const SteadyRun steady = steady_revolutions(import, revolutions, force_only);
   fill_statistics(revolutions.peaks, steady, record);
+  fill_synchronous_average(columns, revolutions.peaks, steady, record);
   fill_model_inputs(conditions, tool, record);
   add_notes(import, revolutions, steady, record);
   return record;

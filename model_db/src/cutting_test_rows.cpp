@@ -42,8 +42,29 @@ RowId insert_cutting_test(Connection& db, RowId tool_id, RowId material_id, cons
     peak.bind_all(id, static_cast<std::int64_t>(i), test.steady_peaks_n[i]);
     peak.run();
   }
+  if (!test.synchronous_fx_n.empty()) {
+    Statement signal(db, "INSERT INTO cutting_test_signals (cutting_test_id, fx_json, fy_json) VALUES (?, ?, ?)");
+    signal.bind_all(id, nlohmann::json(test.synchronous_fx_n).dump(), nlohmann::json(test.synchronous_fy_n).dump());
+    signal.run();
+  }
   return id;
 }
+
+namespace {
+
+// The numbers of a stored JSON array (written by insert_cutting_test); empty when it is not one.
+std::vector<double> numbers_of(const std::string& text) {
+  const auto array = nlohmann::json::parse(text, nullptr, false);
+  std::vector<double> numbers;
+  if (!array.is_array()) return numbers;
+  for (const auto& v : array) {
+    if (!v.is_number()) return {};
+    numbers.push_back(v.get<double>());
+  }
+  return numbers;
+}
+
+}  // namespace
 
 std::vector<StoredCuttingTest> select_cutting_tests(const Connection& db, RowId tool_id, RowId material_id) {
   const bool all = tool_id == 0 && material_id == 0;
@@ -57,6 +78,7 @@ std::vector<StoredCuttingTest> select_cutting_tests(const Connection& db, RowId 
                               "ORDER BY t.name, mt.name, c.created_at, c.id");
   if (!all) statement.bind_all(tool_id, material_id);
   Statement peaks(db, "SELECT peak_n FROM cutting_test_peaks WHERE cutting_test_id = ? ORDER BY revolution_index");
+  Statement signal(db, "SELECT fx_json, fy_json FROM cutting_test_signals WHERE cutting_test_id = ?");
   std::vector<StoredCuttingTest> tests;
   while (statement.step()) {
     StoredCuttingTest stored;
@@ -91,6 +113,16 @@ std::vector<StoredCuttingTest> select_cutting_tests(const Connection& db, RowId 
     peaks.reset();
     peaks.bind(stored.id);
     while (peaks.step()) test.steady_peaks_n.push_back(peaks.column_double(0));
+    signal.reset();
+    signal.bind(stored.id);
+    if (signal.step()) {
+      test.synchronous_fx_n = numbers_of(signal.column_text(0));
+      test.synchronous_fy_n = numbers_of(signal.column_text(1));
+      if (test.synchronous_fx_n.size() != test.synchronous_fy_n.size()) {
+        test.synchronous_fx_n.clear();
+        test.synchronous_fy_n.clear();
+      }
+    }
     tests.push_back(std::move(stored));
   }
   return tests;

@@ -71,6 +71,8 @@ Json to_json(const StoredCuttingTest& stored) {
               {"revolutions_total", test.revolutions_total},
               {"revolutions_used", test.revolutions_used},
               {"steady_peaks_n", test.steady_peaks_n},
+              {"synchronous_fx_n", test.synchronous_fx_n},
+              {"synchronous_fy_n", test.synchronous_fy_n},
               {"source", test.source},
               {"notes", test.notes}};
 }

@@ -187,6 +187,8 @@ StoredCuttingTest read_test(const Node& node) {
   test.revolutions_total = node.integer("revolutions_total");
   test.revolutions_used = node.integer("revolutions_used");
   test.steady_peaks_n = node.numbers("steady_peaks_n");
+  test.synchronous_fx_n = node.numbers("synchronous_fx_n", JsonPresence::kOptional);
+  test.synchronous_fy_n = node.numbers("synchronous_fy_n", JsonPresence::kOptional);
   test.source = node.text("source", JsonPresence::kOptional);
   test.notes = node.texts("notes", JsonPresence::kOptional);
   return stored;
@@ -390,9 +392,11 @@ bool same_content(const StoredCuttingTest& a, const StoredCuttingTest& b) {
   return std::tie(a.created_at, c.spindle_rpm, c.feed_mm_per_min, c.radial_depth_mm, c.axial_depth_mm, c.mode) ==
              std::tie(b.created_at, d.spindle_rpm, d.feed_mm_per_min, d.radial_depth_mm, d.axial_depth_mm, d.mode) &&
          std::tie(s.feed_per_tooth_mm, s.chip_mm, s.contact_length_mm, s.peak_mean_n, s.peak_std_n, s.peak_min_n,
-                  s.peak_max_n, s.revolutions_total, s.revolutions_used, s.steady_peaks_n, s.source, s.notes) ==
+                  s.peak_max_n, s.revolutions_total, s.revolutions_used, s.steady_peaks_n, s.synchronous_fx_n,
+                  s.synchronous_fy_n, s.source, s.notes) ==
              std::tie(t.feed_per_tooth_mm, t.chip_mm, t.contact_length_mm, t.peak_mean_n, t.peak_std_n, t.peak_min_n,
-                      t.peak_max_n, t.revolutions_total, t.revolutions_used, t.steady_peaks_n, t.source, t.notes);
+                      t.peak_max_n, t.revolutions_total, t.revolutions_used, t.steady_peaks_n, t.synchronous_fx_n,
+                      t.synchronous_fy_n, t.source, t.notes);
 }
 
 bool same_content(const LearningEntry& a, const LearningEntry& b) {

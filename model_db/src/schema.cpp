@@ -147,6 +147,16 @@ CREATE TRIGGER learning_samples_append_only_delete BEFORE DELETE ON learning_sam
   BEGIN SELECT RAISE(ABORT, 'learning_samples is append-only'); END;
 )sql";
 
+// Version 3: the revolution-synchronous average force of each cutting test (Fx and Fy per spindle-angle
+// bin, JSON arrays of equal length), what identifying cutting coefficients and runout needs.
+constexpr const char* kVersion3 = R"sql(
+CREATE TABLE cutting_test_signals (
+  cutting_test_id INTEGER PRIMARY KEY REFERENCES cutting_tests(id),
+  fx_json TEXT NOT NULL,
+  fy_json TEXT NOT NULL
+);
+)sql";
+
 int pragma_int(Connection& connection, const char* pragma) {
   Statement statement(connection, std::string("PRAGMA ") + pragma);
   return statement.step() ? statement.column_int(0) : 0;
@@ -181,12 +191,12 @@ void run_quick_check(Connection& connection) {
 }  // namespace
 
 const std::vector<std::string>& schema_migrations() {
-  static const std::vector<std::string> migrations{kVersion1, kVersion2};
+  static const std::vector<std::string> migrations{kVersion1, kVersion2, kVersion3};
   return migrations;
 }
 
 int prepare_schema(Connection& connection, OpenMode mode, bool quick_check) {
-  static_assert(kStoreSchemaVersion == 2, "add the migration step to schema_migrations()");
+  static_assert(kStoreSchemaVersion == 3, "add the migration step to schema_migrations()");
   const auto& migrations = schema_migrations();
   // Reading the header is the first access to the file: a file that is not a database fails here.
   const int application_id = pragma_int(connection, "application_id");

@@ -179,6 +179,16 @@ std::vector<InputProblem> validate(const CuttingTestRecord& test) {
   for (std::size_t i = 0; i < test.steady_peaks_n.size(); ++i) {
     problems.non_negative("steady_peaks_n[" + std::to_string(i) + "]", test.steady_peaks_n[i]);
   }
+  if (test.synchronous_fx_n.size() != test.synchronous_fy_n.size()) {
+    problems.add_value("synchronous_fy_n", std::to_string(test.synchronous_fy_n.size()) + " values",
+                       "must have as many as synchronous_fx_n (" + std::to_string(test.synchronous_fx_n.size()) + ")");
+  }
+  for (std::size_t i = 0; i < test.synchronous_fx_n.size(); ++i) {
+    problems.finite("synchronous_fx_n[" + std::to_string(i) + "]", test.synchronous_fx_n[i]);
+  }
+  for (std::size_t i = 0; i < test.synchronous_fy_n.size(); ++i) {
+    problems.finite("synchronous_fy_n[" + std::to_string(i) + "]", test.synchronous_fy_n[i]);
+  }
   return problems.take();
 }
 

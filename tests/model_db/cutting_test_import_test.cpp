@@ -314,6 +314,26 @@ force_log::ForceLog synthetic_log(const std::vector<double>& amplitudes_n) {
   return log;
 }
 
+// The force over one revolution, averaged over the steady ones: with no runout every tooth cuts alike, so
+// the average repeats every tooth period (a shift by bins / flutes), and its largest |F_xy| is the steady
+// per-revolution peak (the dynamometer's 2 N noise averages out; 2° bins round the pulse's top).
+TEST(CuttingTestImport, SimulatedTestKeepsItsForceOverARevolution) {
+  const ScratchFile file("simulated.csv", force_log::format_force_log(simulated_test().log));
+  const CuttingTestRecord r = import_cutting_test(file.path(), sim_conditions(), kSimTool);
+  const std::size_t bins = r.synchronous_fx_n.size();
+  ASSERT_GE(bins, 36u);
+  ASSERT_EQ(r.synchronous_fy_n.size(), bins);
+  double largest = 0.0;
+  for (std::size_t b = 0; b < bins; ++b) largest = std::max(largest, std::hypot(r.synchronous_fx_n[b], r.synchronous_fy_n[b]));
+  EXPECT_NEAR(largest, r.peak_mean_n, 0.05 * r.peak_mean_n);
+  const auto shift = static_cast<std::size_t>(std::lround(static_cast<double>(bins) / kSimTool.flutes));
+  for (std::size_t b = 0; b < bins; ++b) {
+    const std::size_t c = (b + shift) % bins;
+    EXPECT_NEAR(r.synchronous_fx_n[c], r.synchronous_fx_n[b], 0.06 * largest) << "bin " << b;
+    EXPECT_NEAR(r.synchronous_fy_n[c], r.synchronous_fy_n[b], 0.06 * largest) << "bin " << b;
+  }
+}
+
 TEST(CuttingTestImport, SteadyRuleDropsAirAndRampsButKeepsInteriorScatter) {
   // 5 in the air, a 10-revolution ramp up, 50 steady (100 ± 0.5 N, one at 70 N in the middle), a
   // 10-revolution ramp down, 5 in the air.

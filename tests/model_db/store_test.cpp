@@ -44,7 +44,8 @@ TEST(Store, CreatesTheSchemaWithItsVersionInWalMode) {
   EXPECT_EQ(fixtures::raw_sql(path, "PRAGMA journal_mode"), "wal");
   EXPECT_EQ(fixtures::raw_sql(path, "SELECT group_concat(name, ',') FROM (SELECT name FROM sqlite_schema WHERE "
                                     "type = 'table' ORDER BY name)"),
-            "cutting_test_peaks,cutting_tests,learning_history,learning_samples,materials,model_activations,models,tools");
+            "cutting_test_peaks,cutting_test_signals,cutting_tests,learning_history,learning_samples,materials,model_activations,"
+            "models,tools");
 }
 
 TEST(Store, ReopensAnExistingFileAndKeepsItsContent) {
@@ -313,7 +314,9 @@ TEST_F(StoreWithCatalog, UnknownToolOrMaterialIsAnInputErrorWithTheKnownNames) {
 // Cutting tests and learning history
 
 TEST_F(StoreWithCatalog, CuttingTestsReadBackWithTheirSteadyPeaks) {
-  const auto in = fixtures::cutting_test("SC EM D10 Z4", "S50C", 3, 40);
+  auto in = fixtures::cutting_test("SC EM D10 Z4", "S50C", 3, 40);
+  in.synchronous_fx_n = {1.5, -2.25, 1e-7, 480.125};
+  in.synchronous_fy_n = {-0.5, 3.0, 12.75, -99.0};
   const auto stored = store_.add_cutting_test(in);
   EXPECT_GT(stored.id, 0);
   store_.add_cutting_test(fixtures::cutting_test("SC EM D6 Z3", "S50C", 1));
@@ -346,6 +349,9 @@ TEST_F(StoreWithCatalog, CuttingTestsReadBackWithTheirSteadyPeaks) {
   ASSERT_EQ(out.steady_peaks_n.size(), 40u);
   EXPECT_EQ(out.steady_peaks_n[0], 483.0);
   EXPECT_EQ(out.steady_peaks_n[39], 480.0 + 0.37 * 39 + 3);
+  EXPECT_EQ(out.synchronous_fx_n, in.synchronous_fx_n);  // JSON numbers read back as the same doubles
+  EXPECT_EQ(out.synchronous_fy_n, in.synchronous_fy_n);
+  EXPECT_TRUE(tests[1].test.synchronous_fx_n.empty());
   EXPECT_EQ(out.source, "test_3.csv");
   EXPECT_EQ(out.notes, (std::vector<std::string>{"first 2 revolutions dropped (entry)",
                                                  "note with \"quotes\" and ünïcode"}));
@@ -358,10 +364,14 @@ TEST_F(StoreWithCatalog, BadCuttingTestIsAnInputErrorNamingEachField) {
   bad.conditions.spindle_rpm = -2800;
   bad.revolutions_used = 99;
   bad.steady_peaks_n[2] = kNaN;
+  bad.synchronous_fx_n = {1.0, kNaN};
+  bad.synchronous_fy_n = {1.0};
   EXPECT_EQ(input_error_of([&] { store_.add_cutting_test(bad); }),
             "cutting_tests.spindle_rpm = -2800: must be in (0, 200000] rev/min\n"
             "cutting_tests.revolutions_used = 99: must be in [0, revolutions_total = 16]\n"
             "cutting_tests.steady_peaks_n[2] = nan: must be finite and ≥ 0\n"
+            "cutting_tests.synchronous_fy_n = 1 values: must have as many as synchronous_fx_n (2)\n"
+            "cutting_tests.synchronous_fx_n[1] = nan: must be finite\n"
             "cutting_tests.material_name = 'Steel': unknown material; known: Al7075-T6, S50C");
   EXPECT_TRUE(store_.all_cutting_tests().empty());
 }
@@ -547,7 +557,7 @@ TEST(StoreOpen, NewerSchemaVersionAsksToUpgradeFeedplanAndChangesNothing) {
   fixtures::raw_sql(path, "PRAGMA user_version = 7");
   const std::string before = fixtures::file_bytes(path);
   const std::string expected =
-      path.string() + " has model database schema version 7, newer than this feedplan knows (2): upgrade feedplan";
+      path.string() + " has model database schema version 7, newer than this feedplan knows (3): upgrade feedplan";
   EXPECT_EQ(input_error_of([&] { Store::open(path, OpenMode::kExisting); }), expected);
   EXPECT_EQ(input_error_of([&] { Store::open(path, OpenMode::kReadOnly); }), expected);
   EXPECT_EQ(fixtures::file_bytes(path), before);

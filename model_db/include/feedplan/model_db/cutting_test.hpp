@@ -39,6 +39,11 @@ struct CuttingTestRecord {
   int revolutions_total = 0;             //!< complete revolutions in the log
   int revolutions_used = 0;              //!< steady revolutions the statistics are over
   std::vector<double> steady_peaks_n;    //!< the steady per-revolution peaks, N, in time order
+  //! The revolution-synchronous average of Fx and Fy over the steady revolutions (force_log/
+  //! synchronous_average.hpp): equal spindle-angle bins from each revolution's start, N. Both empty when the
+  //! log samples a revolution too sparsely, or the test was stored without it.
+  std::vector<double> synchronous_fx_n;
+  std::vector<double> synchronous_fy_n;  //!< see synchronous_fx_n
   std::string source;                    //!< where the log came from (file name, "simulated", …)
   std::vector<std::string> notes;        //!< what the import wants the user to know
 };

@@ -11,7 +11,9 @@
 //                    model {beta[6], centres, scales, range, axial_depth_mm, spindle_rpm, quantity},
 //                    fit {n, rmse_n, r_squared, covariance[36], standard_errors[6], loo_rmse_n}
 //   cutting_tests    by tool, material, created_at: conditions, derived values, peak statistics,
-//                    steady_peaks_n[], source, notes[], created_at
+//                    steady_peaks_n[], synchronous_fx_n[], synchronous_fy_n[] (optional: the force over a
+//                    revolution averaged over the steady ones, force_log/synchronous_average.hpp),
+//                    source, notes[], created_at
 //   learning_history by created_at: model_before / model_after as {tool, material, version}, …
 // Row ids never appear (references are by name and version); versions, created_at and the active flags
 // are kept, so export → import into an empty store → export gives byte-identical text. Not exported:

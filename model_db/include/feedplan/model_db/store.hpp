@@ -35,7 +35,7 @@
 namespace feedplan::model_db {
 
 //! The schema version this code writes and reads (PRAGMA user_version).
-inline constexpr int kStoreSchemaVersion = 2;
+inline constexpr int kStoreSchemaVersion = 3;
 
 //! How Store::open treats the file.
 enum class OpenMode {
