@@ -142,6 +142,7 @@ planner::PlanSettings plan_settings(const PlanCommandOptions& o, const PlanInput
   settings.options.feed_resolution_mm_per_min = o.feed_resolution_mm_per_min;
   settings.options.jerk_limit_mm_per_s3 = o.jerk_limit_mm_per_s3.value_or(0.0);  // 0: none
   settings.options.ds_mm = o.ds_mm;
+  settings.options.coordinate_resolution_mm = std::pow(10.0, -o.decimals);  // what the writer rounds to
   return settings;
 }
 

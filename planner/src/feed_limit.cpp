@@ -132,11 +132,13 @@ double chip_load_ratio(const model::ResponseSurfaceModel& model, const geometry:
   return load_mm / reference_mm;
 }
 
-double plunge_feed_limit_mm_per_min(const geometry::Move& move, const geometry::Tool& tool, double spindle_rpm) {
+double plunge_feed_limit_mm_per_min(const geometry::Move& move, const geometry::Tool& tool, double spindle_rpm,
+                                    double resolution_mm) {
   const double length_mm = geometry::length_mm(move);
   const double descent_mm = move.start.z_mm - move.end.z_mm;
   if (!(descent_mm > 0.0) || !(length_mm > 0.0)) return std::numeric_limits<double>::infinity();
-  return tool.plunge_feed_per_tooth_mm() * tool.flutes * spindle_rpm * length_mm / descent_mm;
+  return tool.plunge_feed_per_tooth_mm() * tool.flutes * spindle_rpm * length_mm /
+         (descent_mm + std::max(resolution_mm, 0.0));
 }
 
 double chip_thickness_mm(const geometry::EngagementSample& sample, double feed_mm_per_min, int flutes,

@@ -169,6 +169,11 @@ std::vector<InputProblem> validate(const PlanSettings& settings, const geometry:
     problems.push_back({"options.feed_resolution_mm_per_min",
                         "= " + num(o.feed_resolution_mm_per_min) + ": must be in (0, 100] mm/min"});
   }
+  if (!(std::isfinite(o.coordinate_resolution_mm) && o.coordinate_resolution_mm >= 0.0 &&
+        o.coordinate_resolution_mm <= 0.1)) {
+    problems.push_back({"options.coordinate_resolution_mm",
+                        "= " + num(o.coordinate_resolution_mm) + ": must be in [0, 0.1] mm (10^-decimals of the program)"});
+  }
   if (!(std::isfinite(o.jerk_limit_mm_per_s3) && o.jerk_limit_mm_per_s3 >= 0.0)) {
     problems.push_back({"options.jerk_limit_mm_per_s3", "= " + num(o.jerk_limit_mm_per_s3) + ": must be ≥ 0 (0: none)"});
   }
@@ -291,7 +296,8 @@ double feed_limit_at(const PlanContext& c, const std::vector<double>& centripeta
   double feed = limit.feed_mm_per_min;
   FeedLimitReason reason = limit.reason;
   if (meets_material(sample)) {
-    const double plunge = plunge_feed_limit_mm_per_min(move, c.tool, c.rpm);
+    const double plunge =
+        plunge_feed_limit_mm_per_min(move, c.tool, c.rpm, c.settings.options.coordinate_resolution_mm);
     if (plunge < feed) {
       feed = plunge;
       reason = FeedLimitReason::kPlunge;

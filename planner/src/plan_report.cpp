@@ -269,6 +269,10 @@ void read_settings(const Node& root, const Node& model, PlanSettings& settings) 
   settings.options.feed_resolution_mm_per_min = options.number("feed_resolution_mm_per_min");
   settings.options.jerk_limit_mm_per_s3 = options.number("jerk_limit_mm_per_s3");
   settings.options.ds_mm = options.number("ds_mm");
+  // Reports written before the field: the planner's default (3 decimals).
+  if (options.member("coordinate_resolution_mm", JsonPresence::kOptional)) {
+    settings.options.coordinate_resolution_mm = options.number("coordinate_resolution_mm");
+  }
   settings.force_correction = root.numbers("force_correction", JsonPresence::kOptional);
 }
 
@@ -377,7 +381,8 @@ std::string plan_report_json(const PlanResult& result, const PlanSettings& setti
                          {"merge_tolerance", json_number(options.merge_tolerance)},
                          {"feed_resolution_mm_per_min", json_number(options.feed_resolution_mm_per_min)},
                          {"jerk_limit_mm_per_s3", json_number(options.jerk_limit_mm_per_s3)},
-                         {"ds_mm", json_number(options.ds_mm)}};
+                         {"ds_mm", json_number(options.ds_mm)},
+                         {"coordinate_resolution_mm", json_number(options.coordinate_resolution_mm)}};
   if (!settings.force_correction.empty()) {
     Json correction = Json::array();
     for (double c : settings.force_correction) correction.push_back(json_number(c));

@@ -65,7 +65,8 @@ SampleAllowance allowance(const SafetyCheckInput& input, const geometry::Engagem
   }
   if (!meets_material(sample) || rises_straight_up(move)) return {};
   if (move.kind == geometry::MoveKind::kRapid) return {0.0, SafetyProblem::kRapidInMaterial};
-  const double plunge = plunge_feed_limit_mm_per_min(move, *input.tool, input.settings->spindle_rpm);
+  const double plunge = plunge_feed_limit_mm_per_min(move, *input.tool, input.settings->spindle_rpm,
+                                                     input.settings->options.coordinate_resolution_mm);
   const double force =
       is_engaged(sample) ? force_limit_mm_per_min(input, profile, sample) : std::numeric_limits<double>::infinity();
   if (plunge < force) return {plunge, SafetyProblem::kAbovePlungeLimit};

@@ -140,7 +140,8 @@ TEST(PlanReportJson, HoldsEveryDocumentedFieldWithThePlansValues) {
                                              {"block_time_min_s", 0.003}}));
   EXPECT_EQ(json["options"], (nlohmann::json{{"mode", "regulate"}, {"air_feed_mm_per_min", 3000.0},
                                              {"merge_tolerance", 0.03}, {"feed_resolution_mm_per_min", 5.0},
-                                             {"jerk_limit_mm_per_s3", 0.0}, {"ds_mm", 0.1}}));
+                                             {"jerk_limit_mm_per_s3", 0.0}, {"ds_mm", 0.1},
+                                             {"coordinate_resolution_mm", 0.001}}));
 
   const nlohmann::json& summary = json["summary"];
   EXPECT_EQ(keys_of(summary),

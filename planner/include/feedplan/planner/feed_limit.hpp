@@ -67,8 +67,10 @@ double chip_load_ratio(const model::ResponseSurfaceModel& model, const geometry:
                        const geometry::EngagementSample& sample, const geometry::Tool& tool);
 
 //! The largest path feed (mm/min) at which `move` descends no faster than the tool's plunge feed per tooth
-//! allows at `spindle_rpm`; +∞ when the move does not descend.
-double plunge_feed_limit_mm_per_min(const geometry::Move& move, const geometry::Tool& tool, double spindle_rpm);
+//! allows at `spindle_rpm`, with its descent taken `resolution_mm` deeper than planned (the written
+//! program's rounding: PlanOptions::coordinate_resolution_mm); +∞ when the move does not descend.
+double plunge_feed_limit_mm_per_min(const geometry::Move& move, const geometry::Tool& tool, double spindle_rpm,
+                                    double resolution_mm = 0.0);
 
 //! The feed (mm/min) at which `model` predicts `target_force_n` at `sample` (engaged, cutting), by
 //! model::solve_feed on the chip factor × XY speed ratio, with the axial-depth scaling above. A sample

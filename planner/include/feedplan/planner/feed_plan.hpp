@@ -79,6 +79,10 @@ struct PlanOptions {
   //! Engagement sample spacing the geometry was analysed at, mm: plan() works on the samples it is given;
   //! the report records this so a re-plan (learning) analyses the path at the same spacing.
   double ds_mm = 0.05;
+  //! Resolution the program's coordinates are written with, mm (10^−decimals): rounding each end of a
+  //! move can steepen a short descent by up to this much, so the plunge limit is held for the descent
+  //! plus it (feed_limit.hpp); 0: the program is run as planned, unrounded. In [0, 0.1].
+  double coordinate_resolution_mm = 0.001;
 };
 
 //! Everything about the path that does not depend on the feed: computed once, planned many times.

@@ -17,7 +17,7 @@
 //   machine {max_feed_mm_per_min, min_feed_mm_per_min, max_accel_mm_per_s2, rapid_feed_mm_per_min,
 //            block_time_min_s},
 //   options {mode, air_feed_mm_per_min, merge_tolerance, feed_resolution_mm_per_min,
-//            jerk_limit_mm_per_s3, ds_mm},
+//            jerk_limit_mm_per_s3, ds_mm, coordinate_resolution_mm (optional on reading: 0.001)},
 //   force_correction[] (only when set: one c per plan sample),
 //   path_learning {place_correction[], measurements[[t_m, L, F, window] per sample]} (only after learning
 //            along the path; as many entries as force_correction),
