@@ -23,12 +23,12 @@
 // Integration along z. Along a flute dz = dφ / (tan β / r), so each tooth's force on a section is an
 // integral over the immersions its flute spans there, intersected with the engaged arcs (straight
 // flutes: the tip's immersion times the section height). Without size effect and runout, h = f_z sin φ
-// and the integrals of sin φ cos φ, sin² φ, sin φ and cos φ are evaluated in closed form. Otherwise the
-// immersions are cut into cells of at most kChipCellRad (1°) and each cell is integrated by the
-// midpoint rule, a cell where h changes sign only over its part with h > 0 (the root found by linear
-// interpolation). The integrand is smooth within a cell, so the error is of order cell²/24 ≈ 1e-5 of
-// the force — far below the model's own uncertainty — and a 10 mm, 30° helix section on a 5 mm radius
-// needs about 70 cells per tooth.
+// and the integrals of sin φ cos φ, sin² φ, sin φ and cos φ are evaluated in closed form. Otherwise each
+// tooth's integrals are tabulated once per call against the immersion over the arcs' range, on steps
+// of 0.5°, each step integrated by the midpoint rule (a step where h changes sign only over its part
+// with h > 0, the root found by linear interpolation), and read between steps by linear interpolation
+// of the running integral. The integrand is smooth within a step, so the error is of order step²/8 of
+// its slope, about 1e-5 of the force — far below the model's own uncertainty.
 
 #include <array>
 #include <span>
@@ -40,7 +40,7 @@
 
 namespace feedplan::model {
 
-//! Largest immersion cell of the numerical integration (size effect or runout), rad: 1°.
+//! Largest immersion cell of the numerical integration of the mean force (size effect or runout), rad: 1°.
 inline constexpr double kChipCellRad = 3.14159265358979323846 / 180.0;
 //! Spindle angles sampled per tooth period for the peak, before the best candidates are refined.
 inline constexpr int kPeakStepsPerToothPeriod = 64;
@@ -89,9 +89,9 @@ MechanisticForce predicted_force(const MechanisticModel& model, std::span<const 
 //! The largest |F_xy| = √(F_x² + F_y²) over one spindle revolution, N. Sampling: without runout the
 //! force repeats every tooth period 2π/N, and Ω is sampled at kPeakStepsPerToothPeriod points of one
 //! period; with runout at as many points per tooth period over the whole revolution. The
-//! kPeakCandidates largest local maxima of the samples are then refined by golden-section search
-//! between their neighbours, to 1e-6 rad — exact for a peak at a kink (a tooth entering) as well as
-//! a smooth one, when the samples bracket it. Same requirements as regressors(); 0 with nothing engaged.
+//! kPeakCandidates largest local maxima of the samples (those within 2 % of the largest sample) are then
+//! refined by golden-section search between their neighbours, to 1e-5 rad — as good for a peak at a kink
+//! (a tooth entering) as for a smooth one, when the samples bracket it. Same requirements as regressors(); 0 with nothing engaged.
 double predicted_peak_force_n(const MechanisticModel& model, std::span<const EngagedSection> sections,
                               const CutterGeometry& cutter, double feed_per_tooth_mm);
 
