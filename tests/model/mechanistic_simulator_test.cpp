@@ -112,14 +112,14 @@ TEST(MechanisticSimulator, RegressorColumnsAreTheSimulatorsForceOfEachCoefficien
 TEST(MechanisticSimulator, PeakOnLayersWithDifferentArcsMatchesTheSimulatorsForce) {
   // A trochoid-like front on three layers (the upper ones cut back by an earlier pass), one arc reaching
   // behind the tool's left side (φ < 0, where only a tooth with runout cuts), with and without size
-  // effect and runout, helical and straight flutes: the kernel's peak against the largest of the
+  // effect and runout, right- and left-hand helical and straight flutes: the kernel's peak against the largest of the
   // simulator's force sampled every 0.1° of a revolution on 0.01 mm slices.
   const std::vector<ImmersionArc> low{{-0.3, 0.4}, {1.2, 2.9}}, middle{{1.5, 2.9}}, high{{2.0, 2.6}};
   const std::vector<EngagedSection> sections{{0.0, 3.0, low}, {3.0, 6.5, middle}, {6.5, 9.0, high}};
   std::vector<std::vector<geometry::EngagedInterval>> intervals;
   const std::vector<sim::ForceSlice> slices = simulator_slices(sections, 0.01, intervals);
   double worst = 0.0;
-  for (double helix : {30.0, 0.0}) {
+  for (double helix : {30.0, 0.0, -30.0}) {
     for (int variant = 0; variant < 3; ++variant) {
       MechanisticModel model = al7075();
       if (variant >= 1) model.runout_mm = {0.008, 0.0, -0.004, 0.0};
