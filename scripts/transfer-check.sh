@@ -42,8 +42,8 @@ work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 db="$work/transfer.db"
 
-run() {  # prints the command, then runs it with its output discarded
-  echo "+ $*" >&2
+run() {  # prints the command (quoted so it can be pasted), then runs it with its output discarded
+  echo "+ $(printf '%q ' "$@")" >&2
   "$@" > /dev/null
 }
 
@@ -101,7 +101,7 @@ rows=()
 for spec in trochoid trochoid_r15 spiral corner; do
   specfile="$root/samples/$spec.yaml"
   target=$(awk -F: '/^target_force_n:/ { gsub(/[ ]/, "", $2); print $2 }' "$specfile")
-  echo "+ $feedplan plan $specfile --db $db -o $work/$spec.nc" >&2
+  echo "+ $(printf '%q ' "$feedplan" plan "$specfile" --db "$db" -o "$work/$spec.nc")" >&2
   if ! "$feedplan" plan "$specfile" --db "$db" -o "$work/$spec.nc" > /dev/null 2> "$work/plan.err"; then
     cat "$work/plan.err" >&2
     rows+=("$(printf '%-16s %8.0f  no plan: %s' "$spec" "$target" "$(grep -o 'raise the target to at least [0-9.]* N' "$work/plan.err" || echo 'feedplan plan failed, see above')")")
