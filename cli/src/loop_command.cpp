@@ -19,6 +19,7 @@
 #include "feedplan/cycles/cycle.hpp"
 #include "feedplan/cycles/spec_reader.hpp"
 #include "feedplan/trial/learning_loop.hpp"
+#include "feedplan/sim/machine_file.hpp"
 #include "feedplan/sim/material.hpp"
 
 namespace feedplan::cli {
@@ -33,6 +34,9 @@ void add_loop_command(CLI::App& app, LoopOptions& options) {
   cmd->add_option("--db", options.db_path, "Model database (default: $FEEDPLAN_DB, else the bundled sample database)");
   add_number_flag(cmd, "--machine-scale", options.machine_scale,
                   "The virtual machine's cutting coefficients × this: its forces ≈ this × the model's (default 1.4)");
+  cmd->add_option("--machine", options.machine_path,
+                  "Machine file (data/machines/*.yaml) to cut on instead of the spec's material × --machine-scale;\n"
+                  "conflicts with --machine-scale");
   add_number_flag(cmd, "--target-force", options.target_force_n, "Per-revolution peak force to hold, N (default: the spec's)");
   add_number_flag(cmd, "--cautious", options.cautious,
                   "Cautious first cut: plan on F̂ + z·σ with this relative uncertainty of the starting model (e.g. 0.25;\n"
@@ -63,6 +67,9 @@ std::string revolutions_csv(const trial::LoopResult& result, double target_force
   return text;
 }
 
+// The virtual machine's forces over the material's without --machine.
+double machine_scale(const LoopOptions& o) { return o.machine_scale.value_or(1.4); }
+
 // The spec and the target, every flag checked.
 struct LoopInputs {
   cycles::CycleSpec spec;       // the cycle spec
@@ -76,8 +83,12 @@ LoopInputs read_loop_inputs(const LoopOptions& o) {
   const cycles::CycleSpec& spec = in.spec;
   std::vector<InputProblem> problems;
   if (!(o.cycles >= 1 && o.cycles <= 100)) problems.push_back({"--cycles", "= " + std::to_string(o.cycles) + ": must be in [1, 100]"});
-  if (!(std::isfinite(o.machine_scale) && o.machine_scale > 0.1 && o.machine_scale < 10.0)) {
-    problems.push_back({"--machine-scale", "= " + shortest_number_text(o.machine_scale) + ": must be in (0.1, 10)"});
+  if (o.machine_scale && !o.machine_path.empty()) {
+    problems.push_back({"--machine-scale", "conflicts with --machine " + o.machine_path +
+                                               ", which sets the machine's physics; give one of them"});
+  }
+  if (const double scale = machine_scale(o); !(std::isfinite(scale) && scale > 0.1 && scale < 10.0)) {
+    problems.push_back({"--machine-scale", "= " + shortest_number_text(scale) + ": must be in (0.1, 10)"});
   }
   check_flag(problems, "--cautious", o.cautious, {0.0, true, 2.0, true}, "a relative uncertainty (0: off)");
   check_flag(problems, "--sigmas", o.sigmas, {0.0, true, 10.0, true});
@@ -93,6 +104,7 @@ LoopInputs read_loop_inputs(const LoopOptions& o) {
   if (!(spec.spindle_rpm > 0.0)) problems.push_back({"spindle_rpm", "is required (rev/min > 0)"});
   check_outputs({{"SPEC", o.spec_path},
                  {"--db", database_path(o.db_path)},
+                 {"--machine", o.machine_path},
                  {"--materials", o.materials_path.empty() ? bundled_materials_path() : o.materials_path}},
                 {{"--revolutions", o.revolutions_path}}, problems);
   if (!problems.empty()) throw InputError(std::move(problems));
@@ -113,7 +125,19 @@ trial::LoopRequest loop_request(const LoopOptions& o, const LoopInputs& in, cons
   request.settings.spindle_rpm = spec.spindle_rpm;
   request.settings.machine = spec.machine;
   request.machine.tool = spec.tool;
-  request.machine.coefficients = sim::scaled(materials.get(spec.material, "material").coefficients, o.machine_scale);
+  if (o.machine_path.empty()) {
+    request.machine.coefficients = sim::scaled(materials.get(spec.material, "material").coefficients, machine_scale(o));
+  } else {
+    // The machine file's physics on the spec's catalogue tool (its helix moved by the file's offset).
+    const sim::MachineFile file = sim::load_machine_file(o.machine_path, materials);
+    sim::SimulationRequest physics;
+    physics.tool = spec.tool;
+    if (auto problems = sim::apply_machine(file, physics); !problems.empty()) throw InputError(std::move(problems));
+    request.machine.tool = physics.tool;
+    request.machine.coefficients = physics.coefficients;
+    request.machine.runout_mm = physics.options.runout_mm;
+    request.machine.sensors.dynamometer = physics.sensors.dynamometer;
+  }
   request.machine.stock = cycle.stock;
   request.machine.machine = spec.machine;
   request.machine.spindle_rpm = spec.spindle_rpm;
@@ -136,7 +160,11 @@ void print_loop_json(const LoopOptions& o, const LoopInputs& in, const ChosenMod
   nlohmann::json out;
   out["spec"] = o.spec_path;
   out["target_force_n"] = in.target_force_n;
-  out["machine_scale"] = o.machine_scale;
+  if (o.machine_path.empty()) {
+    out["machine_scale"] = machine_scale(o);
+  } else {
+    out["machine"] = o.machine_path;
+  }
   out["cautious"] = in.cautious;
   out["start_model"] = {{"id", chosen.record.id}, {"version", chosen.record.version},
                         {"match_status", model_db::to_string(chosen.borrowing.status)},
@@ -163,9 +191,11 @@ void print_loop_json(const LoopOptions& o, const LoopInputs& in, const ChosenMod
 }
 
 void print_loop_text(const LoopOptions& o, const LoopInputs& in, const ChosenModel& chosen, const trial::LoopResult& result) {
-  std::printf("%s: %s, target %s N, virtual machine forces × %s of the material's, start model id %lld v%d%s\n",
-              o.spec_path.c_str(), in.spec.cycle.c_str(), shortest_number_text(in.target_force_n).c_str(),
-              shortest_number_text(o.machine_scale).c_str(), static_cast<long long>(chosen.record.id),
+  const std::string machine = o.machine_path.empty()
+                                  ? "virtual machine forces × " + shortest_number_text(machine_scale(o)) + " of the material's"
+                                  : "virtual machine " + o.machine_path;
+  std::printf("%s: %s, target %s N, %s, start model id %lld v%d%s\n", o.spec_path.c_str(), in.spec.cycle.c_str(),
+              shortest_number_text(in.target_force_n).c_str(), machine.c_str(), static_cast<long long>(chosen.record.id),
               chosen.record.version, in.cautious > 0 ? (", cautious first cut (r " + shortest_number_text(in.cautious) +
                                                         ", z " + shortest_number_text(o.sigmas) + ")").c_str()
                                                      : "");

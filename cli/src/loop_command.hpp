@@ -16,7 +16,9 @@ struct LoopOptions {
   std::string spec_path;            //!< the cycle spec
   std::string db_path;              //!< --db
   int cycles = 3;                   //!< --cycles
-  double machine_scale = 1.4;       //!< --machine-scale: the virtual machine's true forces ≈ this × the model's
+  //! --machine-scale: the virtual machine's true forces ≈ this × the model's; unset: 1.4 (without --machine)
+  std::optional<double> machine_scale;
+  std::string machine_path;         //!< --machine: a machine file instead of the scaled material
   std::optional<double> target_force_n;  //!< --target-force; unset: the spec's
   //! --cautious R: first cut on F̂ + z·σ with relative uncertainty R (0: off); unset: from how far the
   //! starting model is borrowed (0, off, for an exact one)

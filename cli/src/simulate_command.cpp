@@ -30,6 +30,7 @@
 #include "feedplan/force_log/force_log_file_writer.hpp"
 #include "feedplan/sim/force_plot.hpp"
 #include "feedplan/sim/force_plot_collector.hpp"
+#include "feedplan/sim/machine_file.hpp"
 #include "feedplan/sim/material.hpp"
 #include "feedplan/sim/milling_simulation.hpp"
 
@@ -178,6 +179,16 @@ void check_cutting_test_flags(const SimulateOptions& o, std::vector<InputProblem
   if (!o.cutting_test && o.up_milling) problems.push_back({"--up", "only applies with --cutting-test"});
 }
 
+// --machine sets the physics the flags --material, --runout-mm and --noise-n would set: giving both is a
+// conflict, not a silent precedence (the machine file is the record of what was run).
+void check_machine_flags(const SimulateOptions& o, std::vector<InputProblem>& problems) {
+  if (o.machine_path.empty()) return;
+  const std::string why = "conflicts with --machine " + o.machine_path + ", which sets ";
+  if (!o.material_name.empty()) problems.push_back({"--material", why + "the material and its coefficients; give one of them"});
+  if (!o.runout_text.empty()) problems.push_back({"--runout-mm", why + "the runout per tooth; give one of them"});
+  if (o.noise_n) problems.push_back({"--noise-n", why + "the dynamometer noise; give one of them"});
+}
+
 // Where the tool, material, machine and stock come from: flags, else the spec; every flag checked.
 SimulateInputs read_simulate_inputs(const SimulateOptions& options) {
   std::vector<InputProblem> problems;
@@ -196,9 +207,10 @@ SimulateInputs read_simulate_inputs(const SimulateOptions& options) {
   } else {
     problems.push_back({"--tool", "is required (or --spec): e.g. --tool diameter_mm=10,flutes=4,helix_deg=30"});
   }
+  check_machine_flags(options, problems);
   in.material_name = options.material_name;
   if (in.material_name.empty() && spec) in.material_name = spec->material;
-  if (in.material_name.empty()) problems.push_back({"--material", "is required (or a --spec with material:), e.g. --material S50C"});
+  if (in.material_name.empty() && options.machine_path.empty()) problems.push_back({"--material", "is required (or a --spec with material:), e.g. --material S50C"});
   in.rpm = options.spindle_rpm.value_or(spec ? spec->spindle_rpm : 0.0);  // 0: the program's S words only
   check_number_flags(options, problems);
   check_cutting_test_flags(options, problems);
@@ -206,6 +218,7 @@ SimulateInputs read_simulate_inputs(const SimulateOptions& options) {
   check_outputs({{"PROGRAM", options.program_path},
                  {"--spec", options.spec_path},
                  {"--stock", options.stock_path},
+                 {"--machine", options.machine_path},
                  {"--materials", options.materials_path.empty() ? bundled_materials_path() : options.materials_path}},
                 {{"--log", options.log_path}, {"--peaks", options.peaks_path}, {"--plot", options.plot_path}}, problems);
   if (!problems.empty()) throw InputError(std::move(problems));
@@ -224,7 +237,7 @@ sim::SimulationRequest simulation_request(const SimulateOptions& options, const 
   if (options.max_accel_mm_per_s2) request.machine.max_accel_mm_per_s2 = *options.max_accel_mm_per_s2;
   if (options.rapid_feed_mm_per_min) request.machine.rapid_feed_mm_per_min = *options.rapid_feed_mm_per_min;
   if (options.max_feed_mm_per_min) request.machine.max_feed_mm_per_min = *options.max_feed_mm_per_min;
-  request.sensors.dynamometer.noise_n = options.noise_n;
+  request.sensors.dynamometer.noise_n = options.noise_n.value_or(0.0);
   request.sensors.servo_current.enabled = options.currents;
   request.sensors.seed = options.seed;
   request.options.angle_step_deg = options.angle_step_deg;
@@ -405,6 +418,9 @@ void add_simulate_command(CLI::App& app, SimulateOptions& options) {
   add_number_flag(cmd, "--max-accel", options.max_accel_mm_per_s2, "Path acceleration limit, mm/s²");
   add_number_flag(cmd, "--rapid", options.rapid_feed_mm_per_min, "Rapid traverse rate, mm/min");
   add_number_flag(cmd, "--max-feed", options.max_feed_mm_per_min, "Highest feed the machine runs, mm/min");
+  cmd->add_option("--machine", options.machine_path,
+                  "Machine file (data/machines/*.yaml): material and coefficients, size effect, runout, true helix, "
+                  "dynamometer; conflicts with --material, --runout-mm and --noise-n");
   cmd->add_option("--runout-mm", options.runout_text, "Radial runout per tooth, mm, comma separated (one per flute)");
   add_number_flag(cmd, "--noise-n", options.noise_n, "Dynamometer noise, RMS N");
   cmd->add_flag("--currents", options.currents, "Also log feed-drive servo currents (seed 002: I = a + b·F)");
@@ -425,10 +441,18 @@ int run_simulate_command(const SimulateOptions& options) {
   const SimulateInputs in = read_simulate_inputs(options);
   const sim::MaterialLibrary materials =
       sim::load_materials(options.materials_path.empty() ? bundled_materials_path() : options.materials_path);
-  const sim::Material& material = materials.get(in.material_name, options.material_name.empty() ? "spec.material" : "--material");
+  std::optional<sim::MachineFile> machine;
+  if (!options.machine_path.empty()) machine = sim::load_machine_file(options.machine_path, materials);
+  const sim::Material& material =
+      machine ? materials.get(machine->material, options.machine_path + ": material")
+              : materials.get(in.material_name, options.material_name.empty() ? "spec.material" : "--material");
   sim::SimulationRequest request = simulation_request(options, in, material);
+  if (machine) {
+    if (auto problems = sim::apply_machine(*machine, request); !problems.empty()) throw InputError(std::move(problems));
+  }
   const SimulationJob job = options.cutting_test ? set_cutting_test(options, in, request) : set_program(options, in, request);
   request.log_metadata.push_back({"material", material.name});
+  if (machine) request.log_metadata.push_back({"machine", machine->name + " (" + options.machine_path + ")"});
   const SimulationRun run = run_simulation(std::move(request), options);
   if (const std::string error = write_simulation_outputs(options, run, job.name); !error.empty()) {
     std::cerr << "feedplan: failed: " << error << "\n";

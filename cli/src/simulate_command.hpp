@@ -25,8 +25,9 @@ struct SimulateOptions {
   std::optional<double> max_accel_mm_per_s2;  //!< unset: the spec's or the default
   std::optional<double> rapid_feed_mm_per_min;  //!< unset: the spec's or the default
   std::optional<double> max_feed_mm_per_min;  //!< unset: the spec's or the default
+  std::string machine_path;        //!< machine file (data/machines/); sets material, runout, helix offset, dynamometer
   std::string runout_text;         //!< per-tooth runout in mm, comma separated
-  double noise_n = 0.0;            //!< dynamometer noise RMS, N
+  std::optional<double> noise_n;   //!< dynamometer noise RMS, N; unset: 0 (or the machine file's)
   bool currents = false;           //!< log servo currents (seed 002's I = a + b·F)
   double log_rate_hz = 10000.0;    //!< log sample rate, Hz
   double angle_step_deg = 1.0;     //!< spindle rotation per internal step, deg

@@ -555,9 +555,24 @@ TEST_F(LoopCliTest, BadFlagsNameTheFlag) {
   const RunResult negative = run_feedplan(loop + " --machine-scale -1");
   EXPECT_EQ(negative.exit_code, 2) << negative.output;
   EXPECT_NE(negative.output.find("--machine-scale"), std::string::npos) << negative.output;
+  const std::string machine = kSamples + "/../data/machines/steel-mild.yaml";
+  const RunResult both = run_feedplan(loop + " --machine " + machine + " --machine-scale 1.2");
+  EXPECT_EQ(both.exit_code, 2) << both.output;
+  EXPECT_NE(both.output.find("--machine-scale conflicts with --machine " + machine), std::string::npos) << both.output;
   const RunResult nowhere = run_feedplan(loop + " --revolutions " + (dir_ / "missing" / "r.csv").string());
   EXPECT_EQ(nowhere.exit_code, 2) << nowhere.output;
   EXPECT_NE(nowhere.output.find("--revolutions"), std::string::npos) << nowhere.output;
+}
+
+TEST_F(LoopCliTest, CutsOnAMachineFile) {
+  const std::string machine = kSamples + "/../data/machines/steel-mild.yaml";
+  const RunResult r = run_feedplan("loop " + kSamples + "/corner.yaml --cycles 1 --db " + db_ + " --machine " + machine +
+                                   " --json");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const json out = json_of(r.output);
+  EXPECT_EQ(out["machine"].get<std::string>(), machine);
+  EXPECT_FALSE(out.contains("machine_scale"));
+  ASSERT_EQ(out["cycles"].size(), 1u) << r.output;
 }
 
 }  // namespace

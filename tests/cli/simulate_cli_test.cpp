@@ -147,3 +147,44 @@ TEST_F(SimulateCliTest, ALogInAMissingDirectoryIsBadInputAndAFullDeviceAFailure)
 }
 
 }  // namespace
+
+namespace {
+
+const std::string kMachines = std::string(FEEDPLAN_SAMPLES_DIR) + "/../data/machines";
+const std::string kMachineCut =
+    "--cutting-test --tool diameter_mm=10,flutes=4,helix_deg=30 --radial-depth-mm 2 --axial-depth-mm 10"
+    " --feed-mm-per-min 560 --spindle-rpm 2800 --cut-length-mm 20 --log-rate 5000";
+
+TEST_F(SimulateCliTest, AMachineFileSetsThePhysicsAndIsRecordedInTheLog) {
+  const fs::path log = dir_ / "machine.csv";
+  const RunResult r = run_feedplan("simulate " + kMachineCut + " --machine " + kMachines + "/steel-worn.yaml --log " + log.string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("material S50C"), std::string::npos) << r.output;
+  EXPECT_NE(read_text(log).find("# machine: steel-worn ("), std::string::npos);
+  const RunResult plain = run_feedplan("simulate " + kMachineCut + " --material S50C --log " + (dir_ / "plain.csv").string() + " --json");
+  const RunResult worn = run_feedplan("simulate " + kMachineCut + " --machine " + kMachines + "/steel-worn.yaml --log " +
+                                      (dir_ / "worn.csv").string() + " --json");
+  ASSERT_EQ(plain.exit_code, 0) << plain.output;
+  ASSERT_EQ(worn.exit_code, 0) << worn.output;
+  EXPECT_NE(plain.output, worn.output);  // other coefficients, runout and helix: other forces
+}
+
+TEST_F(SimulateCliTest, AMachineFileConflictsWithTheFlagsItSets) {
+  const std::string machine = " --machine " + kMachines + "/steel-mild.yaml";
+  expect_bad_input(kMachineCut + machine + " --material S50C", "--material conflicts with --machine");
+  expect_bad_input(kMachineCut + machine + " --noise-n 2", "--noise-n conflicts with --machine");
+  expect_bad_input(kMachineCut + machine + " --runout-mm 0.01,0,0,0", "--runout-mm conflicts with --machine");
+}
+
+TEST_F(SimulateCliTest, BadMachineFilesNameTheFieldAndLine) {
+  const fs::path bad = dir_ / "bad.yaml";
+  std::ofstream(bad) << "name: x\nmaterial: S50C\nruonut_mm: [0.005, 0, 0, 0]\nhelix_offset_deg: 2\n"
+                        "dynamometer: {bandwidth_hz: 800, noise_n: 8}\n";
+  expect_bad_input(kMachineCut + " --machine " + bad.string(), bad.string() + ": ruonut_mm (line 3) is not a known field");
+  expect_bad_input(kMachineCut + " --machine " + (dir_ / "missing.yaml").string(), "missing.yaml");
+  expect_bad_input("--cutting-test --tool diameter_mm=6,flutes=3,helix_deg=35 --radial-depth-mm 1 "
+                   "--axial-depth-mm 6 --feed-mm-per-min 500 --spindle-rpm 4000 --machine " + kMachines + "/steel-mild.yaml",
+                   "runout_mm has 4 values: must have one per flute");
+}
+
+}  // namespace

@@ -24,6 +24,7 @@ sim::SimulationResult simulate_on(const geometry::Program& program, const Virtua
   request.machine = machine.machine;
   request.options.default_spindle_rpm = machine.spindle_rpm;
   request.sensors = machine.sensors;
+  request.options.runout_mm = machine.runout_mm;
   request.progress = machine.progress;
   RowsDropped dropped;
   if (!machine.keep_log) request.log_sink = &dropped;

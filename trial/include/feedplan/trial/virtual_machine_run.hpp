@@ -24,6 +24,7 @@ struct VirtualMachine {
   geometry::MachineLimits machine;          //!< feed, acceleration and rapid limits
   double spindle_rpm = 0.0;               //!< for blocks without S, rev/min
   sim::SensorOptions sensors;             //!< what is logged (dynamometer by default)
+  std::vector<double> runout_mm;          //!< radial runout per tooth, mm; empty: none
   //! Keep the force log's rows in the run (learning reads them); false: only its header, the
   //! per-revolution peaks and the summary — what `plan --simulate` needs, in bounded memory.
   bool keep_log = true;

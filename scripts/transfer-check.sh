@@ -1,0 +1,121 @@
+#!/usr/bin/env bash
+# The transfer experiment: how well a force model identified from straight cutting tests on one machine
+# predicts the forces of real cycles on the SAME machine.
+#
+# On a fresh temporary database it
+#   1. runs the straight cutting tests of the sample database's grid (scripts/build-sample-db.sh:
+#      a_e = 0.05 … 0.3 × D, f_z = 0.5 … 2.5 × 0.004 mm/mm × D, a_p = D, 2546 rpm) for the samples' tool
+#      SC EM D10 Z4 in S50C on MACHINE (`feedplan simulate --cutting-test --machine`), imports each log
+#      and fits the response surface (`feedplan db fit`);
+#   2. plans samples/trochoid.yaml (R 5), trochoid_r15.yaml (R 15), spiral.yaml and corner.yaml with
+#      that model (`feedplan plan`), and runs each program on the same machine (`feedplan simulate
+#      PROGRAM --spec SPEC --machine MACHINE --peaks PEAKS.csv`);
+#   3. prints a table per cycle from the per-revolution peaks of the true force (the peaks CSV):
+#        in_cut      revolutions with a peak above 5 % of the target;
+#        max_peak_n  the largest per-revolution peak, and max_err_pct its error vs the target;
+#        p50_err_pct the median error of the revolutions cutting at more than half the target (steady cut);
+#        fronts      (trochoids only) loop fronts: a front is the first 3 in-cut revolutions after an air gap (a revolution
+#                    at or below 5 % of the target); each front's error is its largest peak vs the target;
+#                    worst_front_pct is the front error largest in magnitude, mean_front_pct their mean.
+#   A cycle the model cannot plan at its target (the model predicts more than the target even at the
+#   lowest feed) gets a row saying so; the plan's message goes to stderr.
+#   Errors are signed: + the machine cut harder than the target, − softer.
+#
+# The planner knows only the catalogue tool: the machine's helix offset, runout and size effect reach
+# the model only through what the cutting tests measured.
+#
+# Usage: scripts/transfer-check.sh MACHINE.yaml   (runs build/cli/feedplan, or $FEEDPLAN_BIN)
+# Takes about 15 s (25 cutting tests, 4 plans, 4 programs on the virtual machine).
+set -euo pipefail
+root=$(cd "$(dirname "$0")/.." && pwd)
+feedplan=${FEEDPLAN_BIN:-"$root/build/cli/feedplan"}
+if [[ $# -ne 1 ]]; then
+  echo "usage: $0 MACHINE.yaml" >&2
+  exit 2
+fi
+machine=$1
+if [[ ! -r $machine ]]; then
+  echo "$0: MACHINE.yaml = $machine: not a readable file" >&2
+  exit 2
+fi
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+db="$work/transfer.db"
+
+run() {  # prints the command (quoted so it can be pasted), then runs it with its output discarded
+  echo "+ $(printf '%q ' "$@")" >&2
+  "$@" > /dev/null
+}
+
+tool="SC EM D10 Z4" d=10 z=4 helix=30 material=S50C rpm=2546 fzd=0.004
+run "$feedplan" db init --db "$db"
+run "$feedplan" db add-tool "$tool" --db "$db" --diameter-mm $d --flutes $z --helix-deg $helix \
+    --tool-material "solid carbide" --coating TiAlN
+run "$feedplan" db add-material $material --db "$db" --iso-group P --hardness "200 HB"
+
+seed=1
+for aef in 0.05 0.1 0.15 0.2 0.3; do
+  for fzf in 0.5 1.0 1.5 2.0 2.5; do
+    ae=$(awk -v a="$aef" -v d="$d" 'BEGIN { print a * d }')
+    fz=$(awk -v f="$fzf" -v k="$fzd" -v d="$d" 'BEGIN { printf "%.4f", f * k * d }')
+    feed=$(awk -v fz="$fz" -v z="$z" -v n="$rpm" 'BEGIN { printf "%.3f", fz * z * n }')
+    run "$feedplan" simulate --cutting-test --machine "$machine" \
+        --tool "diameter_mm=$d,flutes=$z,helix_deg=$helix,name=$tool" --radial-depth-mm "$ae" --axial-depth-mm $d \
+        --feed-mm-per-min "$feed" --spindle-rpm $rpm --cut-length-mm $((3 * d)) --seed $((seed++)) --log-rate 20000 \
+        --log "$work/cut.csv"
+    run "$feedplan" db import-test "$work/cut.csv" --db "$db" --tool "$tool" --material $material --spindle-rpm $rpm \
+        --feed-mm-per-min "$feed" --radial-depth-mm "$ae" --axial-depth-mm $d --mode down
+  done
+done
+run "$feedplan" db fit --db "$db" --tool "$tool" --material $material --note "transfer check on $machine"
+
+# Table of one cycle from its peaks CSV (revolution,t_start_s,t_end_s,t_peak_s,peak_xy_n,mean_xy_n).
+table_row() {  # name target peaks.csv loops(yes/no)
+  awk -F, -v name="$1" -v target="$2" -v loops="$4" '
+    NR == 1 { next }
+    {
+      peak = $5; air = peak <= 0.05 * target
+      if (air) { gap = 1; next }
+      n++; if (peak > max) max = peak
+      if (peak > 0.5 * target) steady[++ns] = 100 * (peak - target) / target
+      if (gap || n == 1) { fronts++; left = 3; front_max[fronts] = 0 }
+      gap = 0
+      if (left > 0) { if (peak > front_max[fronts]) front_max[fronts] = peak; left-- }
+    }
+    END {
+      # median of the steady errors (insertion sort: a few thousand revolutions at most)
+      for (i = 2; i <= ns; i++) { v = steady[i]; for (j = i - 1; j >= 1 && steady[j] > v; j--) steady[j + 1] = steady[j]; steady[j + 1] = v }
+      p50 = ns ? (ns % 2 ? steady[(ns + 1) / 2] : (steady[ns / 2] + steady[ns / 2 + 1]) / 2) : 0
+      worst = 0; sum = 0
+      for (f = 1; f <= fronts; f++) {
+        e = 100 * (front_max[f] - target) / target; sum += e
+        if (f == 1 || (e < 0 ? -e : e) > (worst < 0 ? -worst : worst)) worst = e
+      }
+      printf "%-16s %8.0f %7d %10.1f %11.1f %11.1f", name, target, n, max, 100 * (max - target) / target, p50
+      if (loops == "yes") printf " %6d %15.1f %14.1f\n", fronts, worst, fronts ? sum / fronts : 0
+      else printf " %6s %15s %14s\n", "-", "-", "-"
+    }' "$3"
+}
+
+rows=()
+for spec in trochoid trochoid_r15 spiral corner; do
+  specfile="$root/samples/$spec.yaml"
+  target=$(awk -F: '/^target_force_n:/ { gsub(/[ ]/, "", $2); print $2 }' "$specfile")
+  echo "+ $(printf '%q ' "$feedplan" plan "$specfile" --db "$db" -o "$work/$spec.nc")" >&2
+  if ! "$feedplan" plan "$specfile" --db "$db" -o "$work/$spec.nc" > /dev/null 2> "$work/plan.err"; then
+    cat "$work/plan.err" >&2
+    rows+=("$(printf '%-16s %8.0f  no plan: %s' "$spec" "$target" "$(grep -o 'raise the target to at least [0-9.]* N' "$work/plan.err" || echo 'feedplan plan failed, see above')")")
+    continue
+  fi
+  cat "$work/plan.err" >&2
+  run "$feedplan" simulate "$work/$spec.nc" --spec "$specfile" --machine "$machine" --log "$work/$spec.log.csv" \
+      --peaks "$work/$spec.peaks.csv"
+  loops=no
+  [[ $spec == trochoid* ]] && loops=yes
+  rows+=("$(table_row "$spec" "$target" "$work/$spec.peaks.csv" $loops)")
+done
+
+echo "machine $machine: response surface fitted on 25 straight cutting tests, cycles planned with it and cut on the same machine"
+printf '%-16s %8s %7s %10s %11s %11s %6s %15s %14s\n' cycle target_n in_cut max_peak_n max_err_pct p50_err_pct \
+    fronts worst_front_pct mean_front_pct
+printf '%s\n' "${rows[@]}"
