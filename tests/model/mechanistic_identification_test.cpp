@@ -1,0 +1,153 @@
+// Identifying the mechanistic coefficients (model/mechanistic_identification.hpp) from straight cutting
+// tests run on the virtual machine with known coefficients (Al7075-T6, data/materials.yaml) and imported
+// as a user would (model_db::import_cutting_test, which keeps the revolution-synchronous average). The
+// truth is the simulator's coefficients; the log went through its dynamometer (3 kHz second-order low pass,
+// 2 N noise) and the import's 2° bins, physics the identification does not model.
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#include "feedplan/core/input_error.hpp"
+#include "feedplan/model/mechanistic_identification.hpp"
+#include "feedplan/model_db/cutting_test_import.hpp"
+#include "feedplan/sim/cutting_test.hpp"
+#include "feedplan/sim/milling_simulation.hpp"
+
+namespace feedplan::model {
+namespace {
+
+const geometry::Tool kTool{"SC EM D10 Z4", 10.0, 4, 30.0};
+constexpr double kRpm = 2800;
+constexpr double kAxialDepthMm = 5.0;
+
+// Al7075-T6 (data/materials.yaml; Altintas, Manufacturing Automation, Table 2.1).
+constexpr double kKtc = 796, kKrc = 169, kKac = 222, kKte = 27.7, kKre = 30.8, kKae = 1.4;
+
+sim::CuttingCoefficients al7075() {
+  sim::CuttingCoefficients k;
+  k.ktc_n_per_mm2 = kKtc;
+  k.krc_n_per_mm2 = kKrc;
+  k.kac_n_per_mm2 = kKac;
+  k.kte_n_per_mm = kKte;
+  k.kre_n_per_mm = kKre;
+  k.kae_n_per_mm = kKae;
+  return k;
+}
+
+//! One down-milling test simulated with dynamometer noise and imported; as identification sees it.
+MechanisticCuttingTest simulated_test(double radial_depth_mm, double feed_per_tooth_mm, unsigned seed) {
+  sim::CuttingTest test;
+  test.radial_depth_mm = radial_depth_mm;
+  test.axial_depth_mm = kAxialDepthMm;
+  test.feed_mm_per_min = feed_per_tooth_mm * kTool.flutes * kRpm;
+  test.spindle_rpm = kRpm;
+  test.cut_length_mm = 30.0;
+  test.mode = sim::MillingMode::kDown;
+  const sim::CuttingTestSetup setup = sim::make_cutting_test(test, kTool);
+  sim::SimulationRequest request;
+  request.program = setup.program;
+  request.stock = setup.stock;
+  request.tool = kTool;
+  request.coefficients = al7075();
+  request.machine.max_accel_mm_per_s2 = 2000;
+  request.sensors.dynamometer.noise_n = 2.0;
+  request.sensors.seed = seed;
+  const sim::SimulationResult result = sim::simulate(request);
+
+  model_db::CuttingTestConditions c;
+  c.tool_name = kTool.name;
+  c.material_name = "Al7075-T6";
+  c.spindle_rpm = kRpm;
+  c.feed_mm_per_min = test.feed_mm_per_min;
+  c.radial_depth_mm = radial_depth_mm;
+  c.axial_depth_mm = kAxialDepthMm;
+  c.mode = model_db::CutMode::kDown;
+  const model_db::CuttingTestRecord record = model_db::import_cutting_test(result.log, c, kTool);
+
+  MechanisticCuttingTest t;
+  t.cutter = {kTool.diameter_mm / 2, kTool.flutes, kTool.helix_deg};
+  t.arc = straight_cut_arc(StraightCutSide::kDown, radial_depth_mm, t.cutter.radius_mm);
+  t.axial_depth_mm = kAxialDepthMm;
+  t.feed_per_tooth_mm = record.feed_per_tooth_mm;
+  t.synchronous_fx_n = record.synchronous_fx_n;
+  t.synchronous_fy_n = record.synchronous_fy_n;
+  t.name = "a_e " + std::to_string(radial_depth_mm).substr(0, 3) + " f_z " + std::to_string(feed_per_tooth_mm).substr(0, 4);
+  return t;
+}
+
+void print(const MechanisticIdentification& r) {
+  const double truth[4] = {kKtc, kKrc, kKte, kKre};
+  const double fitted[4] = {r.model.ktc_n_per_mm2, r.model.krc_n_per_mm2, r.model.kte_n_per_mm, r.model.kre_n_per_mm};
+  const char* names[4] = {"K_tc", "K_rc", "K_te", "K_re"};
+  for (int i = 0; i < 4; ++i) {
+    std::printf("  %s fitted %8.2f ± %6.2f  true %7.1f  (%+.2f %%)\n", names[i], fitted[i],
+                std::sqrt(r.covariance[i][i]), truth[i], 100 * (fitted[i] - truth[i]) / truth[i]);
+  }
+  std::printf("  rms residual %.2f N, condition number %.1f\n", r.rms_residual_n, r.condition_number);
+  for (std::size_t i = 0; i < r.phase_rad.size(); ++i) {
+    std::printf("  test %zu: phase %.2f deg, rms %.2f N\n", i, r.phase_rad[i] * 180 / 3.14159265358979, r.test_rms_residual_n[i]);
+  }
+  for (const auto& u : r.unidentifiable) std::printf("  cannot identify: %s\n", u.c_str());
+}
+
+// Two radial depths × two feeds (f_z 0.05 and 0.15 mm, 3× apart).
+TEST(MechanisticIdentification, RecoversAl7075FromFourSimulatedTests) {
+  const std::vector<MechanisticCuttingTest> tests = {simulated_test(2.0, 0.05, 1), simulated_test(2.0, 0.15, 2),
+                                                     simulated_test(5.0, 0.05, 3), simulated_test(5.0, 0.15, 4)};
+  const MechanisticIdentification r = identify_mechanistic(tests);
+  print(r);
+  EXPECT_EQ(r.status, IdentificationStatus::kIdentified);
+  EXPECT_NEAR(r.model.ktc_n_per_mm2, kKtc, 0.03 * kKtc);
+  EXPECT_NEAR(r.model.krc_n_per_mm2, kKrc, 0.05 * kKrc);
+  EXPECT_NEAR(r.model.kte_n_per_mm, kKte, 0.05 * kKte);
+  EXPECT_NEAR(r.model.kre_n_per_mm, kKre, 0.05 * kKre);
+  EXPECT_EQ(r.model.kac_n_per_mm2, 0.0);
+  ASSERT_EQ(r.unidentifiable.size(), 1u);
+  EXPECT_NE(r.unidentifiable[0].find("K_ac, K_ae"), std::string::npos);
+}
+
+TEST(MechanisticIdentification, OneFeedCannotSeparateCuttingFromEdge) {
+  const std::vector<MechanisticCuttingTest> tests = {simulated_test(2.0, 0.1, 5), simulated_test(5.0, 0.1, 6)};
+  const MechanisticIdentification r = identify_mechanistic(tests);
+  print(r);
+  EXPECT_EQ(r.status, IdentificationStatus::kIllConditioned);
+  bool said = false;
+  for (const auto& u : r.unidentifiable) said = said || u.find("cannot be separated by the feed") != std::string::npos;
+  EXPECT_TRUE(said);
+}
+
+TEST(MechanisticIdentification, StraightCutArcs) {
+  const double pi = 3.14159265358979323846;
+  // a_e = r: a quarter of the circle; a_e = r/2: acos(1/2) = 60°.
+  EXPECT_NEAR(straight_cut_arc(StraightCutSide::kDown, 5.0, 5.0).entry_rad, pi / 2, 1e-12);
+  EXPECT_NEAR(straight_cut_arc(StraightCutSide::kDown, 5.0, 5.0).exit_rad, pi, 1e-12);
+  EXPECT_NEAR(straight_cut_arc(StraightCutSide::kUp, 2.5, 5.0).exit_rad, pi / 3, 1e-12);
+  EXPECT_NEAR(straight_cut_arc(StraightCutSide::kUp, 2.5, 5.0).entry_rad, 0.0, 1e-12);
+  EXPECT_NEAR(straight_cut_arc(StraightCutSide::kSlot, 10.0, 5.0).exit_rad, pi, 1e-12);
+}
+
+TEST(MechanisticIdentification, BadTestsAreNamed) {
+  MechanisticCuttingTest t;
+  t.arc = {1.0, 0.5};
+  t.axial_depth_mm = -1;
+  t.feed_per_tooth_mm = 0.1;
+  t.synchronous_fx_n = std::vector<double>(10, 1.0);
+  t.synchronous_fy_n = std::vector<double>(9, 1.0);
+  try {
+    identify_mechanistic({t});
+    ADD_FAILURE() << "accepted";
+  } catch (const InputError& e) {
+    const std::string text = e.what();
+    EXPECT_NE(text.find("tests[0].arc"), std::string::npos) << text;
+    EXPECT_NE(text.find("tests[0].axial_depth_mm"), std::string::npos) << text;
+    EXPECT_NE(text.find("tests[0].synchronous_fy_n"), std::string::npos) << text;
+  }
+  EXPECT_THROW(identify_mechanistic({}), InputError);
+}
+
+}  // namespace
+}  // namespace feedplan::model
