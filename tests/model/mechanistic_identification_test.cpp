@@ -8,11 +8,13 @@
 
 #include <cmath>
 #include <cstdio>
+#include <span>
 #include <string>
 #include <vector>
 
 #include "feedplan/core/input_error.hpp"
 #include "feedplan/model/mechanistic_identification.hpp"
+#include "feedplan/model/mechanistic_force.hpp"
 #include "feedplan/model_db/cutting_test_import.hpp"
 #include "feedplan/sim/cutting_test.hpp"
 #include "feedplan/sim/milling_simulation.hpp"
@@ -45,7 +47,7 @@ MechanisticCuttingTest simulated_test(double radial_depth_mm, double feed_per_to
   test.axial_depth_mm = kAxialDepthMm;
   test.feed_mm_per_min = feed_per_tooth_mm * kTool.flutes * kRpm;
   test.spindle_rpm = kRpm;
-  test.cut_length_mm = 30.0;
+  test.cut_length_mm = 200.0;
   test.mode = sim::MillingMode::kDown;
   const sim::CuttingTestSetup setup = sim::make_cutting_test(test, kTool);
   sim::SimulationRequest request;
@@ -94,22 +96,31 @@ void print(const MechanisticIdentification& r) {
   for (const auto& u : r.unidentifiable) std::printf("  cannot identify: %s\n", u.c_str());
 }
 
-// Two radial depths × two feeds (f_z 0.05 and 0.15 mm, 3× apart).
+// Two radial depths × two feeds (f_z 0.05 and 0.15 mm, 3× apart), 200 mm cuts. Tolerances: K_tc 1 %, the
+// others 3 %. The largest error is not the dynamometer's low pass (a pure delay to the tooth harmonics,
+// absorbed by the phase) nor the 3.4° bins (the kernel is averaged over the same bins), but the import's
+// steady revolutions: a few of them still have the tool entering or leaving the block, which pulls the
+// half-immersion tests' mean Fx 1-3 % low. The error halves from 100 mm to 200 mm cuts (K_rc +2.2 % →
+// +1.1 %, K_te −2.2 % → −1.2 %); the 2 N noise, averaged over ~200 revolutions, adds little.
 TEST(MechanisticIdentification, RecoversAl7075FromFourSimulatedTests) {
   const std::vector<MechanisticCuttingTest> tests = {simulated_test(2.0, 0.05, 1), simulated_test(2.0, 0.15, 2),
                                                      simulated_test(5.0, 0.05, 3), simulated_test(5.0, 0.15, 4)};
   const MechanisticIdentification r = identify_mechanistic(tests);
   print(r);
   EXPECT_EQ(r.status, IdentificationStatus::kIdentified);
-  EXPECT_NEAR(r.model.ktc_n_per_mm2, kKtc, 0.03 * kKtc);
-  EXPECT_NEAR(r.model.krc_n_per_mm2, kKrc, 0.05 * kKrc);
-  EXPECT_NEAR(r.model.kte_n_per_mm, kKte, 0.05 * kKte);
-  EXPECT_NEAR(r.model.kre_n_per_mm, kKre, 0.05 * kKre);
+  EXPECT_NEAR(r.model.ktc_n_per_mm2, kKtc, 0.01 * kKtc);
+  EXPECT_NEAR(r.model.krc_n_per_mm2, kKrc, 0.03 * kKrc);
+  EXPECT_NEAR(r.model.kte_n_per_mm, kKte, 0.03 * kKte);
+  EXPECT_NEAR(r.model.kre_n_per_mm, kKre, 0.03 * kKre);
+  EXPECT_LT(r.rms_residual_n, 3.0);  // of forces up to ~600 N
   EXPECT_EQ(r.model.kac_n_per_mm2, 0.0);
   ASSERT_EQ(r.unidentifiable.size(), 1u);
   EXPECT_NE(r.unidentifiable[0].find("K_ac, K_ae"), std::string::npos);
 }
 
+// Both tests at f_z 0.1 mm: cutting and edge terms differ only in the pulse's shape. The fit still
+// lands near the truth on this clean simulated data (K_rc +3 %), but nothing but the shape supports it,
+// so the result must say so.
 TEST(MechanisticIdentification, OneFeedCannotSeparateCuttingFromEdge) {
   const std::vector<MechanisticCuttingTest> tests = {simulated_test(2.0, 0.1, 5), simulated_test(5.0, 0.1, 6)};
   const MechanisticIdentification r = identify_mechanistic(tests);
@@ -118,6 +129,56 @@ TEST(MechanisticIdentification, OneFeedCannotSeparateCuttingFromEdge) {
   bool said = false;
   for (const auto& u : r.unidentifiable) said = said || u.find("cannot be separated by the feed") != std::string::npos;
   EXPECT_TRUE(said);
+}
+
+// The kernel's own force, bin-averaged at a known phase (1.234 rad): recovered to the last digits, and
+// the phase modulo the tooth period (the force repeats every tooth without runout).
+TEST(MechanisticIdentification, KernelForcesAtAKnownPhaseAreRecovered) {
+  MechanisticModel truth;
+  truth.ktc_n_per_mm2 = kKtc;
+  truth.krc_n_per_mm2 = kKrc;
+  truth.kte_n_per_mm = kKte;
+  truth.kre_n_per_mm = kKre;
+  constexpr double kPhase = 1.234;
+  constexpr int kBins = 107;
+  constexpr int kSubSteps = 16;
+  const double pi = 3.14159265358979323846;
+  std::vector<MechanisticCuttingTest> tests;
+  for (double ae : {2.0, 5.0}) {
+    for (double fz : {0.05, 0.15}) {
+      MechanisticCuttingTest t;
+      t.cutter = {5.0, 4, 30.0};
+      t.arc = straight_cut_arc(StraightCutSide::kDown, ae, 5.0);
+      t.axial_depth_mm = 5;
+      t.feed_per_tooth_mm = fz;
+      const EngagedSection s{0.0, 5.0, std::span<const ImmersionArc>(&t.arc, 1)};
+      for (int b = 0; b < kBins; ++b) {
+        double fx = 0, fy = 0;
+        for (int k = 0; k < kSubSteps; ++k) {
+          const double angle = kPhase + 2 * pi * (b + (k + 0.5) / kSubSteps) / kBins;
+          const auto f = predicted_force(truth, std::span<const EngagedSection>(&s, 1), t.cutter, fz, angle);
+          fx += f.fx_n / kSubSteps;
+          fy += f.fy_n / kSubSteps;
+        }
+        t.synchronous_fx_n.push_back(fx);
+        t.synchronous_fy_n.push_back(fy);
+      }
+      tests.push_back(t);
+    }
+  }
+  const MechanisticIdentification r = identify_mechanistic(tests);
+  print(r);
+  EXPECT_EQ(r.status, IdentificationStatus::kIdentified);
+  // The identification averages 4 sub-steps per bin, the truth 16: a 1e-3 difference at most.
+  EXPECT_NEAR(r.model.ktc_n_per_mm2, kKtc, 1e-3 * kKtc);
+  EXPECT_NEAR(r.model.krc_n_per_mm2, kKrc, 1e-3 * kKrc);
+  EXPECT_NEAR(r.model.kte_n_per_mm, kKte, 1e-3 * kKte);
+  EXPECT_NEAR(r.model.kre_n_per_mm, kKre, 1e-3 * kKre);
+  for (double phase : r.phase_rad) {
+    const double tooth = pi / 2;
+    const double off = std::remainder(phase - kPhase, tooth);
+    EXPECT_NEAR(off, 0.0, 0.1 * pi / 180);
+  }
 }
 
 TEST(MechanisticIdentification, StraightCutArcs) {
