@@ -12,86 +12,22 @@
 #include "feedplan/core/number_text.hpp"
 #include "feedplan/core/problem_list.hpp"
 #include "feedplan/model/mechanistic_force.hpp"
+#include "bin_regressors.hpp"
+#include "runout_refinement.hpp"
 
 namespace feedplan::model {
 namespace {
 
+using namespace detail;
+
 constexpr double kTwoPi = 2.0 * std::numbers::pi;
 constexpr int kMinBins = 8;
 constexpr int kUnknowns = 4;  // K_tc, K_rc, K_te, K_re
-constexpr int kColumn[kUnknowns] = {kKtc, kKrc, kKte, kKre};
 constexpr const char* kNames[kUnknowns] = {"K_tc", "K_rc", "K_te", "K_re"};
 constexpr int kGoldenIterations = 30;
 
 std::string test_name(const MechanisticCuttingTest& test, std::size_t index) {
   return test.name.empty() ? "tests[" + std::to_string(index) + "]" : test.name;
-}
-
-int bin_count(const MechanisticCuttingTest& test) { return static_cast<int>(test.synchronous_fx_n.size()); }
-
-//! The four XY regressor columns of one test at spindle angle Ω: rows 0 … 1 are Fx, Fy.
-std::array<std::array<double, kUnknowns>, 2> xy_regressors(const MechanisticCuttingTest& test, double spindle_rad) {
-  static const MechanisticModel kPlain;  // no size effect, no runout
-  const EngagedSection section{0.0, test.axial_depth_mm, std::span<const ImmersionArc>(&test.arc, 1)};
-  const ForceRegressors r =
-      regressors(kPlain, std::span<const EngagedSection>(&section, 1), test.cutter, test.feed_per_tooth_mm, spindle_rad);
-  std::array<std::array<double, kUnknowns>, 2> xy{};
-  for (int axis = 0; axis < 2; ++axis) {
-    for (int c = 0; c < kUnknowns; ++c) xy[axis][c] = r.rows[axis][kColumn[c]];
-  }
-  return xy;
-}
-
-//! The regressors at the sub-step midpoints Ω_k = 2π (k + ½) / (bins · kPhaseStepsPerBin), k over a revolution.
-std::vector<std::array<std::array<double, kUnknowns>, 2>> regressor_table(const MechanisticCuttingTest& test) {
-  const int steps = bin_count(test) * kPhaseStepsPerBin;
-  std::vector<std::array<std::array<double, kUnknowns>, 2>> table(static_cast<std::size_t>(steps));
-  for (int k = 0; k < steps; ++k) table[static_cast<std::size_t>(k)] = xy_regressors(test, kTwoPi * (k + 0.5) / steps);
-  return table;
-}
-
-//! The bin-averaged regressors (rows 0 … bins − 1: Fx, then bins … 2·bins − 1: Fy) at the phase offset of
-//! `offset` sub-steps, read from the table.
-Eigen::MatrixXd table_rows(const std::vector<std::array<std::array<double, kUnknowns>, 2>>& table, int bins, int offset) {
-  const int steps = bins * kPhaseStepsPerBin;
-  Eigen::MatrixXd a = Eigen::MatrixXd::Zero(2 * bins, kUnknowns);
-  for (int b = 0; b < bins; ++b) {
-    for (int s = 0; s < kPhaseStepsPerBin; ++s) {
-      const auto& r = table[static_cast<std::size_t>((offset + b * kPhaseStepsPerBin + s) % steps)];
-      for (int c = 0; c < kUnknowns; ++c) {
-        a(b, c) += r[0][c] / kPhaseStepsPerBin;
-        a(bins + b, c) += r[1][c] / kPhaseStepsPerBin;
-      }
-    }
-  }
-  return a;
-}
-
-//! The bin-averaged regressors at any phase Ω₀, evaluated directly (same sub-steps as the table).
-Eigen::MatrixXd phase_rows(const MechanisticCuttingTest& test, double phase_rad) {
-  const int bins = bin_count(test);
-  const int steps = bins * kPhaseStepsPerBin;
-  Eigen::MatrixXd a = Eigen::MatrixXd::Zero(2 * bins, kUnknowns);
-  for (int b = 0; b < bins; ++b) {
-    for (int s = 0; s < kPhaseStepsPerBin; ++s) {
-      const auto r = xy_regressors(test, phase_rad + kTwoPi * (b * kPhaseStepsPerBin + s + 0.5) / steps);
-      for (int c = 0; c < kUnknowns; ++c) {
-        a(b, c) += r[0][c] / kPhaseStepsPerBin;
-        a(bins + b, c) += r[1][c] / kPhaseStepsPerBin;
-      }
-    }
-  }
-  return a;
-}
-
-Eigen::VectorXd measured(const MechanisticCuttingTest& test) {
-  const int bins = bin_count(test);
-  Eigen::VectorXd y(2 * bins);
-  for (int b = 0; b < bins; ++b) {
-    y(b) = test.synchronous_fx_n[static_cast<std::size_t>(b)];
-    y(bins + b) = test.synchronous_fy_n[static_cast<std::size_t>(b)];
-  }
-  return y;
 }
 
 //! Sum of squared residuals of the least-squares fit of y by a's columns.
@@ -105,6 +41,7 @@ double fit_residual(const Eigen::MatrixXd& a, const Eigen::VectorXd& y) {
 double find_phase(const MechanisticCuttingTest& test) {
   const int bins = bin_count(test);
   const int steps = bins * kPhaseStepsPerBin;
+  const MechanisticModel plain;
   const auto table = regressor_table(test);
   const Eigen::VectorXd y = measured(test);
   int best = 0;
@@ -120,16 +57,16 @@ double find_phase(const MechanisticCuttingTest& test) {
   double lo = (best - 1) * step_rad, hi = (best + 1) * step_rad;
   const double g = (std::sqrt(5.0) - 1.0) / 2.0;
   double p1 = hi - g * (hi - lo), p2 = lo + g * (hi - lo);
-  double r1 = fit_residual(phase_rows(test, p1), y), r2 = fit_residual(phase_rows(test, p2), y);
+  double r1 = fit_residual(phase_rows(test, p1, plain), y), r2 = fit_residual(phase_rows(test, p2, plain), y);
   for (int i = 0; i < kGoldenIterations; ++i) {
     if (r1 < r2) {
       hi = p2, p2 = p1, r2 = r1;
       p1 = hi - g * (hi - lo);
-      r1 = fit_residual(phase_rows(test, p1), y);
+      r1 = fit_residual(phase_rows(test, p1, plain), y);
     } else {
       lo = p1, p1 = p2, r1 = r2;
       p2 = lo + g * (hi - lo);
-      r2 = fit_residual(phase_rows(test, p2), y);
+      r2 = fit_residual(phase_rows(test, p2, plain), y);
     }
   }
   const double phase = 0.5 * (lo + hi);
@@ -175,9 +112,13 @@ ImmersionArc straight_cut_arc(StraightCutSide side, double radial_depth_mm, doub
   return side == StraightCutSide::kDown ? ImmersionArc{pi - swept, pi} : ImmersionArc{0.0, swept};
 }
 
-std::vector<InputProblem> validate(const std::vector<MechanisticCuttingTest>& tests) {
+std::vector<InputProblem> validate(const std::vector<MechanisticCuttingTest>& tests, bool identify_runout) {
   ProblemList problems("");
   if (tests.empty()) problems.add("tests", "is empty: at least one cutting test is needed");
+  if (identify_runout && !tests.empty() && tests.front().cutter.flutes < 2) {
+    problems.add(test_name(tests.front(), 0) + ".cutter.flutes", "= " + std::to_string(tests.front().cutter.flutes) +
+                                                                    ": identifying runout needs at least 2 flutes");
+  }
   for (std::size_t i = 0; i < tests.size(); ++i) {
     const MechanisticCuttingTest& t = tests[i];
     const std::string prefix = test_name(t, i) + ".";
@@ -185,6 +126,10 @@ std::vector<InputProblem> validate(const std::vector<MechanisticCuttingTest>& te
     if (!(std::isfinite(t.arc.entry_rad) && std::isfinite(t.arc.exit_rad) && t.arc.entry_rad < t.arc.exit_rad)) {
       problems.add(prefix + "arc", "= [" + shortest_number_text(t.arc.entry_rad) + ", " +
                                        shortest_number_text(t.arc.exit_rad) + "] rad: must be finite with entry < exit");
+    }
+    if (identify_runout && t.cutter.flutes != tests.front().cutter.flutes) {
+      problems.add(prefix + "cutter.flutes", "= " + std::to_string(t.cutter.flutes) + ": identifying runout needs one "
+                   "cutter for all tests, and the first has " + std::to_string(tests.front().cutter.flutes));
     }
     problems.positive(prefix + "axial_depth_mm", t.axial_depth_mm);
     problems.positive(prefix + "feed_per_tooth_mm", t.feed_per_tooth_mm);
@@ -206,26 +151,28 @@ std::vector<InputProblem> validate(const std::vector<MechanisticCuttingTest>& te
   return problems.take();
 }
 
-MechanisticIdentification identify_mechanistic(const std::vector<MechanisticCuttingTest>& tests,
-                                               const MechanisticIdentificationOptions& options) {
-  const std::vector<InputProblem> problems = validate(tests);
-  if (!problems.empty()) throw InputError(problems);
+namespace {
 
-  MechanisticIdentification result;
+//! The regressors of every test at its phase with `model`'s runout, stacked, and the measured bins.
+void stack_rows(const std::vector<MechanisticCuttingTest>& tests, const std::vector<double>& phases,
+                const MechanisticModel& model, Eigen::MatrixXd& a, Eigen::VectorXd& y) {
   Eigen::Index rows = 0;
   for (const auto& t : tests) rows += 2 * bin_count(t);
-  Eigen::MatrixXd a(rows, kUnknowns);
-  Eigen::VectorXd y(rows);
+  a.resize(rows, kUnknowns);
+  y.resize(rows);
   Eigen::Index row = 0;
-  for (const auto& t : tests) {
-    const double phase = find_phase(t);
-    result.phase_rad.push_back(phase);
-    const Eigen::Index n = 2 * bin_count(t);
-    a.middleRows(row, n) = phase_rows(t, phase);
-    y.segment(row, n) = measured(t);
+  for (std::size_t i = 0; i < tests.size(); ++i) {
+    const Eigen::Index n = 2 * bin_count(tests[i]);
+    a.middleRows(row, n) = phase_rows(tests[i], phases[i], model);
+    y.segment(row, n) = measured(tests[i]);
     row += n;
   }
+}
 
+//! The linear least-squares fit of the coefficients, its residuals, condition number and covariance.
+Eigen::VectorXd fit_coefficients(const std::vector<MechanisticCuttingTest>& tests, const Eigen::MatrixXd& a,
+                                 const Eigen::VectorXd& y, MechanisticIdentification& result, Eigen::VectorXd& weakest) {
+  const auto rows = a.rows();
   // Columns scaled to unit norm so the condition number compares shapes, not units.
   Eigen::VectorXd scale = a.colwise().norm().transpose();
   for (int c = 0; c < kUnknowns; ++c) {
@@ -237,14 +184,10 @@ MechanisticIdentification identify_mechanistic(const std::vector<MechanisticCutt
   result.condition_number = sv(kUnknowns - 1) > 0.0 ? sv(0) / sv(kUnknowns - 1) : INFINITY;
   const Eigen::VectorXd x = scale.cwiseInverse().asDiagonal() * scaled.completeOrthogonalDecomposition().solve(y);
 
-  result.model.ktc_n_per_mm2 = x(0);
-  result.model.krc_n_per_mm2 = x(1);
-  result.model.kte_n_per_mm = x(2);
-  result.model.kre_n_per_mm = x(3);
-
   const Eigen::VectorXd residual = a * x - y;
   result.rms_residual_n = std::sqrt(residual.squaredNorm() / static_cast<double>(rows));
-  row = 0;
+  result.test_rms_residual_n.clear();
+  Eigen::Index row = 0;
   for (const auto& t : tests) {
     const Eigen::Index n = 2 * bin_count(t);
     result.test_rms_residual_n.push_back(std::sqrt(residual.segment(row, n).squaredNorm() / static_cast<double>(n)));
@@ -261,13 +204,61 @@ MechanisticIdentification identify_mechanistic(const std::vector<MechanisticCutt
   for (int i = 0; i < kUnknowns; ++i) {
     for (int j = 0; j < kUnknowns; ++j) result.covariance[i][j] = cov(i, j);
   }
+  weakest = v.col(kUnknowns - 1);
+  return x;
+}
+
+void set_coefficients(MechanisticModel& model, const Eigen::VectorXd& x) {
+  model.ktc_n_per_mm2 = x(0);
+  model.krc_n_per_mm2 = x(1);
+  model.kte_n_per_mm = x(2);
+  model.kre_n_per_mm = x(3);
+}
+
+//! Runout with the smallest at 0 (a common offset of all teeth changes no chip).
+std::vector<double> lowest_at_zero(std::vector<double> runout_mm) {
+  const double lowest = *std::min_element(runout_mm.begin(), runout_mm.end());
+  for (double& r : runout_mm) r -= lowest;
+  return runout_mm;
+}
+
+}  // namespace
+
+MechanisticIdentification identify_mechanistic(const std::vector<MechanisticCuttingTest>& tests,
+                                               const MechanisticIdentificationOptions& options) {
+  const std::vector<InputProblem> problems = validate(tests, options.identify_runout);
+  if (!problems.empty()) throw InputError(problems);
+
+  MechanisticIdentification result;
+  for (const auto& t : tests) result.phase_rad.push_back(find_phase(t));
+  Eigen::MatrixXd a;
+  Eigen::VectorXd y, weakest;
+  stack_rows(tests, result.phase_rad, MechanisticModel{}, a, y);
+  Eigen::VectorXd x = fit_coefficients(tests, a, y, result, weakest);
+
+  if (options.identify_runout) {
+    const RunoutRefinement refined = refine_runout(tests, result.phase_rad, {x(0), x(1), x(2), x(3)});
+    result.runout_converged = refined.converged;
+    result.runout_report = refined.message;
+    result.phase_rad = refined.phase_rad;
+    MechanisticModel with_runout;
+    with_runout.runout_mm = refined.runout_mm;
+    stack_rows(tests, result.phase_rad, with_runout, a, y);
+    x = fit_coefficients(tests, a, y, result, weakest);
+    result.model.runout_mm = lowest_at_zero(refined.runout_mm);
+    result.unidentifiable.push_back(
+        "which physical tooth is tooth 0, and a runout common to all teeth: the runout is reported with the "
+        "smallest at 0, numbered from the tooth at the first test's phase");
+    if (!refined.converged) result.unidentifiable.push_back("runout: the refinement did not converge (" + refined.message + ")");
+  }
+  set_coefficients(result.model, x);
 
   result.unidentifiable.push_back(
       "K_ac, K_ae: the synchronous averages hold only Fx and Fy, and the axial coefficients act only on Fz; "
       "they are left at 0");
   if (result.condition_number > options.max_condition_number) {
     result.status = IdentificationStatus::kIllConditioned;
-    result.unidentifiable.push_back(weakest_direction_text(v.col(kUnknowns - 1), result.condition_number));
+    result.unidentifiable.push_back(weakest_direction_text(weakest, result.condition_number));
   }
   if (const std::string note = single_feed_text(tests, options.same_feed_tolerance); !note.empty()) {
     result.status = IdentificationStatus::kIllConditioned;

@@ -11,7 +11,8 @@
 // phases fixed, the coefficients come from one least-squares fit over every bin of every test.
 //
 // Only the force in the XY plane is averaged, so K_ac and K_ae (axial) are not identified: the result
-// keeps them at 0 and says so. Runout is not identified either (the kernel is evaluated without it).
+// keeps them at 0 and says so. Runout is identified on request (options.identify_runout): it makes the
+// force non-linear in the unknowns, and Ceres refines coefficients, runout and phases together.
 
 #include <array>
 #include <string>
@@ -59,6 +60,11 @@ struct MechanisticIdentificationOptions {
   double max_condition_number = 1e3;
   //! Relative spread of f_z, (max − min)/max, below which the tests count as one feed.
   double same_feed_tolerance = 0.05;
+  //! Also fit the per-tooth runout (all tests must use one cutter, ≥ 2 flutes): the coefficients, the
+  //! runout and every test's phase are refined together by Ceres (numeric derivatives), starting from the
+  //! fit without runout. Only differences between teeth are seen, and the numbering is the phase's: see
+  //! MechanisticIdentification::model.
+  bool identify_runout = false;
 };
 
 //! Whether the tests could separate the coefficients.
@@ -69,8 +75,13 @@ enum class IdentificationStatus {
 
 //! The fitted model, how well it fits, and what the tests cannot tell.
 struct MechanisticIdentification {
-  //! K_tc, K_rc, K_te, K_re fitted; K_ac = K_ae = 0 (not identifiable from Fx, Fy); no size effect, no runout.
+  //! K_tc, K_rc, K_te, K_re fitted; K_ac = K_ae = 0 (not identifiable from Fx, Fy); no size effect. With
+  //! identify_runout, runout_mm per tooth with the smallest at 0, tooth 0 being the tooth at the kernel's
+  //! tooth-0 position at the first test's phase (without an encoder the physical tooth is not known, so the
+  //! runout is known up to a rotation of the tooth numbers); else empty.
   MechanisticModel model;
+  bool runout_converged = false;  //!< with identify_runout: Ceres reported a usable solution
+  std::string runout_report;      //!< with identify_runout: Ceres' one-line summary
   IdentificationStatus status = IdentificationStatus::kIdentified;
   //! Covariance of (K_tc, K_rc, K_te, K_re), σ²·(AᵀA)⁻¹ with A the regressors at the found phases and
   //! σ² the residual variance (sum of squares over rows − 4); units N²/mm⁴, N²/mm³, N²/mm².
@@ -84,11 +95,12 @@ struct MechanisticIdentification {
 };
 
 //! Every problem with the tests: at least one; per test, a cutter that passes validate(), an arc with
-//! entry < exit, a_p and f_z finite and > 0, Fx and Fy of equal length, at least 8 bins, all finite.
-std::vector<InputProblem> validate(const std::vector<MechanisticCuttingTest>& tests);
+//! entry < exit, a_p and f_z finite and > 0, Fx and Fy of equal length, at least 8 bins, all finite; with
+//! `identify_runout`, every test with the first test's flute count, at least 2.
+std::vector<InputProblem> validate(const std::vector<MechanisticCuttingTest>& tests, bool identify_runout = false);
 
-//! Fits K_tc, K_rc, K_te, K_re to the tests' synchronous averages, each test with its own phase (see
-//! the file comment). Throws InputError with validate()'s problems. Always returns a fit; when the tests
+//! Fits K_tc, K_rc, K_te, K_re (and, on request, the runout) to the tests' synchronous averages, each test
+//! with its own phase (see the file comment). The covariance is conditional on the phases and runout found. Throws InputError with validate()'s problems. Always returns a fit; when the tests
 //! leave a combination of coefficients poorly determined (condition number above the option's, e.g.
 //! every test at one feed, where cutting and edge terms are told apart only by the pulse's shape) the
 //! status is kIllConditioned and `unidentifiable` says which combination and why.
