@@ -241,6 +241,21 @@ TEST(MechanisticIdentification, BadTestsAreNamed) {
     EXPECT_NE(text.find("tests[0].synchronous_fy_n"), std::string::npos) << text;
   }
   EXPECT_THROW(identify_mechanistic({}), InputError);
+
+  // Runout needs one cutter for all tests.
+  MechanisticCuttingTest a;
+  a.arc = {2.0, 3.0};
+  a.axial_depth_mm = 5;
+  a.feed_per_tooth_mm = 0.1;
+  a.synchronous_fx_n = a.synchronous_fy_n = std::vector<double>(16, 1.0);
+  MechanisticCuttingTest b = a;
+  b.cutter.flutes = 3;
+  const auto problems = validate({a, b}, true);
+  ASSERT_EQ(problems.size(), 1u);
+  EXPECT_EQ(problems[0].field, "tests[1].cutter.flutes");
+  EXPECT_NE(problems[0].message.find("one cutter for all tests, and the first has 4"), std::string::npos)
+      << problems[0].message;
+  EXPECT_TRUE(validate({a, b}, false).empty());
 }
 
 }  // namespace
