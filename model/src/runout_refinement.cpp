@@ -1,0 +1,104 @@
+#include "runout_refinement.hpp"
+
+#include <ceres/ceres.h>
+
+#include <cmath>
+#include <limits>
+#include <numbers>
+
+#include "bin_regressors.hpp"
+
+namespace feedplan::model::detail {
+namespace {
+
+constexpr double kTwoPi = 2.0 * std::numbers::pi;
+
+MechanisticModel with_runout(const double* runout_rest_mm, int flutes) {
+  MechanisticModel model;
+  model.runout_mm.assign(static_cast<std::size_t>(flutes), 0.0);
+  for (int j = 1; j < flutes; ++j) model.runout_mm[static_cast<std::size_t>(j)] = runout_rest_mm[j - 1];
+  return model;
+}
+
+//! One test's bin residuals A(Ω₀, runout) · K − y; parameter blocks K (4), runout of teeth 1 … N−1, Ω₀ (1).
+struct BinResidual {
+  const MechanisticCuttingTest* test;
+  Eigen::VectorXd y;
+  bool operator()(double const* const* p, double* residual) const {
+    const Eigen::MatrixXd a = phase_rows(*test, p[2][0], with_runout(p[1], test->cutter.flutes));
+    const Eigen::Map<const Eigen::Vector4d> k(p[0]);
+    Eigen::Map<Eigen::VectorXd>(residual, y.size()) = a * k - y;
+    return true;
+  }
+};
+
+void add_test(ceres::Problem& problem, const MechanisticCuttingTest& test, double* k, double* runout_rest, double* phase) {
+  ceres::NumericDiffOptions diff;
+  diff.relative_step_size = 1e-4;
+  auto* cost = new ceres::DynamicNumericDiffCostFunction<BinResidual, ceres::CENTRAL>(
+      new BinResidual{&test, measured(test)}, ceres::TAKE_OWNERSHIP, diff);
+  cost->AddParameterBlock(kIdentifiedCoefficients);
+  cost->AddParameterBlock(test.cutter.flutes - 1);
+  cost->AddParameterBlock(1);
+  cost->SetNumResiduals(2 * bin_count(test));
+  problem.AddResidualBlock(cost, nullptr, k, runout_rest, phase);
+}
+
+ceres::Solver::Summary solve(ceres::Problem& problem) {
+  ceres::Solver::Options options;
+  options.linear_solver_type = ceres::DENSE_QR;
+  options.max_num_iterations = 50;
+  options.function_tolerance = 1e-10;
+  ceres::Solver::Summary summary;
+  ceres::Solve(options, &problem, &summary);
+  return summary;
+}
+
+//! The tooth-period shift of a test's phase that fits the runout and coefficients best.
+double best_shift(const MechanisticCuttingTest& test, double phase, const double* k, const double* runout_rest) {
+  const int flutes = test.cutter.flutes;
+  const MechanisticModel model = with_runout(runout_rest, flutes);
+  const Eigen::Map<const Eigen::Vector4d> coefficients(k);
+  const Eigen::VectorXd y = measured(test);
+  double best = phase, best_cost = std::numeric_limits<double>::infinity();
+  for (int m = 0; m < flutes; ++m) {
+    const double shifted = phase + m * kTwoPi / flutes;
+    const double cost = (phase_rows(test, shifted, model) * coefficients - y).squaredNorm();
+    if (cost < best_cost) {
+      best_cost = cost;
+      best = shifted;
+    }
+  }
+  return best;
+}
+
+}  // namespace
+
+RunoutRefinement refine_runout(const std::vector<MechanisticCuttingTest>& tests, const std::vector<double>& phases_rad,
+                               const std::array<double, 4>& coefficients) {
+  const int flutes = tests.front().cutter.flutes;
+  std::array<double, 4> k = coefficients;
+  std::vector<double> runout_rest(static_cast<std::size_t>(flutes - 1), 0.0);
+  std::vector<double> phases = phases_rad;
+
+  {
+    ceres::Problem first;
+    add_test(first, tests.front(), k.data(), runout_rest.data(), &phases.front());
+    solve(first);
+  }
+  for (std::size_t i = 1; i < tests.size(); ++i) phases[i] = best_shift(tests[i], phases[i], k.data(), runout_rest.data());
+
+  ceres::Problem problem;
+  for (std::size_t i = 0; i < tests.size(); ++i) add_test(problem, tests[i], k.data(), runout_rest.data(), &phases[i]);
+  const ceres::Solver::Summary summary = solve(problem);
+
+  RunoutRefinement result;
+  result.runout_mm = with_runout(runout_rest.data(), flutes).runout_mm;
+  for (double& phase : phases) phase -= kTwoPi * std::floor(phase / kTwoPi);
+  result.phase_rad = phases;
+  result.converged = summary.IsSolutionUsable();
+  result.message = summary.BriefReport();
+  return result;
+}
+
+}  // namespace feedplan::model::detail

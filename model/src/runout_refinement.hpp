@@ -1,0 +1,30 @@
+#pragma once
+// Runout and phases of cutting tests, refined jointly with the coefficients (mechanistic
+// identification, private to the model module). With runout the force is no longer linear in the
+// unknowns, so Ceres minimises the bin residuals over the coefficients, the runout and each test's phase
+// at once, with central numeric derivatives of the kernel.
+
+#include <array>
+#include <string>
+#include <vector>
+
+#include "feedplan/model/mechanistic_identification.hpp"
+
+namespace feedplan::model::detail {
+
+//! The refined unknowns.
+struct RunoutRefinement {
+  std::vector<double> runout_mm;  //!< per tooth, mm, tooth 0 at 0 (only differences are seen)
+  std::vector<double> phase_rad;  //!< per test, rad
+  bool converged = false;         //!< Ceres reports a usable solution
+  std::string message;            //!< Ceres' summary line
+};
+
+//! Starting from the phases found without runout (known modulo a tooth period) and the coefficients
+//! fitted with them: fits tooth 0's test alone (which fixes the tooth numbering), gives every other test
+//! the tooth period shift of its phase that fits best the runout found, then fits all tests together.
+//! Needs tests with one cutter (same flute count ≥ 2).
+RunoutRefinement refine_runout(const std::vector<MechanisticCuttingTest>& tests, const std::vector<double>& phases_rad,
+                               const std::array<double, 4>& coefficients);
+
+}  // namespace feedplan::model::detail
