@@ -1,4 +1,4 @@
-// Material library: the shipped data file against DESIGN.md §6.2, and every kind of bad input with
+// Material library: the shipped data file against docs/method.md §6.2, and every kind of bad input with
 // the message it must produce (field path with line, value, allowed range).
 
 #include "feedplan/sim/material.hpp"
@@ -60,7 +60,7 @@ TEST(MaterialLibrary, ShippedFileHasDesignValuesForAl7075) {
   const MaterialLibrary library = load_materials(kLibraryPath);
   const Material* al = library.find("Al7075-T6");
   ASSERT_NE(al, nullptr);
-  // DESIGN.md §6.2 (Altintas).
+  // docs/method.md §6.2 (Altintas).
   EXPECT_EQ(al->coefficients.ktc_n_per_mm2, 796.0);
   EXPECT_EQ(al->coefficients.krc_n_per_mm2, 169.0);
   EXPECT_EQ(al->coefficients.kac_n_per_mm2, 222.0);
@@ -75,7 +75,7 @@ TEST(MaterialLibrary, ShippedFileSteelMatchesDesignSanityCase) {
   const MaterialLibrary library = load_materials(kLibraryPath);
   const Material* steel = library.find("S50C");
   ASSERT_NE(steel, nullptr);
-  // DESIGN.md §6.2 sanity case: Ktc 2000, Krc = 0.3 Ktc.
+  // docs/method.md §6.2 sanity case: Ktc 2000, Krc = 0.3 Ktc.
   EXPECT_EQ(steel->coefficients.ktc_n_per_mm2, 2000.0);
   EXPECT_DOUBLE_EQ(steel->coefficients.krc_n_per_mm2, 0.3 * 2000.0);
   EXPECT_EQ(library.find("1045"), steel);
@@ -99,7 +99,7 @@ TEST(MaterialLibrary, ShippedFileEveryMaterialSourcedAndInDesignRanges) {
   const Material* ti = library.find("ti-6al-4v");
   ASSERT_NE(ti, nullptr);
   EXPECT_EQ(ti->name, "Ti6Al4V");
-  // DESIGN.md §6.2: Ktc ≈ 1600–1900, Krc ≈ 350–600 N/mm².
+  // docs/method.md §6.2: Ktc ≈ 1600–1900, Krc ≈ 350–600 N/mm².
   EXPECT_GE(ti->coefficients.ktc_n_per_mm2, 1600.0);
   EXPECT_LE(ti->coefficients.ktc_n_per_mm2, 1900.0);
   EXPECT_GE(ti->coefficients.krc_n_per_mm2, 350.0);

@@ -6,7 +6,7 @@
 // With N helical teeth (helix angle β, radius r) turning at spindle angle Ω, tooth j's point at height z
 // above the tip has the immersion φ_j(z) = Ω + j·2π/N − z·tan β / r (Altintas, Manufacturing
 // Automation, ch. 2: the flute lags behind the tip by z·2 tan β / D). Where that point is engaged it
-// cuts the chip f_z·sin φ (DESIGN.md §5.1; 0 outside (0, π)). The chip load is the cross-section of
+// cuts the chip f_z·sin φ (docs/method.md §5.1; 0 outside (0, π)). The chip load is the cross-section of
 // chip in the cut at once per unit feed per tooth,
 //   C(Ω) = Σ_j ∫ [φ_j(z) engaged at height z] · max(sin φ_j(z), 0) dz,   in mm (mm² of chip per mm of f_z),
 // and peak_chip_load_mm is its largest value over Ω. Per layer of constant engaged set the integral is
