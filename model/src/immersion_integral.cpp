@@ -40,9 +40,8 @@ void add_closed_form(ElementSums& sums, double feed_mm, double lo, double hi, do
   sums.l += weight * (hi - lo);
 }
 
-// The element at φ with its chip h > 0, times weight.
-void add_cut_element(ElementSums& sums, const ToothChip& chip, double phi, double h, double weight) {
-  const double c = std::cos(phi), s = std::sin(phi);
+// The element at φ (sine s, cosine c) with its chip h > 0, times weight.
+void add_cut_element(ElementSums& sums, const ToothChip& chip, double s, double c, double h, double weight) {
   const double sh = chip.size_factor(h) * h;
   sums.a += weight * sh * c;
   sums.b += weight * sh * s;
@@ -52,34 +51,38 @@ void add_cut_element(ElementSums& sums, const ToothChip& chip, double phi, doubl
   sums.l += weight;
 }
 
-// Midpoint rule on cells of at most kChipCellRad; a cell where h changes sign is integrated over its
-// part with h > 0 only, the root placed by linear interpolation of h between the cell's ends.
+// Midpoint rule (add_cell) on cells of at most kChipCellRad.
 void add_on_cells(ElementSums& sums, const ToothChip& chip, double lo, double hi, double weight) {
   const int cells = std::max(1, static_cast<int>(std::ceil((hi - lo) / kChipCellRad)));
   const double width = (hi - lo) / cells;
   double h_left = chip.chip_mm(std::sin(lo));
   for (int i = 0; i < cells; ++i) {
     const double left = lo + i * width;
-    const double right = left + width;
-    const double h_right = chip.chip_mm(std::sin(right));
-    double a = left, b = right;
-    if (h_left > 0.0 && h_right <= 0.0) {
-      b = left + width * h_left / (h_left - h_right);
-    } else if (h_left <= 0.0 && h_right > 0.0) {
-      a = left + width * h_left / (h_left - h_right);
-    } else if (h_left <= 0.0 && h_right <= 0.0) {
-      a = b;  // a bump above 0 inside one cell is below the rule's resolution
-    }
-    if (b > a) {
-      const double mid = 0.5 * (a + b);
-      const double h = chip.chip_mm(std::sin(mid));
-      if (h > 0.0) add_cut_element(sums, chip, mid, h, weight * (b - a));
-    }
+    const double h_right = chip.chip_mm(std::sin(left + width));
+    add_cell(sums, chip, left, left + width, h_left, h_right, weight);
     h_left = h_right;
   }
 }
 
 }  // namespace
+
+void add_cell(ElementSums& sums, const ToothChip& chip, double left_rad, double right_rad, double h_left_mm,
+              double h_right_mm, double weight) {
+  const double width = right_rad - left_rad;
+  double a = left_rad, b = right_rad;
+  if (h_left_mm > 0.0 && h_right_mm <= 0.0) {
+    b = left_rad + width * h_left_mm / (h_left_mm - h_right_mm);
+  } else if (h_left_mm <= 0.0 && h_right_mm > 0.0) {
+    a = left_rad + width * h_left_mm / (h_left_mm - h_right_mm);
+  } else if (h_left_mm <= 0.0 && h_right_mm <= 0.0) {
+    return;  // a bump above 0 inside one cell is below the rule's resolution
+  }
+  if (!(b > a)) return;
+  const double mid = 0.5 * (a + b);
+  const double s = std::sin(mid), c = std::cos(mid);
+  const double h = chip.chip_mm(s);
+  if (h > 0.0) add_cut_element(sums, chip, s, c, h, weight * (b - a));
+}
 
 void add_immersion_integral(ElementSums& sums, const ToothChip& chip, double lo_rad, double hi_rad, double weight) {
   if (!(hi_rad > lo_rad)) return;
@@ -98,8 +101,9 @@ void add_immersion_integral(ElementSums& sums, const ToothChip& chip, double lo_
 }
 
 void add_element(ElementSums& sums, const ToothChip& chip, double phi_rad, double weight) {
-  const double h = chip.chip_mm(std::sin(phi_rad));
-  if (h > 0.0) add_cut_element(sums, chip, phi_rad, h, weight);
+  const double s = std::sin(phi_rad);
+  const double h = chip.chip_mm(s);
+  if (h > 0.0) add_cut_element(sums, chip, s, std::cos(phi_rad), h, weight);
 }
 
 }  // namespace feedplan::model

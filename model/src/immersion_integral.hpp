@@ -38,6 +38,12 @@ struct ToothChip {
 //! Adds weight × the integrals over immersions [lo_rad, hi_rad] (lo ≤ hi, any turn) to `sums`.
 void add_immersion_integral(ElementSums& sums, const ToothChip& chip, double lo_rad, double hi_rad, double weight);
 
+//! Adds weight × one cell [left_rad, right_rad] by the midpoint rule, given the chip at its ends: a
+//! cell where h changes sign is integrated over its part with h > 0 only, the root placed by linear
+//! interpolation of h between the ends. add_immersion_integral's cells of the size effect and runout.
+void add_cell(ElementSums& sums, const ToothChip& chip, double left_rad, double right_rad, double h_left_mm,
+              double h_right_mm, double weight);
+
 //! Adds weight × the element at immersion `phi_rad` to `sums` (a straight flute: the same immersion
 //! over the whole section; weight is its height).
 void add_element(ElementSums& sums, const ToothChip& chip, double phi_rad, double weight);

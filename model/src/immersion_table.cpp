@@ -11,10 +11,15 @@ ImmersionTable::ImmersionTable(const ToothChip& chip, double lo_rad, double hi_r
   const int steps = std::max(1, static_cast<int>(std::ceil((hi_rad - lo_rad) / kTableStepRad)));
   step_rad_ = (hi_rad - lo_rad) / steps;
   running_.resize(static_cast<std::size_t>(steps) + 1);
+  // Each node's chip is computed once and shared by the two steps it bounds.
+  double h_left = chip.chip_mm(std::sin(lo_rad));
   for (int i = 0; i < steps; ++i) {
+    const double left = lo_rad + i * step_rad_, right = lo_rad + (i + 1) * step_rad_;
+    const double h_right = chip.chip_mm(std::sin(right));
     ElementSums next = running_[i];
-    add_immersion_integral(next, chip, lo_rad + i * step_rad_, lo_rad + (i + 1) * step_rad_, 1.0);
+    add_cell(next, chip, left, right, h_left, h_right, 1.0);
     running_[i + 1] = next;
+    h_left = h_right;
   }
 }
 

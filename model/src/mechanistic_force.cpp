@@ -21,6 +21,8 @@ constexpr double kPeakAngleToleranceRad = 1e-5;
 // Sampled local maxima this far below the largest sample are not refined: sampling misses a peak by
 // far less (a fraction of a percent at 64 samples per tooth period).
 constexpr double kPeakCandidateRatio = 0.98;
+// The same with runout, where the coarser scan misses a peak at a kink (a tooth entering) by more.
+constexpr double kPeakCandidateRatioRunout = 0.9;
 
 // What every evaluation on one engagement shares: the teeth's chip rules and the flute lag.
 class Kernel {
@@ -209,8 +211,10 @@ double predicted_peak_force_n(const MechanisticModel& model, std::span<const Eng
                               const CutterGeometry& cutter, double feed_per_tooth_mm) {
   const Kernel kernel(model, sections, cutter, feed_per_tooth_mm);
   const std::array<double, 6> k = coefficients(model);
-  const int count = kPeakStepsPerToothPeriod * (kernel.has_runout() ? cutter.flutes : 1);
-  const double step = kernel.pitch_rad() / kPeakStepsPerToothPeriod;
+  const bool runout = kernel.has_runout();
+  const int steps_per_period = runout ? kPeakStepsPerToothPeriodRunout : kPeakStepsPerToothPeriod;
+  const int count = steps_per_period * (runout ? cutter.flutes : 1);
+  const double step = kernel.pitch_rad() / steps_per_period;
   std::vector<double> force(static_cast<std::size_t>(count));
   for (int i = 0; i < count; ++i) force[i] = xy_force_n(kernel, k, i * step);
   // Local maxima of the periodic samples, largest first.
@@ -220,10 +224,13 @@ double predicted_peak_force_n(const MechanisticModel& model, std::span<const Eng
     if (force[i] >= before && force[i] >= after && force[i] > 0.0) maxima.push_back(i);
   }
   std::sort(maxima.begin(), maxima.end(), [&](int a, int b) { return force[a] > force[b]; });
+  const std::size_t candidates =
+      static_cast<std::size_t>(runout ? std::max(kPeakCandidates, cutter.flutes) : kPeakCandidates);
+  const double ratio = runout ? kPeakCandidateRatioRunout : kPeakCandidateRatio;
   double peak = 0.0;
-  for (std::size_t c = 0; c < maxima.size() && c < static_cast<std::size_t>(kPeakCandidates); ++c) {
+  for (std::size_t c = 0; c < maxima.size() && c < candidates; ++c) {
     const int i = maxima[c];
-    if (force[i] < kPeakCandidateRatio * force[maxima.front()]) break;
+    if (force[i] < ratio * force[maxima.front()]) break;
     peak = std::max(peak, refined_peak_n(kernel, k, (i - 1) * step, (i + 1) * step, force[i]));
   }
   return peak;

@@ -4,9 +4,11 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <numbers>
+#include <random>
 #include <vector>
 
 #include "feedplan/model/mechanistic_force.hpp"
@@ -173,6 +175,64 @@ TEST(MechanisticForce, ChipsBelowTheSmallestChipScaleByAConstant) {
   const MechanisticForce mean = predicted_mean_force(model, sections, {5.0, 4, 30.0}, 0.04);
   EXPECT_LT(relative_xy_error(mean, truth), 0.005);
   EXPECT_LT(relative_xy_error(sampled_mean(model, sections, {5.0, 4, 30.0}, 0.04, 720), truth), 0.005);
+}
+
+// The largest |F_xy| by a dense scan of predicted_force, 256 angles per tooth period over the whole
+// revolution, with every local maximum refined by golden-section search to 1e-6 rad.
+double dense_peak_n(const MechanisticModel& model, std::span<const EngagedSection> sections,
+                    const CutterGeometry& cutter, double fz_mm) {
+  auto xy = [&](double angle) {
+    const MechanisticForce f = predicted_force(model, sections, cutter, fz_mm, angle);
+    return std::hypot(f.fx_n, f.fy_n);
+  };
+  const int count = 256 * cutter.flutes;
+  const double step = 2 * kPi / count;
+  std::vector<double> force(count);
+  for (int i = 0; i < count; ++i) force[i] = xy(i * step);
+  double peak = 0.0;
+  for (int i = 0; i < count; ++i) {
+    if (force[i] < force[(i + count - 1) % count] || force[i] < force[(i + 1) % count]) continue;
+    double lo = (i - 1) * step, hi = (i + 1) * step;
+    constexpr double kInvPhi = 0.6180339887498949;
+    double x1 = hi - kInvPhi * (hi - lo), x2 = lo + kInvPhi * (hi - lo);
+    double f1 = xy(x1), f2 = xy(x2);
+    while (hi - lo > 1e-6) {
+      if (f1 > f2) {
+        hi = x2, x2 = x1, f2 = f1, x1 = hi - kInvPhi * (hi - lo), f1 = xy(x1);
+      } else {
+        lo = x1, x1 = x2, f1 = f2, x2 = lo + kInvPhi * (hi - lo), f2 = xy(x2);
+      }
+    }
+    peak = std::max({peak, force[i], f1, f2});
+  }
+  return peak;
+}
+
+TEST(MechanisticForce, PeakWithRunoutMatchesADenseScanOverRandomEngagements) {
+  std::mt19937 random(20261125);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  double worst = 0.0;
+  for (int trial = 0; trial < 60; ++trial) {
+    const CutterGeometry cutter{5.0, 2 + trial % 3, 45.0 * unit(random)};
+    MechanisticModel model = al7075();
+    if (trial % 2 == 0) model.size_exponent = 0.2;
+    for (int j = 0; j < cutter.flutes; ++j) model.runout_mm.push_back(0.015 * (unit(random) - 0.5));
+    std::vector<std::vector<ImmersionArc>> arcs;
+    std::vector<EngagedSection> sections;
+    const int count = 1 + trial % 3;
+    for (int i = 0; i < count; ++i) {
+      const double entry = -0.3 + (kPi - 0.2) * unit(random);
+      arcs.push_back({{entry, std::min(kPi + 0.3, entry + 0.2 + (kPi - 0.2) * unit(random))}});
+    }
+    for (int i = 0; i < count; ++i) sections.push_back({3.0 * i, 3.0 * (i + 1), arcs[i]});
+    const double fz_mm = 0.02 + 0.15 * unit(random);
+    const double truth = dense_peak_n(model, sections, cutter, fz_mm);
+    const double peak = predicted_peak_force_n(model, sections, cutter, fz_mm);
+    ASSERT_GT(truth, 0.0);
+    EXPECT_NEAR(peak, truth, 1e-4 * truth) << "trial " << trial;
+    worst = std::max(worst, std::abs(peak - truth) / truth);
+  }
+  std::printf("peak with runout against a dense scan: worst relative error %.2e\n", worst);
 }
 
 TEST(MechanisticForce, NothingEngagedGivesNoForce) {

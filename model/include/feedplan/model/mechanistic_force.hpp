@@ -44,6 +44,9 @@ namespace feedplan::model {
 inline constexpr double kChipCellRad = 3.14159265358979323846 / 180.0;
 //! Spindle angles sampled per tooth period for the peak, before the best candidates are refined.
 inline constexpr int kPeakStepsPerToothPeriod = 64;
+//! Spindle angles sampled per tooth period for the peak with runout, over the whole revolution: a
+//! coarser scan, whose local maxima are refined more widely.
+inline constexpr int kPeakStepsPerToothPeriodRunout = 16;
 //! Local maxima of the sampled force refined by golden-section search for the peak.
 inline constexpr int kPeakCandidates = 3;
 
@@ -88,10 +91,14 @@ MechanisticForce predicted_force(const MechanisticModel& model, std::span<const 
 
 //! The largest |F_xy| = √(F_x² + F_y²) over one spindle revolution, N. Sampling: without runout the
 //! force repeats every tooth period 2π/N, and Ω is sampled at kPeakStepsPerToothPeriod points of one
-//! period; with runout at as many points per tooth period over the whole revolution. The
-//! kPeakCandidates largest local maxima of the samples (those within 2 % of the largest sample) are then
-//! refined by golden-section search between their neighbours, to 1e-5 rad — as good for a peak at a kink
-//! (a tooth entering) as for a smooth one, when the samples bracket it. Same requirements as regressors(); 0 with nothing engaged.
+//! period; the kPeakCandidates largest local maxima of the samples (those within 2 % of the largest
+//! sample) are then refined by golden-section search between their neighbours, to 1e-5 rad — as good for
+//! a peak at a kink (a tooth entering) as for a smooth one, when the samples bracket it. With runout the
+//! whole revolution is sampled, more coarsely, at kPeakStepsPerToothPeriodRunout points per tooth
+//! period, and the max(kPeakCandidates, N) largest local maxima within 10 % of the largest sample are
+//! refined the same way (within 1e-5 of a scan of 256 points per tooth period with every maximum refined,
+//! on random engagements and runouts). The result is always a force the kernel reaches at some Ω.
+//! Same requirements as regressors(); 0 with nothing engaged.
 double predicted_peak_force_n(const MechanisticModel& model, std::span<const EngagedSection> sections,
                               const CutterGeometry& cutter, double feed_per_tooth_mm);
 
