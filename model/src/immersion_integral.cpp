@@ -101,9 +101,12 @@ void add_immersion_integral(ElementSums& sums, const ToothChip& chip, double lo_
 }
 
 void add_element(ElementSums& sums, const ToothChip& chip, double phi_rad, double weight) {
-  const double s = std::sin(phi_rad);
-  const double h = chip.chip_mm(s);
-  if (h > 0.0) add_cut_element(sums, chip, s, std::cos(phi_rad), h, weight);
+  add_element(sums, chip, std::sin(phi_rad), std::cos(phi_rad), weight);
+}
+
+void add_element(ElementSums& sums, const ToothChip& chip, double sin_phi, double cos_phi, double weight) {
+  const double h = chip.chip_mm(sin_phi);
+  if (h > 0.0) add_cut_element(sums, chip, sin_phi, cos_phi, h, weight);
 }
 
 }  // namespace feedplan::model

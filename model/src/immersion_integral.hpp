@@ -48,4 +48,7 @@ void add_cell(ElementSums& sums, const ToothChip& chip, double left_rad, double 
 //! over the whole section; weight is its height).
 void add_element(ElementSums& sums, const ToothChip& chip, double phi_rad, double weight);
 
+//! The same at the immersion with sine `sin_phi` and cosine `cos_phi`.
+void add_element(ElementSums& sums, const ToothChip& chip, double sin_phi, double cos_phi, double weight);
+
 }  // namespace feedplan::model
