@@ -148,10 +148,12 @@ MechanisticForce to_force(const ElementSums& sums, const std::array<double, 6>& 
   return f;
 }
 
-// |F_xy| at spindle angle Ω.
+// |F_xy| at spindle angle Ω: to_force's F_x and F_y written out (forces are far from overflow).
 double xy_force_n(const Kernel& kernel, const std::array<double, 6>& k, double spindle_angle_rad) {
-  const MechanisticForce f = to_force(kernel.at(spindle_angle_rad), k);
-  return std::hypot(f.fx_n, f.fy_n);
+  const ElementSums s = kernel.at(spindle_angle_rad);
+  const double fx_n = -(k[kKtc] * s.a + k[kKrc] * s.b + k[kKte] * s.c + k[kKre] * s.s);
+  const double fy_n = k[kKtc] * s.b - k[kKrc] * s.a + k[kKte] * s.s - k[kKre] * s.c;
+  return std::sqrt(fx_n * fx_n + fy_n * fy_n);
 }
 
 // Golden-section search for the largest |F_xy| on [lo, hi], to kPeakAngleTolerance.
