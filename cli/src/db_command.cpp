@@ -12,7 +12,9 @@
 #include <cstdlib>
 #include <iostream>
 #include <map>
+#include <optional>
 #include <sstream>
+#include <tuple>
 
 #include "feedplan/core/angle.hpp"
 #include "feedplan/core/atomic_file.hpp"
@@ -23,6 +25,7 @@
 #include "feedplan/model_db/cutting_test_import.hpp"
 #include "feedplan/model_db/model_exchange.hpp"
 #include "feedplan/model/model_fit.hpp"
+#include "feedplan/model_db/mechanistic_fit.hpp"
 #include "feedplan/model/model_json.hpp"
 #include "feedplan/model/model_prediction.hpp"
 #include "feedplan/model_db/store.hpp"
@@ -56,12 +59,32 @@ void require_material(const mdb::Store& store, const std::string& name) {
   }
 }
 
+json mechanistic_json(const mdb::MechanisticFit& fit) {
+  const model::MechanisticModel& k = fit.model;
+  return json{{"ktc_n_per_mm2", k.ktc_n_per_mm2},
+              {"krc_n_per_mm2", k.krc_n_per_mm2},
+              {"kac_n_per_mm2", k.kac_n_per_mm2},
+              {"kte_n_per_mm", k.kte_n_per_mm},
+              {"kre_n_per_mm", k.kre_n_per_mm},
+              {"kae_n_per_mm", k.kae_n_per_mm},
+              {"size_exponent", k.size_exponent},
+              {"runout_mm", k.runout_mm},
+              {"helix_deg", k.helix_deg ? json(*k.helix_deg) : json(nullptr)},
+              {"standard_errors", {std::sqrt(fit.covariance[0][0]), std::sqrt(fit.covariance[1][1]),
+                                   std::sqrt(fit.covariance[2][2]), std::sqrt(fit.covariance[3][3])}},
+              {"signal_rms_residual_n", fit.signal_rms_residual_n},
+              {"condition_number", fit.condition_number},
+              {"identified", fit.identified},
+              {"unidentifiable", fit.unidentifiable}};
+}
+
 json model_json(const mdb::ModelRecord& m) {
   const auto& r = m.model;
   json out = {{"id", m.id},
               {"tool", m.tool_name},
               {"material", m.material_name},
               {"version", m.version},
+              {"kind", mdb::to_string(m.kind)},
               {"active", m.active},
               {"source", mdb::to_string(m.source)},
               {"created_at", m.created_at},
@@ -80,14 +103,52 @@ json model_json(const mdb::ModelRecord& m) {
               {"r_squared", m.fit.r_squared},
               {"loo_rmse_n", m.fit.loo_rmse_n}};
   if (m.parent_version) out["parent_version"] = *m.parent_version;
+  if (m.mechanistic) {
+    // A mechanistic version's response-surface fields are only the tests' range: not a model to show.
+    for (const char* key : {"beta_n", "standard_errors_n", "chip_center_mm", "chip_scale_mm", "contact_length_center_mm",
+                            "contact_length_scale_mm"}) {
+      out.erase(key);
+    }
+    out["mechanistic"] = mechanistic_json(*m.mechanistic);
+  }
   return out;
+}
+
+void print_mechanistic(const mdb::MechanisticFit& fit) {
+  const model::MechanisticModel& k = fit.model;
+  const auto sd = [&fit](int i) { return std::sqrt(fit.covariance[i][i]); };
+  std::printf("  K_tc %10.1f N/mm²  ± %.1f\n", k.ktc_n_per_mm2, sd(0));
+  std::printf("  K_rc %10.1f N/mm²  ± %.1f\n", k.krc_n_per_mm2, sd(1));
+  std::printf("  K_te %10.2f N/mm   ± %.2f\n", k.kte_n_per_mm, sd(2));
+  std::printf("  K_re %10.2f N/mm   ± %.2f\n", k.kre_n_per_mm, sd(3));
+  if (k.size_exponent > 0.0) {
+    std::printf("  size effect (h / %.3g mm)^-%.3g\n", k.size_reference_chip_mm, k.size_exponent);
+  }
+  if (k.helix_deg) std::printf("  helix %.2f deg (identified from the tests)\n", *k.helix_deg);
+  if (!k.runout_mm.empty()) {
+    std::printf("  runout per tooth");
+    for (double r : k.runout_mm) std::printf(" %.1f", 1000.0 * r);
+    std::printf(" µm\n");
+  }
+  std::printf("  synchronous force residual %.2f N RMS, condition number %.3g%s\n", fit.signal_rms_residual_n,
+              fit.condition_number, fit.identified ? "" : " (poorly determined)");
+  for (const auto& what : fit.unidentifiable) std::printf("  not identified: %s\n", what.c_str());
 }
 
 void print_model(const mdb::ModelRecord& m) {
   const auto& r = m.model;
-  std::printf("model %s in %s, version %d%s (%s, %s)%s%s\n", m.tool_name.c_str(), m.material_name.c_str(), m.version,
-              m.active ? " [active]" : "", mdb::to_string(m.source).c_str(), m.created_at.c_str(),
-              m.note.empty() ? "" : ": ", m.note.c_str());
+  std::printf("model %s in %s, version %d, %s%s (%s, %s)%s%s\n", m.tool_name.c_str(), m.material_name.c_str(),
+              m.version, mdb::to_string(m.kind).c_str(), m.active ? " [active]" : "", mdb::to_string(m.source).c_str(),
+              m.created_at.c_str(), m.note.empty() ? "" : ": ", m.note.c_str());
+  if (m.mechanistic) {
+    print_mechanistic(*m.mechanistic);
+    std::printf("  identified on t_m %.4g–%.4g mm, L %.4g–%.4g mm, a_p %.4g mm, %.0f rpm\n", r.range.chip_min_mm,
+                r.range.chip_max_mm, r.range.contact_length_min_mm, r.range.contact_length_max_mm, r.axial_depth_mm,
+                r.spindle_rpm);
+    std::printf("  tests' mean peaks: n %d, RMSE %.2f N, R² %.4f, leave-one-out RMSE %.2f N\n", m.fit.n, m.fit.rmse_n,
+                m.fit.r_squared, m.fit.loo_rmse_n);
+    return;
+  }
   static const char* names[6] = {"beta0", "beta1", "beta2", "beta11", "beta22", "beta12"};
   for (int i = 0; i < 6; ++i) {
     std::printf("  %-7s %12.3f N  ± %.3f\n", names[i], r.beta[i], m.fit.standard_errors[i]);
@@ -134,7 +195,11 @@ int run_list(const DbOptions& o) {
   const mdb::Store store = open_store(o, mdb::OpenMode::kReadOnly);
   const auto tools = store.tools();
   const auto materials = store.materials();
-  const auto models = store.active_models();
+  auto models = store.active_models(mdb::ModelKind::kResponseSurface);
+  for (auto& m : store.active_models(mdb::ModelKind::kMechanistic)) models.push_back(std::move(m));
+  std::stable_sort(models.begin(), models.end(), [](const auto& a, const auto& b) {
+    return std::tie(a.tool_name, a.material_name) < std::tie(b.tool_name, b.material_name);
+  });
   if (o.json) {
     json out = {{"db", store.path().string()}, {"tools", json::array()}, {"materials", json::array()}, {"models", json::array()}};
     for (const auto& t : tools) {
@@ -160,10 +225,12 @@ int run_list(const DbOptions& o) {
                 m.hardness_scale.c_str());
   }
   std::printf("\nactive models\n");
-  std::printf("  %-20s %-12s %4s %-13s %6s %9s %8s\n", "tool", "material", "ver", "source", "n", "rmse_n", "r2");
+  std::printf("  %-20s %-12s %4s %-16s %-13s %6s %9s %8s %9s\n", "tool", "material", "ver", "kind", "source", "n",
+              "rmse_n", "r2", "loo_rmse");
   for (const auto& m : models) {
-    std::printf("  %-20s %-12s %4d %-13s %6d %9.2f %8.4f\n", m.tool_name.c_str(), m.material_name.c_str(), m.version,
-                mdb::to_string(m.source).c_str(), m.fit.n, m.fit.rmse_n, m.fit.r_squared);
+    std::printf("  %-20s %-12s %4d %-16s %-13s %6d %9.2f %8.4f %9.2f\n", m.tool_name.c_str(), m.material_name.c_str(),
+                m.version, mdb::to_string(m.kind).c_str(), mdb::to_string(m.source).c_str(), m.fit.n, m.fit.rmse_n,
+                m.fit.r_squared, m.fit.loo_rmse_n);
   }
   return 0;
 }
@@ -174,8 +241,13 @@ int run_show(const DbOptions& o) {
   require_material(store, o.material);
   const auto versions = store.models_for(o.tool, o.material);
   const mdb::ModelRecord* chosen = nullptr;
+  const auto show_kind = mdb::parse_model_kind(o.kind);
+  if (!o.version && o.kind != "both" && !show_kind) {
+    throw InputError("--kind", "= '" + o.kind + "': must be mechanistic or response-surface");
+  }
   for (const auto& m : versions) {
-    if ((!o.version && m.active) || (o.version && m.version == *o.version)) chosen = &m;
+    const bool kind_matches = !show_kind || m.kind == *show_kind;
+    if ((!o.version && m.active && kind_matches && !chosen) || (o.version && m.version == *o.version)) chosen = &m;
   }
   if (!chosen) {
     throw InputError(o.version ? "--version" : "--tool/--material",
@@ -185,7 +257,7 @@ int run_show(const DbOptions& o) {
   const auto tests = store.cutting_tests(o.tool, o.material);
   if (o.json) {
     json out = model_json(*chosen);
-    out["covariance_n2"] = chosen->fit.covariance.entries();
+    if (!chosen->mechanistic) out["covariance_n2"] = chosen->fit.covariance.entries();
     out["cutting_tests"] = tests.size();
     std::cout << out.dump(2) << "\n";
   } else {
@@ -300,12 +372,11 @@ model::FitOptions fit_options(const DbOptions& o) {
   return options;
 }
 
-int run_fit(const DbOptions& o) {
-  mdb::Store store = open_store(o);
-  require_tool(store, o.tool);
-  require_material(store, o.material);
+// The response surface fitted on the pair's tests, as a version to store (nothing when the tests cannot
+// fit one: the message goes to `refusal`).
+std::optional<mdb::ModelRecord> fit_response_surface(const DbOptions& o, const std::vector<mdb::StoredCuttingTest>& tests,
+                                                     std::vector<std::string>& notes, std::string& refusal) {
   const model::FitOptions options = fit_options(o);
-  const auto tests = store.cutting_tests(o.tool, o.material);
   std::vector<model::FitSample> samples;
   std::map<double, int> axial_depths, speeds;
   for (const auto& stored : tests) {
@@ -320,8 +391,8 @@ int run_fit(const DbOptions& o) {
   }
   const model::FitResult fit = model::fit_model(samples, options);
   if (fit.status == model::FitStatus::kInsufficientData || fit.status == model::FitStatus::kNotConverged) {
-    std::cerr << "feedplan: no model stored: " << fit.message << "\n";
-    return 1;
+    refusal = fit.message;
+    return std::nullopt;
   }
   mdb::ModelRecord record;
   record.tool_name = o.tool;
@@ -337,15 +408,87 @@ int run_fit(const DbOptions& o) {
   record.fit.loo_rmse_n = fit.loo_rmse_n;
   record.source = mdb::ModelSource::kCuttingTests;
   record.note = o.note.empty() ? fit.message : o.note + (fit.status == model::FitStatus::kOk ? "" : "; " + fit.message);
-  const mdb::ModelRecord stored = store.add_model(record);
+  if (fit.status != model::FitStatus::kOk) notes.push_back("response surface: " + fit.message);
+  return record;
+}
+
+// The mechanistic model identified from the pair's tests, as a version to store.
+mdb::ModelRecord fit_mechanistic_version(const DbOptions& o, const mdb::ToolRecord& tool,
+                                         const std::vector<mdb::StoredCuttingTest>& tests,
+                                         std::vector<std::string>& notes, json& per_test) {
+  mdb::MechanisticFitOptions options;
+  options.identify_runout = !o.no_runout;
+  options.identify_helix = !o.no_helix;
+  mdb::MechanisticFitResult fit = mdb::fit_mechanistic(tool, o.material, tests, options);
+  for (const auto& note : fit.notes) notes.push_back("mechanistic: " + note);
+  per_test = json::array();
+  for (std::size_t i = 0; i < fit.predicted_peaks_n.size(); ++i) {
+    per_test.push_back({{"measured_peak_n", fit.measured_peaks_n[i]}, {"predicted_peak_n", fit.predicted_peaks_n[i]}});
+  }
+  char summary[160];
+  std::snprintf(summary, sizeof summary, "identified from %d cutting tests%s; tests' mean peaks RMSE %.2f N, R² %.4f",
+                fit.tests_used,
+                fit.record.mechanistic->model.helix_deg ? " with runout and helix"
+                : fit.record.mechanistic->model.runout_mm.empty() ? "" : " with runout",
+                fit.record.fit.rmse_n, fit.record.fit.r_squared);
+  fit.record.note = o.note.empty() ? summary : o.note;
+  return fit.record;
+}
+
+int run_fit(const DbOptions& o) {
+  mdb::Store store = open_store(o);
+  const mdb::ToolRecord tool = require_tool(store, o.tool);
+  require_material(store, o.material);
+  const auto kind = o.kind == "both" ? std::nullopt : mdb::parse_model_kind(o.kind);
+  if (o.kind != "both" && !kind) {
+    throw InputError("--kind", "= '" + o.kind + "': must be mechanistic, response-surface or both");
+  }
+  fit_options(o);  // --loss checked before any work
+  const auto tests = store.cutting_tests(o.tool, o.material);
+  std::vector<std::string> notes;
+  std::vector<mdb::ModelRecord> records;
+  json per_test;
+  if (!kind || *kind == mdb::ModelKind::kResponseSurface) {
+    std::string refusal;
+    if (auto record = fit_response_surface(o, tests, notes, refusal)) {
+      records.push_back(std::move(*record));
+    } else if (kind) {
+      std::cerr << "feedplan: no model stored: " << refusal << "\n";
+      return 1;
+    } else {
+      notes.push_back("response surface: not fitted: " + refusal);
+    }
+  }
+  if (!kind || *kind == mdb::ModelKind::kMechanistic) {
+    const bool has_signal = std::any_of(tests.begin(), tests.end(),
+                                        [](const auto& t) { return !t.test.synchronous_fx_n.empty(); });
+    if (!kind && !has_signal) {
+      notes.push_back("mechanistic: not identified: no stored test holds the force over a revolution (tests imported "
+                      "before this feedplan kept it: import their logs again with feedplan db import-test)");
+    } else if (kind) {
+      records.push_back(fit_mechanistic_version(o, tool, tests, notes, per_test));
+    } else {
+      try {
+        records.push_back(fit_mechanistic_version(o, tool, tests, notes, per_test));
+      } catch (const InputError& error) {
+        notes.push_back(std::string("mechanistic: not identified: ") + error.what());
+      }
+    }
+  }
+  if (records.empty()) {
+    std::cerr << "feedplan: no model stored:\n";
+    for (const auto& note : notes) std::cerr << "  " << note << "\n";
+    return 1;
+  }
+  const std::vector<mdb::ModelRecord> stored = store.add_models(records);
   if (o.json) {
-    json out = model_json(stored);
-    out["status"] = fit.status == model::FitStatus::kOk ? "ok" : "reduced_model";
-    out["message"] = fit.message;
+    json out = {{"models", json::array()}, {"notes", notes}};
+    if (!per_test.is_null()) out["mechanistic_tests"] = per_test;
+    for (const auto& m : stored) out["models"].push_back(model_json(m));
     std::cout << out.dump(2) << "\n";
   } else {
-    print_model(stored);
-    if (fit.status != model::FitStatus::kOk) std::printf("note: %s\n", fit.message.c_str());
+    for (const auto& m : stored) print_model(m);
+    for (const auto& note : notes) std::printf("note: %s\n", note.c_str());
   }
   return 0;
 }
@@ -409,8 +552,9 @@ int run_history(const DbOptions& o) {
   }
   std::printf("%s in %s: %zu versions\n", o.tool.c_str(), o.material.c_str(), versions.size());
   for (const auto& m : versions) {
-    std::printf("  v%-3d %s %-13s n %-4d RMSE %7.2f N %s%s\n", m.version, m.created_at.c_str(), mdb::to_string(m.source).c_str(),
-                m.fit.n, m.fit.rmse_n, m.active ? "[active] " : "", m.note.c_str());
+    std::printf("  v%-3d %s %-16s %-13s n %-4d RMSE %7.2f N %s%s\n", m.version, m.created_at.c_str(),
+                mdb::to_string(m.kind).c_str(), mdb::to_string(m.source).c_str(), m.fit.n, m.fit.rmse_n,
+                m.active ? "[active] " : "", m.note.c_str());
   }
   for (const auto& e : events) {
     std::printf("  %s: version %d made active%s\n", e.created_at.c_str(), e.version,
@@ -501,6 +645,7 @@ void add_db_command(CLI::App& app, DbOptions& o) {
   common(show);
   tool_material(show);
   add_integer_flag(show, "--version", o.version, "Model version (default: the active one)");
+  show->add_option("--kind", o.kind, "Which active version: response-surface or mechanistic (default: the first)");
   auto* add_tool = db->add_subcommand("add-tool", "Register a tool");
   common(add_tool);
   add_tool->add_option("name", o.name, "Unique tool name")->required();
@@ -533,6 +678,11 @@ void add_db_command(CLI::App& app, DbOptions& o) {
   fit->add_option("--note", o.note, "Free text stored with the version");
   fit->add_flag("--per-revolution", o.per_revolution,
                 "Fit every steady per-revolution peak (the scatter then sets the uncertainty), not one mean per test");
+  fit->add_option("--kind", o.kind,
+                  "mechanistic (cutting coefficients and runout from the tests' force over a revolution), "
+                  "response-surface (seed 003 Eq. 1 on the peaks) or both (default): each a version of its kind");
+  fit->add_flag("--no-runout", o.no_runout, "Mechanistic: do not identify the per-tooth runout (nor the helix)");
+  fit->add_flag("--no-helix", o.no_helix, "Mechanistic: keep the tool record's helix instead of identifying it");
   auto* predict = db->add_subcommand("predict", "Predict the per-revolution peak force of a straight cut");
   common(predict);
   tool_material(predict);

@@ -33,6 +33,9 @@ struct DbOptions {
   std::string loss = "huber";   //!< fit
   std::string note;             //!< fit
   bool per_revolution = false;  //!< fit: every steady per-revolution peak is a sample (else one per test)
+  std::string kind = "both";    //!< fit: mechanistic, response-surface or both
+  bool no_runout = false;       //!< fit: do not identify the per-tooth runout (mechanistic)
+  bool no_helix = false;        //!< fit: keep the tool record's helix (mechanistic)
   double feed_per_tooth_mm = 0.0;  //!< predict
   std::string file;             //!< export / import
   bool all_versions = false;    //!< export

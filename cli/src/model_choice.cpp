@@ -37,6 +37,10 @@ std::optional<ChosenModel> model_by_id(const mdb::Store& store, const cycles::Cy
     throw InputError("--model-id", "= " + std::to_string(model_id) + ": no model with this id in " +
                                        store.path().string() + " (see feedplan db list)");
   }
+  if (record->kind != mdb::ModelKind::kResponseSurface) {
+    throw InputError("--model-id", "= " + std::to_string(model_id) + ": is a " + mdb::to_string(record->kind) +
+                                       " version; plan takes a response-surface version (see feedplan db list)");
+  }
   mdb::ModelBorrowing borrowing = borrowing_of(store, spec, *record);
   return ChosenModel{*record, "by id", "model id " + std::to_string(model_id) + " as asked (--model-id)",
                      std::move(borrowing)};

@@ -31,7 +31,7 @@ class Kernel {
          double feed_per_tooth_mm)
       : sections_(sections),
         pitch_rad_(kTwoPi / cutter.flutes),
-        lag_rad_per_mm_(std::tan(deg_to_rad(cutter.helix_deg)) / cutter.radius_mm) {
+        lag_rad_per_mm_(std::tan(deg_to_rad(model.helix_deg.value_or(cutter.helix_deg))) / cutter.radius_mm) {
     assert(cutter.flutes >= 1 && cutter.radius_mm > 0.0 && feed_per_tooth_mm > 0.0);
     assert(model.runout_mm.empty() || static_cast<int>(model.runout_mm.size()) == cutter.flutes);
     const int n = cutter.flutes;

@@ -224,6 +224,23 @@ std::vector<double> lowest_at_zero(std::vector<double> runout_mm) {
 
 }  // namespace
 
+MechanisticModel refit_coefficients(const std::vector<MechanisticCuttingTest>& tests,
+                                    const std::vector<double>& phase_rad, const MechanisticModel& fixed) {
+  const std::vector<InputProblem> problems = validate(tests, false);
+  if (!problems.empty()) throw InputError(problems);
+  if (phase_rad.size() != tests.size()) {
+    throw InputError("phase_rad", "has " + std::to_string(phase_rad.size()) + " values: must have one per test (" +
+                                      std::to_string(tests.size()) + ")");
+  }
+  Eigen::MatrixXd a;
+  Eigen::VectorXd y, weakest;
+  stack_rows(tests, phase_rad, fixed, a, y);
+  MechanisticIdentification scratch;
+  MechanisticModel model = fixed;
+  set_coefficients(model, fit_coefficients(tests, a, y, scratch, weakest));
+  return model;
+}
+
 MechanisticIdentification identify_mechanistic(const std::vector<MechanisticCuttingTest>& tests,
                                                const MechanisticIdentificationOptions& options) {
   const std::vector<InputProblem> problems = validate(tests, options.identify_runout);
@@ -237,12 +254,15 @@ MechanisticIdentification identify_mechanistic(const std::vector<MechanisticCutt
   Eigen::VectorXd x = fit_coefficients(tests, a, y, result, weakest);
 
   if (options.identify_runout) {
-    const RunoutRefinement refined = refine_runout(tests, result.phase_rad, {x(0), x(1), x(2), x(3)});
+    const RunoutRefinement refined =
+        refine_runout(tests, result.phase_rad, {x(0), x(1), x(2), x(3)}, options.identify_helix);
     result.runout_converged = refined.converged;
     result.runout_report = refined.message;
     result.phase_rad = refined.phase_rad;
     MechanisticModel with_runout;
     with_runout.runout_mm = refined.runout_mm;
+    with_runout.helix_deg = refined.helix_deg;
+    result.model.helix_deg = refined.helix_deg;
     stack_rows(tests, result.phase_rad, with_runout, a, y);
     x = fit_coefficients(tests, a, y, result, weakest);
     result.model.runout_mm = lowest_at_zero(refined.runout_mm);

@@ -24,6 +24,9 @@ std::vector<InputProblem> validate(const MechanisticModel& model, const std::str
   for (std::size_t j = 0; j < model.runout_mm.size(); ++j) {
     problems.finite("runout_mm[" + std::to_string(j) + "]", model.runout_mm[j]);
   }
+  if (model.helix_deg && !(std::abs(*model.helix_deg) < 90.0)) {
+    problems.add_value("helix_deg", shortest_number_text(*model.helix_deg), "must be in (−90, 90)");
+  }
   return problems.take();
 }
 

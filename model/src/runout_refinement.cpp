@@ -20,28 +20,41 @@ MechanisticModel with_runout(const double* runout_rest_mm, int flutes) {
   return model;
 }
 
-//! One test's bin residuals A(Ω₀, runout) · K − y; parameter blocks K (4), runout of teeth 1 … N−1, Ω₀ (1).
+//! One test's bin residuals A(Ω₀, runout, β) · K − y; parameter blocks K (4), runout of teeth 1 … N−1, Ω₀ (1),
+//! and with identify_helix the helix angle β (1, deg, shared by all tests).
 struct BinResidual {
   const MechanisticCuttingTest* test;
   Eigen::VectorXd y;
+  bool identify_helix = false;
   bool operator()(double const* const* p, double* residual) const {
-    const Eigen::MatrixXd a = phase_rows(*test, p[2][0], with_runout(p[1], test->cutter.flutes));
+    MechanisticModel runout = with_runout(p[1], test->cutter.flutes);
+    if (identify_helix) runout.helix_deg = p[3][0];
+    const Eigen::MatrixXd a = phase_rows(*test, p[2][0], runout);
     const Eigen::Map<const Eigen::Vector4d> k(p[0]);
     Eigen::Map<Eigen::VectorXd>(residual, y.size()) = a * k - y;
     return true;
   }
 };
 
-void add_test(ceres::Problem& problem, const MechanisticCuttingTest& test, double* k, double* runout_rest, double* phase) {
+void add_test(ceres::Problem& problem, const MechanisticCuttingTest& test, double* k, double* runout_rest, double* phase,
+              double* helix_deg) {
   ceres::NumericDiffOptions diff;
   diff.relative_step_size = 1e-4;
   auto* cost = new ceres::DynamicNumericDiffCostFunction<BinResidual, ceres::CENTRAL>(
-      new BinResidual{&test, measured(test)}, ceres::TAKE_OWNERSHIP, diff);
+      new BinResidual{&test, measured(test), helix_deg != nullptr}, ceres::TAKE_OWNERSHIP, diff);
   cost->AddParameterBlock(kIdentifiedCoefficients);
   cost->AddParameterBlock(test.cutter.flutes - 1);
   cost->AddParameterBlock(1);
+  if (helix_deg != nullptr) cost->AddParameterBlock(1);
   cost->SetNumResiduals(2 * bin_count(test));
-  problem.AddResidualBlock(cost, nullptr, k, runout_rest, phase);
+  std::vector<double*> blocks{k, runout_rest, phase};
+  if (helix_deg != nullptr) blocks.push_back(helix_deg);
+  problem.AddResidualBlock(cost, nullptr, blocks);
+  if (helix_deg != nullptr) {
+    // The kernel needs |β| < 90°; a flute beyond ±kMaxHelixChangeDeg of the catalogue is not a tolerance.
+    problem.SetParameterLowerBound(helix_deg, 0, test.cutter.helix_deg - kMaxHelixChangeDeg);
+    problem.SetParameterUpperBound(helix_deg, 0, test.cutter.helix_deg + kMaxHelixChangeDeg);
+  }
 }
 
 ceres::Solver::Summary solve(ceres::Problem& problem) {
@@ -75,24 +88,28 @@ double best_shift(const MechanisticCuttingTest& test, double phase, const double
 }  // namespace
 
 RunoutRefinement refine_runout(const std::vector<MechanisticCuttingTest>& tests, const std::vector<double>& phases_rad,
-                               const std::array<double, 4>& coefficients) {
+                               const std::array<double, 4>& coefficients, bool identify_helix) {
   const int flutes = tests.front().cutter.flutes;
   std::array<double, 4> k = coefficients;
   std::vector<double> runout_rest(static_cast<std::size_t>(flutes - 1), 0.0);
   std::vector<double> phases = phases_rad;
+  double helix_deg = tests.front().cutter.helix_deg;
 
   {
     ceres::Problem first;
-    add_test(first, tests.front(), k.data(), runout_rest.data(), &phases.front());
+    add_test(first, tests.front(), k.data(), runout_rest.data(), &phases.front(), nullptr);
     solve(first);
   }
   for (std::size_t i = 1; i < tests.size(); ++i) phases[i] = best_shift(tests[i], phases[i], k.data(), runout_rest.data());
 
   ceres::Problem problem;
-  for (std::size_t i = 0; i < tests.size(); ++i) add_test(problem, tests[i], k.data(), runout_rest.data(), &phases[i]);
+  for (std::size_t i = 0; i < tests.size(); ++i) {
+    add_test(problem, tests[i], k.data(), runout_rest.data(), &phases[i], identify_helix ? &helix_deg : nullptr);
+  }
   const ceres::Solver::Summary summary = solve(problem);
 
   RunoutRefinement result;
+  if (identify_helix) result.helix_deg = helix_deg;
   result.runout_mm = with_runout(runout_rest.data(), flutes).runout_mm;
   for (double& phase : phases) phase -= kTwoPi * std::floor(phase / kTwoPi);
   result.phase_rad = phases;

@@ -5,6 +5,7 @@
 // at once, with central numeric derivatives of the kernel.
 
 #include <array>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -12,8 +13,12 @@
 
 namespace feedplan::model::detail {
 
+//! How far an identified helix may lie from the catalogue value, deg.
+inline constexpr double kMaxHelixChangeDeg = 20.0;
+
 //! The refined unknowns.
 struct RunoutRefinement {
+  std::optional<double> helix_deg;  //!< with identify_helix: the helix the tests show, deg
   std::vector<double> runout_mm;  //!< per tooth, mm, tooth 0 at 0 (only differences are seen)
   std::vector<double> phase_rad;  //!< per test, rad
   bool converged = false;         //!< Ceres reports a usable solution
@@ -23,8 +28,9 @@ struct RunoutRefinement {
 //! Starting from the phases found without runout (known modulo a tooth period) and the coefficients
 //! fitted with them: fits tooth 0's test alone (which fixes the tooth numbering), gives every other test
 //! the tooth period shift of its phase that fits best the runout found, then fits all tests together.
-//! Needs tests with one cutter (same flute count ≥ 2).
+//! Needs tests with one cutter (same flute count ≥ 2). With `identify_helix` the helix angle (one for all
+//! tests, starting at the first test's cutter's) is refined in the last fit too, within kMaxHelixChangeDeg.
 RunoutRefinement refine_runout(const std::vector<MechanisticCuttingTest>& tests, const std::vector<double>& phases_rad,
-                               const std::array<double, 4>& coefficients);
+                               const std::array<double, 4>& coefficients, bool identify_helix = false);
 
 }  // namespace feedplan::model::detail

@@ -31,6 +31,28 @@ Json to_json(const MaterialRecord& material) {
               {"notes", material.notes}};
 }
 
+Json to_json(const MechanisticFit& fit) {
+  const model::MechanisticModel& m = fit.model;
+  std::vector<double> covariance;
+  for (const auto& row : fit.covariance) covariance.insert(covariance.end(), row.begin(), row.end());
+  return Json{{"ktc_n_per_mm2", m.ktc_n_per_mm2},
+              {"krc_n_per_mm2", m.krc_n_per_mm2},
+              {"kac_n_per_mm2", m.kac_n_per_mm2},
+              {"kte_n_per_mm", m.kte_n_per_mm},
+              {"kre_n_per_mm", m.kre_n_per_mm},
+              {"kae_n_per_mm", m.kae_n_per_mm},
+              {"size_exponent", m.size_exponent},
+              {"size_reference_chip_mm", m.size_reference_chip_mm},
+              {"size_min_chip_mm", m.size_min_chip_mm},
+              {"runout_mm", m.runout_mm},
+              {"helix_deg", m.helix_deg ? Json(*m.helix_deg) : Json(nullptr)},
+              {"covariance", covariance},
+              {"signal_rms_residual_n", fit.signal_rms_residual_n},
+              {"condition_number", fit.condition_number},
+              {"identified", fit.identified},
+              {"unidentifiable", fit.unidentifiable}};
+}
+
 Json to_json(const ModelRecord& record, const std::optional<int>& parent_version) {
   Json json{{"tool", record.tool_name},
             {"material", record.material_name},
@@ -40,7 +62,9 @@ Json to_json(const ModelRecord& record, const std::optional<int>& parent_version
             {"source", to_string(record.source)},
             {"created_at", record.created_at},
             {"note", record.note}};
+  json["kind"] = to_string(record.kind);
   json["model"] = model::to_json(record.model);
+  if (record.mechanistic) json["mechanistic"] = to_json(*record.mechanistic);
   json["fit"] = Json{{"n", record.fit.n},
                      {"rmse_n", record.fit.rmse_n},
                      {"r_squared", record.fit.r_squared},

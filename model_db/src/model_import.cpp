@@ -134,6 +134,30 @@ ModelFitStatistics read_fit(const Node& node) {
   return fit;
 }
 
+MechanisticFit read_mechanistic(const Node& node) {
+  MechanisticFit fit;
+  model::MechanisticModel& m = fit.model;
+  m.ktc_n_per_mm2 = node.number("ktc_n_per_mm2");
+  m.krc_n_per_mm2 = node.number("krc_n_per_mm2");
+  m.kac_n_per_mm2 = node.number("kac_n_per_mm2");
+  m.kte_n_per_mm = node.number("kte_n_per_mm");
+  m.kre_n_per_mm = node.number("kre_n_per_mm");
+  m.kae_n_per_mm = node.number("kae_n_per_mm");
+  m.size_exponent = node.number("size_exponent");
+  m.size_reference_chip_mm = node.number("size_reference_chip_mm");
+  m.size_min_chip_mm = node.number("size_min_chip_mm");
+  m.runout_mm = node.numbers("runout_mm");
+  const Json* helix = node.member("helix_deg", JsonPresence::kOptional);
+  if (helix != nullptr && !helix->is_null()) m.helix_deg = node.number("helix_deg");
+  const std::array<double, 16> covariance = node.fixed_numbers<16>("covariance");
+  for (std::size_t i = 0; i < 16; ++i) fit.covariance[i / 4][i % 4] = covariance[i];
+  fit.signal_rms_residual_n = node.number("signal_rms_residual_n");
+  fit.condition_number = node.number("condition_number");
+  fit.identified = node.boolean("identified");
+  fit.unidentifiable = node.texts("unidentifiable", JsonPresence::kOptional);
+  return fit;
+}
+
 IncomingModel read_model(const Node& node) {
   IncomingModel incoming{node.path(), {}, std::nullopt};
   ModelRecord& record = incoming.record;
@@ -154,7 +178,15 @@ IncomingModel read_model(const Node& node) {
   record.created_at = node.text("created_at");
   check_time(node, record.created_at);
   record.note = node.text("note", JsonPresence::kOptional);
+  // Exports before the mechanistic kind hold response surfaces only and no "kind".
+  const std::string kind = node.has("kind") ? node.text("kind") : to_string(ModelKind::kResponseSurface);
+  if (const auto parsed = parse_model_kind(kind)) {
+    record.kind = *parsed;
+  } else {
+    node.report(node.child_path("kind"), "= '" + kind + "': must be response_surface or mechanistic");
+  }
   record.model = model::read_model_json(node.object("model"));
+  if (record.kind == ModelKind::kMechanistic) record.mechanistic = read_mechanistic(node.object("mechanistic"));
   record.fit = read_fit(node.object("fit"));
   return incoming;
 }
@@ -293,29 +325,30 @@ std::vector<IncomingModel> read_models(Reader& reader, const Node& root) {
   });
 }
 
-//! Each parent_version names an earlier version of the same pair in the document, and each pair has
-//! exactly one active version.
+//! Each parent_version names an earlier version of the same pair and kind in the document, and each pair
+//! has exactly one active version of each kind it has.
 void check_model_history(Reader& reader, const std::vector<IncomingModel>& models) {
-  std::set<ModelKey> keys;
-  std::map<std::pair<std::string, std::string>, int> active_per_pair;
+  std::map<ModelKey, ModelKind> keys;
+  std::map<std::tuple<std::string, std::string, ModelKind>, int> active_per_pair;
   for (const auto& model : models) {
     const ModelRecord& r = model.record;
-    keys.insert({r.tool_name, r.material_name, r.version});
-    active_per_pair[{r.tool_name, r.material_name}] += r.active ? 1 : 0;
+    keys.emplace(ModelKey{r.tool_name, r.material_name, r.version}, r.kind);
+    active_per_pair[{r.tool_name, r.material_name, r.kind}] += r.active ? 1 : 0;
   }
   for (const auto& model : models) {
     const ModelRecord& r = model.record;
-    if (model.parent_version &&
-        (*model.parent_version >= r.version || keys.count({r.tool_name, r.material_name, *model.parent_version}) == 0)) {
+    if (!model.parent_version) continue;
+    const auto parent = keys.find({r.tool_name, r.material_name, *model.parent_version});
+    if (*model.parent_version >= r.version || parent == keys.end() || parent->second != r.kind) {
       reader.add(model.path + ".parent_version",
-                 "= " + std::to_string(*model.parent_version) + ": must be an earlier version of " + r.tool_name +
-                     " in " + r.material_name + " in the document (or null)");
+                 "= " + std::to_string(*model.parent_version) + ": must be an earlier " + to_string(r.kind) +
+                     " version of " + r.tool_name + " in " + r.material_name + " in the document (or null)");
     }
   }
   for (const auto& [pair, count] : active_per_pair) {
     if (count != 1) {
-      reader.add("models", pair.first + " in " + pair.second + " has " + std::to_string(count) +
-                               " active versions: must have exactly one");
+      reader.add("models", std::get<0>(pair) + " in " + std::get<1>(pair) + " has " + std::to_string(count) +
+                               " active " + to_string(std::get<2>(pair)) + " versions: must have exactly one");
     }
   }
 }
@@ -368,7 +401,20 @@ bool same_content(const MaterialRecord& a, const MaterialRecord& b) {
          std::tie(b.name, b.iso_group, b.hardness_value, b.hardness_scale, b.notes);
 }
 
+bool same_content(const MechanisticFit& a, const MechanisticFit& b) {
+  const auto& x = a.model;
+  const auto& y = b.model;
+  return std::tie(x.ktc_n_per_mm2, x.krc_n_per_mm2, x.kac_n_per_mm2, x.kte_n_per_mm, x.kre_n_per_mm, x.kae_n_per_mm,
+                  x.size_exponent, x.size_reference_chip_mm, x.size_min_chip_mm, x.runout_mm, x.helix_deg, a.covariance,
+                  a.signal_rms_residual_n, a.condition_number, a.identified, a.unidentifiable) ==
+         std::tie(y.ktc_n_per_mm2, y.krc_n_per_mm2, y.kac_n_per_mm2, y.kte_n_per_mm, y.kre_n_per_mm, y.kae_n_per_mm,
+                  y.size_exponent, y.size_reference_chip_mm, y.size_min_chip_mm, y.runout_mm, y.helix_deg, b.covariance,
+                  b.signal_rms_residual_n, b.condition_number, b.identified, b.unidentifiable);
+}
+
 bool same_content(const ModelRecord& a, const ModelRecord& b) {
+  if (a.kind != b.kind || a.mechanistic.has_value() != b.mechanistic.has_value()) return false;
+  if (a.mechanistic && !same_content(*a.mechanistic, *b.mechanistic)) return false;
   const auto& x = a.model;
   const auto& y = b.model;
   return std::tie(x.beta, x.chip_center_mm, x.chip_scale_mm, x.contact_length_center_mm, x.contact_length_scale_mm,
@@ -603,9 +649,11 @@ class Importer {
       max_version = std::max(max_version, model.version);
       stored.emplace(model.version, std::move(model));
     }
-    const bool had_active = std::any_of(stored.begin(), stored.end(), [](const auto& v) { return v.second.active; });
-    std::optional<RowId> incoming_active;
-    bool incoming_active_written = false;
+    std::set<ModelKind> had_active;
+    for (const auto& [version, model] : stored) {
+      if (model.active) had_active.insert(model.kind);
+    }
+    std::map<ModelKind, std::pair<RowId, bool>> incoming_active;  // per kind: id, and whether this import wrote it
     for (const IncomingModel* incoming : list) {
       const ModelRecord& record = incoming->record;
       const ModelKey key{record.tool_name, record.material_name, record.version};
@@ -643,17 +691,16 @@ class Importer {
         row_written("import.models");
       }
       written_models_[key] = id;
-      if (record.active) {
-        incoming_active = id;
-        incoming_active_written = written;
-      }
+      if (record.active) incoming_active[record.kind] = {id, written};
     }
-    if (!incoming_active) return;
-    const bool activate = !had_active || options_.on_name_clash == NameClash::kReplace ||
-                          (incoming_active_written && options_.on_name_clash == NameClash::kFail);
-    if (activate && detail::activate_model(db_, ids->tool_id, ids->material_id, *incoming_active,
-                                           ActivationReason::kImported, detail::utc_now_iso8601())) {
-      row_written("import.activate");
+    for (const auto& [kind, active] : incoming_active) {
+      const auto [active_id, active_written] = active;
+      const bool activate = had_active.count(kind) == 0 || options_.on_name_clash == NameClash::kReplace ||
+                            (active_written && options_.on_name_clash == NameClash::kFail);
+      if (activate && detail::activate_model(db_, ids->tool_id, ids->material_id, active_id,
+                                             ActivationReason::kImported, detail::utc_now_iso8601())) {
+        row_written("import.activate");
+      }
     }
   }
 

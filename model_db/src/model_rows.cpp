@@ -13,9 +13,12 @@ constexpr const char* kModelSelect =
     "m.chip_min_mm, m.chip_max_mm, m.contact_length_min_mm, m.contact_length_max_mm, "
     "m.axial_depth_mm, m.spindle_rpm, m.quantity, "
     "m.fit_n, m.rmse_n, m.r_squared, m.covariance_json, m.standard_errors_json, m.loo_rmse_n, "
-    "m.source, m.created_at, m.note, m.active "
+    "m.source, m.created_at, m.note, m.active, m.kind, "
+    "k.ktc_n_per_mm2, k.krc_n_per_mm2, k.kac_n_per_mm2, k.kte_n_per_mm, k.kre_n_per_mm, k.kae_n_per_mm, "
+    "k.size_exponent, k.size_reference_chip_mm, k.size_min_chip_mm, k.runout_json, k.helix_deg, k.covariance_json, "
+    "k.signal_rms_residual_n, k.condition_number, k.identified, k.unidentifiable_json "
     "FROM models m JOIN tools t ON t.id = m.tool_id JOIN materials mt ON mt.id = m.material_id "
-    "LEFT JOIN models p ON p.id = m.parent_id ";
+    "LEFT JOIN models p ON p.id = m.parent_id LEFT JOIN mechanistic_models k ON k.model_id = m.id ";
 
 template <std::size_t N>
 std::array<double, N> numbers_from_json(const std::string& text) {
@@ -31,6 +34,71 @@ std::array<double, N> numbers_from_json(const std::string& text) {
 template <std::size_t N>
 std::string numbers_to_json(const std::array<double, N>& values) {
   return nlohmann::json(values).dump();
+}
+
+std::vector<double> number_list_from_json(const std::string& text) {
+  std::vector<double> values;
+  const auto parsed = nlohmann::json::parse(text, nullptr, false);
+  if (!parsed.is_array()) return values;
+  for (const auto& value : parsed) values.push_back(value.is_number() ? value.get<double>() : 0.0);
+  return values;
+}
+
+std::vector<std::string> text_list_from_json(const std::string& text) {
+  std::vector<std::string> values;
+  const auto parsed = nlohmann::json::parse(text, nullptr, false);
+  if (!parsed.is_array()) return values;
+  for (const auto& value : parsed) {
+    if (value.is_string()) values.push_back(value.get<std::string>());
+  }
+  return values;
+}
+
+// The columns of mechanistic_models from column `c` on (present when the row is a mechanistic version).
+MechanisticFit read_mechanistic(const Statement& row, int c) {
+  MechanisticFit fit;
+  model::MechanisticModel& m = fit.model;
+  m.ktc_n_per_mm2 = row.column_double(c++);
+  m.krc_n_per_mm2 = row.column_double(c++);
+  m.kac_n_per_mm2 = row.column_double(c++);
+  m.kte_n_per_mm = row.column_double(c++);
+  m.kre_n_per_mm = row.column_double(c++);
+  m.kae_n_per_mm = row.column_double(c++);
+  m.size_exponent = row.column_double(c++);
+  m.size_reference_chip_mm = row.column_double(c++);
+  m.size_min_chip_mm = row.column_double(c++);
+  m.runout_mm = number_list_from_json(row.column_text(c++));
+  if (!row.column_is_null(c)) m.helix_deg = row.column_double(c);
+  ++c;
+  const std::array<double, 16> covariance = numbers_from_json<16>(row.column_text(c++));
+  for (std::size_t i = 0; i < 16; ++i) fit.covariance[i / 4][i % 4] = covariance[i];
+  fit.signal_rms_residual_n = row.column_double(c++);
+  fit.condition_number = row.column_double(c++);
+  fit.identified = row.column_int(c++) != 0;
+  fit.unidentifiable = text_list_from_json(row.column_text(c++));
+  return fit;
+}
+
+void insert_mechanistic_row(Connection& db, RowId model_id, const MechanisticFit& fit) {
+  Statement statement(db,
+                      "INSERT INTO mechanistic_models (model_id, ktc_n_per_mm2, krc_n_per_mm2, kac_n_per_mm2, "
+                      "kte_n_per_mm, kre_n_per_mm, kae_n_per_mm, size_exponent, size_reference_chip_mm, "
+                      "size_min_chip_mm, runout_json, helix_deg, covariance_json, signal_rms_residual_n, condition_number, "
+                      "identified, unidentifiable_json) VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)");
+  const model::MechanisticModel& m = fit.model;
+  std::array<double, 16> covariance{};
+  for (std::size_t i = 0; i < 16; ++i) covariance[i] = fit.covariance[i / 4][i % 4];
+  statement.bind_all(model_id, m.ktc_n_per_mm2, m.krc_n_per_mm2, m.kac_n_per_mm2, m.kte_n_per_mm, m.kre_n_per_mm,
+                     m.kae_n_per_mm, m.size_exponent, m.size_reference_chip_mm, m.size_min_chip_mm,
+                     nlohmann::json(m.runout_mm).dump());
+  if (m.helix_deg) {
+    statement.bind(*m.helix_deg);
+  } else {
+    statement.bind_null();
+  }
+  statement.bind_all(numbers_to_json(covariance), fit.signal_rms_residual_n,
+                     fit.condition_number, fit.identified ? 1 : 0, nlohmann::json(fit.unidentifiable).dump());
+  statement.run();
 }
 
 ModelRecord read_model(const Statement& row) {
@@ -67,6 +135,9 @@ ModelRecord read_model(const Statement& row) {
   record.created_at = row.column_text(c++);
   record.note = row.column_text(c++);
   record.active = row.column_int(c++) != 0;
+  // The CHECK constraint admits only the two kind names.
+  record.kind = parse_model_kind(row.column_text(c++)).value_or(ModelKind::kResponseSurface);
+  if (record.kind == ModelKind::kMechanistic && !row.column_is_null(c)) record.mechanistic = read_mechanistic(row, c);
   return record;
 }
 
@@ -99,15 +170,17 @@ std::vector<ModelRecord> select_models_for(const Connection& db, RowId tool_id, 
   return read_models(statement);
 }
 
-std::optional<ModelRecord> select_active_model(const Connection& db, RowId tool_id, RowId material_id) {
-  Statement statement(db, std::string(kModelSelect) + "WHERE m.tool_id = ? AND m.material_id = ? AND m.active = 1");
-  statement.bind_all(tool_id, material_id);
+std::optional<ModelRecord> select_active_model(const Connection& db, RowId tool_id, RowId material_id, ModelKind kind) {
+  Statement statement(db, std::string(kModelSelect) +
+                              "WHERE m.tool_id = ? AND m.material_id = ? AND m.kind = ? AND m.active = 1");
+  statement.bind_all(tool_id, material_id, to_string(kind));
   if (!statement.step()) return std::nullopt;
   return read_model(statement);
 }
 
-std::vector<ModelRecord> select_active_models(const Connection& db) {
-  Statement statement(db, std::string(kModelSelect) + "WHERE m.active = 1 ORDER BY t.name, mt.name");
+std::vector<ModelRecord> select_active_models(const Connection& db, ModelKind kind) {
+  Statement statement(db, std::string(kModelSelect) + "WHERE m.active = 1 AND m.kind = ? ORDER BY t.name, mt.name");
+  statement.bind(to_string(kind));
   return read_models(statement);
 }
 
@@ -137,9 +210,9 @@ RowId insert_model_row(Connection& db, RowId tool_id, RowId material_id, const M
                       "chip_min_mm, chip_max_mm, contact_length_min_mm, contact_length_max_mm, "
                       "axial_depth_mm, spindle_rpm, quantity, "
                       "fit_n, rmse_n, r_squared, covariance_json, standard_errors_json, loo_rmse_n, "
-                      "source, created_at, note, active) "
+                      "source, created_at, note, active, kind) "
                       "VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, "
-                      "?, ?, 0)");
+                      "?, ?, 0, ?)");
   const model::ResponseSurfaceModel& model = record.model;
   statement.bind_all(tool_id, material_id, record.version, record.parent_id);
   for (double beta : model.beta) statement.bind(beta);
@@ -149,17 +222,21 @@ RowId insert_model_row(Connection& db, RowId tool_id, RowId material_id, const M
                      model.spindle_rpm, model.quantity);
   statement.bind_all(record.fit.n, record.fit.rmse_n, record.fit.r_squared, numbers_to_json(record.fit.covariance.entries()),
                      numbers_to_json(record.fit.standard_errors), record.fit.loo_rmse_n);
-  statement.bind_all(to_string(record.source), record.created_at, record.note);
+  statement.bind_all(to_string(record.source), record.created_at, record.note, to_string(record.kind));
   statement.run();
-  return db.last_insert_rowid();
+  const RowId id = db.last_insert_rowid();
+  if (record.mechanistic) insert_mechanistic_row(db, id, *record.mechanistic);
+  return id;
 }
 
 bool activate_model(Connection& db, RowId tool_id, RowId material_id, RowId model_id, ActivationReason reason,
                     const std::string& created_at) {
   std::optional<RowId> previous;
   {
-    Statement statement(db, "SELECT id FROM models WHERE tool_id = ? AND material_id = ? AND active = 1");
-    statement.bind_all(tool_id, material_id);
+    Statement statement(db,
+                        "SELECT id FROM models WHERE tool_id = ? AND material_id = ? AND active = 1 "
+                        "AND kind = (SELECT kind FROM models WHERE id = ?)");
+    statement.bind_all(tool_id, material_id, model_id);
     if (statement.step()) previous = statement.column_int64(0);
   }
   if (previous == model_id) return false;

@@ -12,8 +12,10 @@
 namespace feedplan::model_db::detail {
 
 std::vector<ModelRecord> select_models_for(const Connection& db, RowId tool_id, RowId material_id);
-std::optional<ModelRecord> select_active_model(const Connection& db, RowId tool_id, RowId material_id);
-std::vector<ModelRecord> select_active_models(const Connection& db);
+//! The active version of the pair of `kind` (each kind has its own).
+std::optional<ModelRecord> select_active_model(const Connection& db, RowId tool_id, RowId material_id, ModelKind kind);
+//! Every active version of `kind`, ordered by tool and material name.
+std::vector<ModelRecord> select_active_models(const Connection& db, ModelKind kind);
 std::vector<ModelRecord> select_all_models(const Connection& db);
 std::optional<ModelRecord> select_model_by_id(const Connection& db, RowId id);
 
@@ -24,7 +26,7 @@ int max_model_version(const Connection& db, RowId tool_id, RowId material_id);
 //! it (tool and material from the ids). Returns the row id.
 RowId insert_model_row(Connection& db, RowId tool_id, RowId material_id, const ModelRecord& model);
 
-//! Makes model `model_id` the active version of its pair and records the change with `reason`.
+//! Makes model `model_id` the active version of its pair and of its kind and records the change with `reason`.
 //! Returns false (and records nothing) when it already was the active one.
 bool activate_model(Connection& db, RowId tool_id, RowId material_id, RowId model_id, ActivationReason reason,
                     const std::string& created_at);

@@ -157,6 +157,40 @@ CREATE TABLE cutting_test_signals (
 );
 )sql";
 
+// Version 4: model versions of two kinds. A version is a response surface (seed 003 Eq. 1) or a mechanistic
+// model (cutting and edge coefficients, size effect, per-tooth runout) with its identification; each kind
+// has its own active version per tool and material. A mechanistic version keeps the range and conditions
+// of its tests in the models row (β = 0) and its coefficients in mechanistic_models.
+constexpr const char* kVersion4 = R"sql(
+ALTER TABLE models ADD COLUMN kind TEXT NOT NULL DEFAULT 'response_surface'
+  CHECK (kind IN ('response_surface', 'mechanistic'));
+DROP INDEX models_one_active;
+CREATE UNIQUE INDEX models_one_active ON models (tool_id, material_id, kind) WHERE active = 1;
+CREATE TABLE mechanistic_models (
+  model_id INTEGER PRIMARY KEY REFERENCES models(id),
+  ktc_n_per_mm2 REAL NOT NULL,
+  krc_n_per_mm2 REAL NOT NULL,
+  kac_n_per_mm2 REAL NOT NULL,
+  kte_n_per_mm REAL NOT NULL,
+  kre_n_per_mm REAL NOT NULL,
+  kae_n_per_mm REAL NOT NULL,
+  size_exponent REAL NOT NULL CHECK (size_exponent >= 0 AND size_exponent < 1),
+  size_reference_chip_mm REAL NOT NULL CHECK (size_reference_chip_mm > 0),
+  size_min_chip_mm REAL NOT NULL CHECK (size_min_chip_mm > 0),
+  runout_json TEXT NOT NULL,           -- JSON array of the runout per tooth, mm (empty: none)
+  helix_deg REAL CHECK (helix_deg IS NULL OR (helix_deg > -90 AND helix_deg < 90)),  -- identified; NULL: the tool's
+  covariance_json TEXT NOT NULL,       -- 4×4 covariance of (Ktc, Krc, Kte, Kre), row-major JSON array of 16
+  signal_rms_residual_n REAL NOT NULL,
+  condition_number REAL NOT NULL,
+  identified INTEGER NOT NULL CHECK (identified IN (0, 1)),
+  unidentifiable_json TEXT NOT NULL    -- JSON array of strings
+);
+CREATE TRIGGER mechanistic_models_never_changed BEFORE UPDATE ON mechanistic_models
+  BEGIN SELECT RAISE(ABORT, 'mechanistic models are never changed; add a version instead'); END;
+CREATE TRIGGER mechanistic_models_never_deleted BEFORE DELETE ON mechanistic_models
+  BEGIN SELECT RAISE(ABORT, 'models are never deleted; roll back to another version instead'); END;
+)sql";
+
 int pragma_int(Connection& connection, const char* pragma) {
   Statement statement(connection, std::string("PRAGMA ") + pragma);
   return statement.step() ? statement.column_int(0) : 0;
@@ -191,12 +225,12 @@ void run_quick_check(Connection& connection) {
 }  // namespace
 
 const std::vector<std::string>& schema_migrations() {
-  static const std::vector<std::string> migrations{kVersion1, kVersion2, kVersion3};
+  static const std::vector<std::string> migrations{kVersion1, kVersion2, kVersion3, kVersion4};
   return migrations;
 }
 
 int prepare_schema(Connection& connection, OpenMode mode, bool quick_check) {
-  static_assert(kStoreSchemaVersion == 3, "add the migration step to schema_migrations()");
+  static_assert(kStoreSchemaVersion == 4, "add the migration step to schema_migrations()");
   const auto& migrations = schema_migrations();
   // Reading the header is the first access to the file: a file that is not a database fails here.
   const int application_id = pragma_int(connection, "application_id");

@@ -133,7 +133,7 @@ RowId insert_and_activate_model(detail::Connection& db, const ModelRecord& model
   throw_if_any(std::move(problems));
 
   ModelRecord stored = model;
-  const auto previous = detail::select_active_model(db, ids.tool_id, ids.material_id);
+  const auto previous = detail::select_active_model(db, ids.tool_id, ids.material_id, model.kind);
   stored.version = detail::max_model_version(db, ids.tool_id, ids.material_id) + 1;
   stored.parent_id = previous ? std::optional<RowId>(previous->id) : std::nullopt;
   stored.created_at = detail::utc_now_iso8601();
@@ -153,7 +153,7 @@ void require_fitted_from_active(const detail::Connection& db, const ModelRecord&
   std::vector<InputProblem> problems;
   const auto ids = detail::pair_ids(db, model.tool_name, model.material_name, "models.", problems);
   if (!problems.empty()) return;  // insert_and_activate_model names them
-  const auto active = detail::select_active_model(db, ids.tool_id, ids.material_id);
+  const auto active = detail::select_active_model(db, ids.tool_id, ids.material_id, fitted_from->kind);
   if (active && active->id != fitted_from_id) throw StaleModelError(*fitted_from, *active);
 }
 
@@ -184,6 +184,19 @@ ModelRecord Store::add_model(const ModelRecord& model) {
   const RowId id = insert_and_activate_model(db, model, [this](const char* step) { impl_->after_step(step); });
   transaction.commit();
   return *detail::select_model_by_id(db, id);
+}
+
+std::vector<ModelRecord> Store::add_models(const std::vector<ModelRecord>& models) {
+  auto& db = impl_->db;
+  WriteTransaction transaction(db);
+  std::vector<RowId> ids;
+  for (const ModelRecord& model : models) {
+    ids.push_back(insert_and_activate_model(db, model, [this](const char* step) { impl_->after_step(step); }));
+  }
+  transaction.commit();
+  std::vector<ModelRecord> stored;
+  for (const RowId id : ids) stored.push_back(*detail::select_model_by_id(db, id));
+  return stored;
 }
 
 std::pair<ModelRecord, LearningEntry> Store::add_learned_model(const ModelRecord& model, const LearningEntry& entry,
@@ -220,12 +233,15 @@ std::vector<ModelRecord> Store::models_for(std::string_view tool_name, std::stri
   return detail::select_models_for(impl_->db, ids.tool_id, ids.material_id);
 }
 
-std::optional<ModelRecord> Store::active_model(std::string_view tool_name, std::string_view material_name) const {
+std::optional<ModelRecord> Store::active_model(std::string_view tool_name, std::string_view material_name,
+                                               ModelKind kind) const {
   const auto ids = detail::pair_ids_or_throw(impl_->db, tool_name, material_name, "");
-  return detail::select_active_model(impl_->db, ids.tool_id, ids.material_id);
+  return detail::select_active_model(impl_->db, ids.tool_id, ids.material_id, kind);
 }
 
-std::vector<ModelRecord> Store::active_models() const { return detail::select_active_models(impl_->db); }
+std::vector<ModelRecord> Store::active_models(ModelKind kind) const {
+  return detail::select_active_models(impl_->db, kind);
+}
 
 std::vector<ModelRecord> Store::all_models() const { return detail::select_all_models(impl_->db); }
 

@@ -101,6 +101,20 @@ std::optional<ModelSource> parse_model_source(std::string_view text) {
   return std::nullopt;
 }
 
+std::string to_string(ModelKind kind) {
+  switch (kind) {
+    case ModelKind::kResponseSurface: return "response_surface";
+    case ModelKind::kMechanistic: return "mechanistic";
+  }
+  return "?";
+}
+
+std::optional<ModelKind> parse_model_kind(std::string_view text) {
+  if (text == "response_surface" || text == "response-surface") return ModelKind::kResponseSurface;
+  if (text == "mechanistic") return ModelKind::kMechanistic;
+  return std::nullopt;
+}
+
 std::vector<InputProblem> validate(const ToolRecord& tool) {
   ProblemList problems("tools.");
   check_name(problems, "name", tool.name);
@@ -149,7 +163,29 @@ std::vector<InputProblem> validate(const ModelRecord& record) {
     problems.non_negative("fit.standard_errors[" + std::to_string(i) + "]", fit.standard_errors[i]);
   }
   check_utf8(problems, "note", record.note);
+  if (record.kind == ModelKind::kMechanistic && !record.mechanistic) {
+    problems.add_value("mechanistic", "(none)", "a mechanistic version needs its coefficients");
+  }
+  if (record.kind == ModelKind::kResponseSurface && record.mechanistic) {
+    problems.add_value("mechanistic", "(given)", "a response-surface version holds no mechanistic coefficients");
+  }
+  if (record.mechanistic) {
+    const MechanisticFit& fit_m = *record.mechanistic;
+    for (std::size_t i = 0; i < 4; ++i) {
+      for (std::size_t j = 0; j < 4; ++j) {
+        problems.finite("mechanistic.covariance[" + std::to_string(4 * i + j) + "]", fit_m.covariance[i][j]);
+      }
+    }
+    problems.non_negative("mechanistic.signal_rms_residual_n", fit_m.signal_rms_residual_n);
+    problems.non_negative("mechanistic.condition_number", fit_m.condition_number);
+    for (std::size_t i = 0; i < fit_m.unidentifiable.size(); ++i) {
+      check_utf8(problems, "mechanistic.unidentifiable[" + std::to_string(i) + "]", fit_m.unidentifiable[i]);
+    }
+  }
   for (auto& problem : problems.take()) list.push_back(std::move(problem));
+  if (record.mechanistic) {
+    for (auto& problem : model::validate(record.mechanistic->model, "models.mechanistic.")) list.push_back(std::move(problem));
+  }
   return list;
 }
 

@@ -57,7 +57,7 @@ TEST_F(ExchangeTest, ExportImportExportIsByteIdentical) {
 TEST_F(ExchangeTest, TheDocumentHasTheDocumentedShape) {
   const auto document = nlohmann::json::parse(export_json(source_));
   EXPECT_EQ(document["format"], "feedplan-model-db");
-  EXPECT_EQ(document["format_version"], 1);
+  EXPECT_EQ(document["format_version"], 2);
   EXPECT_EQ(document["contents"], "all_versions");
   ASSERT_EQ(document["tools"].size(), 3u);
   EXPECT_EQ(document["tools"][0]["name"], "SC EM D10 Z4");  // sorted by name
@@ -258,8 +258,8 @@ TEST_F(BadDocumentTest, AnIntegerBeyondAnIntIsNamedNotWrapped) {
 }
 
 TEST_F(BadDocumentTest, NewerFormatVersionAsksToUpgrade) {
-  EXPECT_EQ(error_after([](auto& d) { d["format_version"] = 2; }),
-            "other.json has format_version 2, newer than this feedplan reads (1): upgrade feedplan");
+  EXPECT_EQ(error_after([](auto& d) { d["format_version"] = 3; }),
+            "other.json has format_version 3, newer than this feedplan reads (2): upgrade feedplan");
 }
 
 TEST_F(BadDocumentTest, IsoGroupX) {
@@ -292,9 +292,10 @@ TEST_F(BadDocumentTest, TwoActiveVersionsAndABadParent) {
               d["models"][0]["active"] = true;
               d["models"][1]["parent_version"] = 5;
             }),
-            "models[1].parent_version = 5: must be an earlier version of SC EM D10 Z4 in S50C in the document (or "
+            "models[1].parent_version = 5: must be an earlier response_surface version of SC EM D10 Z4 in S50C in the "
+            "document (or "
             "null)\n"
-            "models SC EM D10 Z4 in S50C has 2 active versions: must have exactly one");
+            "models SC EM D10 Z4 in S50C has 2 active response_surface versions: must have exactly one");
 }
 
 TEST_F(BadDocumentTest, BadCuttingTestAndTimeStamp) {

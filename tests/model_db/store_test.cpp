@@ -44,7 +44,8 @@ TEST(Store, CreatesTheSchemaWithItsVersionInWalMode) {
   EXPECT_EQ(fixtures::raw_sql(path, "PRAGMA journal_mode"), "wal");
   EXPECT_EQ(fixtures::raw_sql(path, "SELECT group_concat(name, ',') FROM (SELECT name FROM sqlite_schema WHERE "
                                     "type = 'table' ORDER BY name)"),
-            "cutting_test_peaks,cutting_test_signals,cutting_tests,learning_history,learning_samples,materials,model_activations,"
+            "cutting_test_peaks,cutting_test_signals,cutting_tests,learning_history,learning_samples,materials,"
+            "mechanistic_models,model_activations,"
             "models,tools");
 }
 
@@ -557,7 +558,7 @@ TEST(StoreOpen, NewerSchemaVersionAsksToUpgradeFeedplanAndChangesNothing) {
   fixtures::raw_sql(path, "PRAGMA user_version = 7");
   const std::string before = fixtures::file_bytes(path);
   const std::string expected =
-      path.string() + " has model database schema version 7, newer than this feedplan knows (3): upgrade feedplan";
+      path.string() + " has model database schema version 7, newer than this feedplan knows (4): upgrade feedplan";
   EXPECT_EQ(input_error_of([&] { Store::open(path, OpenMode::kExisting); }), expected);
   EXPECT_EQ(input_error_of([&] { Store::open(path, OpenMode::kReadOnly); }), expected);
   EXPECT_EQ(fixtures::file_bytes(path), before);

@@ -65,6 +65,11 @@ struct MechanisticIdentificationOptions {
   //! fit without runout. Only differences between teeth are seen, and the numbering is the phase's: see
   //! MechanisticIdentification::model.
   bool identify_runout = false;
+  //! With identify_runout, also fit the flutes' helix angle (one for all tests, within ±20° of the cutter's
+  //! catalogue value): the width of each tooth's force pulse in a narrow cut shows it, and a helix a few
+  //! degrees off changes the peak of such a cut by as much as the runout does. The result is
+  //! MechanisticModel::helix_deg.
+  bool identify_helix = false;
 };
 
 //! Whether the tests could separate the coefficients.
@@ -106,5 +111,14 @@ std::vector<InputProblem> validate(const std::vector<MechanisticCuttingTest>& te
 //! status is kIllConditioned and `unidentifiable` says which combination and why.
 MechanisticIdentification identify_mechanistic(const std::vector<MechanisticCuttingTest>& tests,
                                                const MechanisticIdentificationOptions& options = {});
+
+//! K_tc, K_rc, K_te, K_re refitted to `tests` by identify_mechanistic's last, linear step, with each test's
+//! spindle-angle phase (`phase_rad`, one per test, as MechanisticIdentification::phase_rad) and `fixed`'s
+//! runout and size effect held: a leave-one-out check refits this way, where searching the phases and the
+//! runout again for every left-out test would cost a whole identification each. Returns `fixed` with the
+//! four coefficients replaced. Throws InputError with validate()'s problems, or for a phase count that
+//! is not the test count.
+MechanisticModel refit_coefficients(const std::vector<MechanisticCuttingTest>& tests,
+                                    const std::vector<double>& phase_rad, const MechanisticModel& fixed);
 
 }  // namespace feedplan::model

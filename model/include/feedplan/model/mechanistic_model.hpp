@@ -6,6 +6,7 @@
 // docs/method.md §6.2), and each tooth j of the cutter offset radially by its runout r_j.
 // The force kernel on engaged arcs is in mechanistic_force.hpp.
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -31,11 +32,16 @@ struct MechanisticModel {
   //! Radial runout of each tooth, mm: tooth j cuts at radius r + runout_mm[j] (teeth numbered in the
   //! order they pass a point, see mechanistic_force.hpp). Empty: none; else one value per flute.
   std::vector<double> runout_mm;
+  //! The flutes' helix angle the cutting tests showed, deg, in (−90, 90): the kernel uses it instead of the
+  //! cutter's catalogue helix (a tool's helix is a nominal value; the pulse of each tooth shows the real
+  //! one). Empty: the cutter's.
+  std::optional<double> helix_deg;
 };
 
 //! Every problem with the model's numbers, each named "<field_prefix><field>" with its value and what
 //! was expected ("mechanistic.ktc_n_per_mm2 = nan: must be finite"): finite coefficients; a size
-//! exponent in [0, 1); a reference and a smallest chip finite and > 0; finite runouts. Empty when the
+//! exponent in [0, 1); a reference and a smallest chip finite and > 0; finite runouts; a helix, when
+//! given, in (−90, 90). Empty when the
 //! model is usable. How many runouts a cutter needs is checked with the cutter (mechanistic_force.hpp).
 std::vector<InputProblem> validate(const MechanisticModel& model, const std::string& field_prefix = "mechanistic.");
 

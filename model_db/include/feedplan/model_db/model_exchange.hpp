@@ -2,13 +2,18 @@
 // Moving a model database's content between files: export to one JSON document, import that document
 // into another store in one transaction.
 //
-// The document ("format": "feedplan-model-db", "format_version": 1) holds, in this order and sorted so
+// The document ("format": "feedplan-model-db", "format_version": 2) holds, in this order and sorted so
 // that equal content gives equal text:
 //   tools            by name: name, diameter_mm, flutes, helix_deg, tool_material, coating, notes
 //   materials        by name: name, iso_group, hardness_value, hardness_scale, notes
 //   models           by tool, material, version: tool, material, version, parent_version (null when
 //                    the parent is not in the document), active, source, created_at, note,
+//                    kind ("response_surface" or "mechanistic"; absent in format 1: response surface),
 //                    model {beta[6], centres, scales, range, axial_depth_mm, spindle_rpm, quantity},
+//                    mechanistic (kind mechanistic) {the six coefficients, size effect, runout_mm[], helix_deg
+//                    (null: the tool's),
+//                    covariance[16] of Ktc, Krc, Kte, Kre, signal_rms_residual_n, condition_number,
+//                    identified, unidentifiable[]},
 //                    fit {n, rmse_n, r_squared, covariance[36], standard_errors[6], loo_rmse_n}
 //   cutting_tests    by tool, material, created_at: conditions, derived values, peak statistics,
 //                    steady_peaks_n[], synchronous_fx_n[], synchronous_fy_n[] (optional: the force over a
@@ -27,8 +32,9 @@
 // - Model versions are matched by tool, material and version number. Same content: skipped. A version
 //   number not yet used is imported with its number. A clash (same number, different content) is an
 //   InputError with kFail; otherwise the incoming version is appended as the next free version (history
-//   is never rewritten) and the renumbering reported. The document's active version becomes the active
-//   one, except with kRename when the pair already had an active version (then that one stays).
+//   is never rewritten) and the renumbering reported. The document's active version of each kind becomes
+//   the active one of that kind, except with kRename when the pair already had an active version of the
+//   kind (then that one stays).
 // - Cutting tests and learning entries identical to stored ones (every field, created_at included) are
 //   skipped, so importing a document twice changes nothing.
 // - The whole document is checked first (every problem reported at once, with its place, e.g.
@@ -44,8 +50,9 @@
 
 namespace feedplan::model_db {
 
-//! The document format written by export_json and read by import_json.
-inline constexpr int kExchangeFormatVersion = 1;
+//! The document format written by export_json and read by import_json (2: model versions carry their
+//! "kind" and a mechanistic version its "mechanistic" coefficients; 1, response surfaces only, is read too).
+inline constexpr int kExchangeFormatVersion = 2;
 
 //! What to export.
 struct ExportOptions {

@@ -1,6 +1,7 @@
 #pragma once
-// The model database: one SQLite file holding tools, workpiece materials, the versions of the
-// response-surface model of each tool in each material (exactly one of them active), the cutting tests
+// The model database: one SQLite file holding tools, workpiece materials, the versions of the force
+// models of each tool in each material (response surfaces and mechanistic models; exactly one version of
+// each kind active), the cutting tests
 // they were fitted on, the audit trail of which version was active when, and the learning history.
 //
 // Guarantees:
@@ -35,7 +36,7 @@
 namespace feedplan::model_db {
 
 //! The schema version this code writes and reads (PRAGMA user_version).
-inline constexpr int kStoreSchemaVersion = 3;
+inline constexpr int kStoreSchemaVersion = 4;
 
 //! How Store::open treats the file.
 enum class OpenMode {
@@ -110,11 +111,15 @@ class Store {
   // ---- models ----
 
   //! Adds a new version of the model of model.tool_name in model.material_name: version = the
-  //! highest so far + 1, parent = the version active until now (none for the first), created_at =
-  //! now; it becomes the active version and the change is recorded. Ignores the fields marked "set by
+  //! highest so far + 1 (over both kinds), parent = the version of the same kind active until now (none
+  //! for the first), created_at = now; it becomes the active version of its kind and the change is recorded. Ignores the fields marked "set by
   //! the store". Throws InputError for unknown tool or material names ("models.tool_name = 'X':
   //! unknown tool; known: …") and every validate() problem. Returns the stored version.
   ModelRecord add_model(const ModelRecord& model);
+
+  //! add_model for each of `models` in turn, in one transaction: all are stored or none (e.g. the response
+  //! surface and the mechanistic model fitted from the same tests). Returns the stored versions in order.
+  std::vector<ModelRecord> add_models(const std::vector<ModelRecord>& models);
 
   //! A learned version, the learning entry that explains it and the per-revolution samples it was learned
   //! from, in one transaction: add_model(model), then add_learning_entry(entry) with model_id_after = the
@@ -136,13 +141,15 @@ class Store {
   //! Throws InputError for an unknown tool or material.
   std::vector<ModelRecord> models_for(std::string_view tool_name, std::string_view material_name) const;
 
-  //! The active version for the pair, or nothing when it has no model. Throws InputError for an
+  //! The active version of `kind` for the pair (each kind has its own active version; the response
+  //! surface unless asked), or nothing when it has no model of that kind. Throws InputError for an
   //! unknown tool or material.
-  std::optional<ModelRecord> active_model(std::string_view tool_name, std::string_view material_name) const;
+  std::optional<ModelRecord> active_model(std::string_view tool_name, std::string_view material_name,
+                                          ModelKind kind = ModelKind::kResponseSurface) const;
 
-  //! Every active version in the store (one per tool and material that has a model), ordered by
+  //! Every active version of `kind` in the store (one per tool and material that has a model of it), ordered by
   //! tool name and material name.
-  std::vector<ModelRecord> active_models() const;
+  std::vector<ModelRecord> active_models(ModelKind kind = ModelKind::kResponseSurface) const;
 
   //! Every model version in the store, ordered by tool name, material name and version.
   std::vector<ModelRecord> all_models() const;

@@ -14,6 +14,7 @@
 #include "feedplan/core/input_error.hpp"
 #include "feedplan/model_db/cutting_test.hpp"
 #include "feedplan/model/covariance.hpp"
+#include "feedplan/model/mechanistic_model.hpp"
 #include "feedplan/model/response_surface_model.hpp"
 
 namespace feedplan::model_db {
@@ -82,6 +83,29 @@ struct ModelFitStatistics {
   double loo_rmse_n = 0.0;                   //!< leave-one-out RMS prediction error, N
 };
 
+//! Which force model a version holds.
+enum class ModelKind {
+  kResponseSurface,  //!< seed 003 Eq. 1: the per-revolution peak as a quadratic in (t_m, L)
+  kMechanistic,      //!< cutting and edge coefficients on the engaged arcs (model/mechanistic_model.hpp)
+};
+
+//! "response_surface" or "mechanistic" (the store's and the exchange file's spelling).
+std::string to_string(ModelKind kind);
+//! The kind named "response_surface"/"response-surface" or "mechanistic", or nothing for anything else.
+std::optional<ModelKind> parse_model_kind(std::string_view text);
+
+//! What a mechanistic version holds beyond the fields every version has: the coefficients and what their
+//! identification from the cutting tests said (model/mechanistic_identification.hpp).
+struct MechanisticFit {
+  model::MechanisticModel model;  //!< coefficients, size effect, per-tooth runout
+  //! Covariance of (K_tc, K_rc, K_te, K_re) from the identification, N²/mm⁴, N²/mm³, N²/mm² (row-major)
+  std::array<std::array<double, 4>, 4> covariance{};
+  double signal_rms_residual_n = 0.0;  //!< RMS residual of the synchronous-average bins, N
+  double condition_number = 0.0;       //!< of the column-scaled regressor matrix
+  bool identified = true;              //!< false: the tests left a combination of coefficients poorly determined
+  std::vector<std::string> unidentifiable;  //!< what the tests could not tell, in words
+};
+
 //! One version of the model of one tool in one material.
 struct ModelRecord {
   RowId id = 0;                        //!< row id (set by the store)
@@ -90,8 +114,17 @@ struct ModelRecord {
   int version = 0;                     //!< 1, 2, … per tool and material (set by the store)
   std::optional<RowId> parent_id;      //!< the version this one was derived from (set by the store)
   std::optional<int> parent_version;   //!< that version's number, for people (set by the store)
-  model::ResponseSurfaceModel model;          //!< coefficients, centres, scales, fitted range, conditions
-  ModelFitStatistics fit;              //!< fit statistics
+  ModelKind kind = ModelKind::kResponseSurface;  //!< which force model the version holds
+  //! The response surface: coefficients, centres, scales, fitted range, conditions. For a mechanistic
+  //! version only the range and conditions of the cutting tests it was identified from (β = 0): never
+  //! a force model.
+  model::ResponseSurfaceModel model;
+  //! The mechanistic model of a kMechanistic version (empty for a response surface).
+  std::optional<MechanisticFit> mechanistic;
+  //! Fit statistics. For a mechanistic version n, rmse_n, r_squared and loo_rmse_n are over the tests'
+  //! mean per-revolution peaks predicted by the kernel (comparable with a response surface's), and the
+  //! covariance and standard errors of β are 0.
+  ModelFitStatistics fit;
   ModelSource source = ModelSource::kCuttingTests;  //!< how the version came to be
   std::string created_at;              //!< UTC ISO 8601, e.g. "2024-05-01T12:00:00.000Z" (set by the store)
   std::string note;                    //!< free text, e.g. "learned from pocket A, 3 logs"
