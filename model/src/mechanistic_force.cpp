@@ -156,8 +156,10 @@ double xy_force_n(const Kernel& kernel, const std::array<double, 6>& k, double s
   return std::sqrt(fx_n * fx_n + fy_n * fy_n);
 }
 
-// Golden-section search for the largest |F_xy| on [lo, hi], to kPeakAngleTolerance.
-double refined_peak_n(const Kernel& kernel, const std::array<double, 6>& k, double lo, double hi, double best) {
+// Golden-section search for the largest |F_xy| on [lo, hi], to kPeakAngleTolerance; `best` is the sample
+// at `best_angle_rad` that bracketed it.
+MechanisticPeak refined_peak(const Kernel& kernel, const std::array<double, 6>& k, double lo, double hi,
+                             MechanisticPeak best) {
   constexpr double kInvPhi = 0.6180339887498949;
   double x1 = hi - kInvPhi * (hi - lo), x2 = lo + kInvPhi * (hi - lo);
   double f1 = xy_force_n(kernel, k, x1), f2 = xy_force_n(kernel, k, x2);
@@ -172,7 +174,9 @@ double refined_peak_n(const Kernel& kernel, const std::array<double, 6>& k, doub
       f2 = xy_force_n(kernel, k, x2);
     }
   }
-  return std::max({best, f1, f2});
+  if (f1 > best.force_n) best = {f1, x1};
+  if (f2 > best.force_n) best = {f2, x2};
+  return best;
 }
 
 }  // namespace
@@ -209,8 +213,8 @@ MechanisticForce predicted_force(const MechanisticModel& model, std::span<const 
   return to_force(Kernel(model, sections, cutter, feed_per_tooth_mm).at(spindle_angle_rad), coefficients(model));
 }
 
-double predicted_peak_force_n(const MechanisticModel& model, std::span<const EngagedSection> sections,
-                              const CutterGeometry& cutter, double feed_per_tooth_mm) {
+MechanisticPeak predicted_peak(const MechanisticModel& model, std::span<const EngagedSection> sections,
+                               const CutterGeometry& cutter, double feed_per_tooth_mm) {
   const Kernel kernel(model, sections, cutter, feed_per_tooth_mm);
   const std::array<double, 6> k = coefficients(model);
   const bool runout = kernel.has_runout();
@@ -229,13 +233,19 @@ double predicted_peak_force_n(const MechanisticModel& model, std::span<const Eng
   const std::size_t candidates =
       static_cast<std::size_t>(runout ? std::max(kPeakCandidates, cutter.flutes) : kPeakCandidates);
   const double ratio = runout ? kPeakCandidateRatioRunout : kPeakCandidateRatio;
-  double peak = 0.0;
+  MechanisticPeak peak;
   for (std::size_t c = 0; c < maxima.size() && c < candidates; ++c) {
     const int i = maxima[c];
     if (force[i] < ratio * force[maxima.front()]) break;
-    peak = std::max(peak, refined_peak_n(kernel, k, (i - 1) * step, (i + 1) * step, force[i]));
+    const MechanisticPeak refined = refined_peak(kernel, k, (i - 1) * step, (i + 1) * step, {force[i], i * step});
+    if (refined.force_n > peak.force_n) peak = refined;
   }
   return peak;
+}
+
+double predicted_peak_force_n(const MechanisticModel& model, std::span<const EngagedSection> sections,
+                              const CutterGeometry& cutter, double feed_per_tooth_mm) {
+  return predicted_peak(model, sections, cutter, feed_per_tooth_mm).force_n;
 }
 
 MechanisticForce predicted_mean_force(const MechanisticModel& model, std::span<const EngagedSection> sections,

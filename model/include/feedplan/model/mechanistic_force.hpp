@@ -102,6 +102,18 @@ MechanisticForce predicted_force(const MechanisticModel& model, std::span<const 
 double predicted_peak_force_n(const MechanisticModel& model, std::span<const EngagedSection> sections,
                               const CutterGeometry& cutter, double feed_per_tooth_mm);
 
+//! The peak of |F_xy| over a revolution and the spindle angle at which the kernel reaches it.
+struct MechanisticPeak {
+  double force_n = 0.0;            //!< largest |F_xy| over one spindle revolution, N (predicted_peak_force_n)
+  double spindle_angle_rad = 0.0;  //!< Ω at which it is reached, rad, in [−2π/N, 2π) (0 with nothing engaged)
+};
+
+//! predicted_peak_force_n() with the spindle angle of the peak, found by the same scan and refinement
+//! (predicted_peak_force_n returns its force). For propagating the coefficients' uncertainty to the peak:
+//! at the peak's angle the regressors give the force's gradient in the coefficients. Same requirements.
+MechanisticPeak predicted_peak(const MechanisticModel& model, std::span<const EngagedSection> sections,
+                               const CutterGeometry& cutter, double feed_per_tooth_mm);
+
 //! The mean force over one spindle revolution. Averaging over Ω turns each tooth's integral along its
 //! flute into (section height / 2π) × the integral over the engaged arcs, independent of the helix;
 //! that is evaluated in closed form without size effect and runout (Altintas' mean forces), on 1° cells
