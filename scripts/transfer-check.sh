@@ -6,10 +6,11 @@
 #   1. runs the straight cutting tests of the sample database's grid (scripts/build-sample-db.sh:
 #      a_e = 0.05 … 0.3 × D, f_z = 0.5 … 2.5 × 0.004 mm/mm × D, a_p = D, 2546 rpm) for the samples' tool
 #      SC EM D10 Z4 in S50C on MACHINE (`feedplan simulate --cutting-test --machine`), imports each log
-#      and fits the response surface (`feedplan db fit`);
+#      and fits both kinds of model from them (`feedplan db fit --kind both`: the response surface on the
+#      peaks, the mechanistic model — coefficients, runout, helix — on the force over a revolution);
 #   2. plans samples/trochoid.yaml (R 5), trochoid_r15.yaml (R 15), spiral.yaml and corner.yaml with
-#      that model (`feedplan plan`), and runs each program on the same machine (`feedplan simulate
-#      PROGRAM --spec SPEC --machine MACHINE --peaks PEAKS.csv`);
+#      each kind (`feedplan plan --model-kind`), and runs each program on the same machine (`feedplan
+#      simulate PROGRAM --spec SPEC --machine MACHINE --peaks PEAKS.csv`);
 #   3. prints a table per cycle from the per-revolution peaks of the true force (the peaks CSV):
 #        in_cut      revolutions with a peak above 5 % of the target;
 #        max_peak_n  the largest per-revolution peak, and max_err_pct its error vs the target;
@@ -25,7 +26,8 @@
 # the model only through what the cutting tests measured.
 #
 # Usage: scripts/transfer-check.sh MACHINE.yaml   (runs build/cli/feedplan, or $FEEDPLAN_BIN)
-# Takes about 15 s (25 cutting tests, 4 plans, 4 programs on the virtual machine).
+# Takes about 2 minutes (25 cutting tests, the mechanistic identification, 8 plans, 8 programs on the
+# virtual machine).
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 feedplan=${FEEDPLAN_BIN:-"$root/build/cli/feedplan"}
@@ -67,7 +69,7 @@ for aef in 0.05 0.1 0.15 0.2 0.3; do
         --feed-mm-per-min "$feed" --radial-depth-mm "$ae" --axial-depth-mm $d --mode down
   done
 done
-run "$feedplan" db fit --db "$db" --tool "$tool" --material $material --note "transfer check on $machine"
+run "$feedplan" db fit --db "$db" --tool "$tool" --material $material --kind both --note "transfer check on $machine"
 
 # Table of one cycle from its peaks CSV (revolution,t_start_s,t_end_s,t_peak_s,peak_xy_n,mean_xy_n).
 table_row() {  # name target peaks.csv loops(yes/no)
@@ -91,7 +93,7 @@ table_row() {  # name target peaks.csv loops(yes/no)
         e = 100 * (front_max[f] - target) / target; sum += e
         if (f == 1 || (e < 0 ? -e : e) > (worst < 0 ? -worst : worst)) worst = e
       }
-      printf "%-16s %8.0f %7d %10.1f %11.1f %11.1f", name, target, n, max, 100 * (max - target) / target, p50
+      printf "%-22s %8.0f %7d %10.1f %11.1f %11.1f", name, target, n, max, 100 * (max - target) / target, p50
       if (loops == "yes") printf " %6d %15.1f %14.1f\n", fronts, worst, fronts ? sum / fronts : 0
       else printf " %6s %15s %14s\n", "-", "-", "-"
     }' "$3"
@@ -99,23 +101,26 @@ table_row() {  # name target peaks.csv loops(yes/no)
 
 rows=()
 for spec in trochoid trochoid_r15 spiral corner; do
-  specfile="$root/samples/$spec.yaml"
-  target=$(awk -F: '/^target_force_n:/ { gsub(/[ ]/, "", $2); print $2 }' "$specfile")
-  echo "+ $(printf '%q ' "$feedplan" plan "$specfile" --db "$db" -o "$work/$spec.nc")" >&2
-  if ! "$feedplan" plan "$specfile" --db "$db" -o "$work/$spec.nc" > /dev/null 2> "$work/plan.err"; then
+  for kind in response-surface mechanistic; do
+    specfile="$root/samples/$spec.yaml"
+    target=$(awk -F: '/^target_force_n:/ { gsub(/[ ]/, "", $2); print $2 }' "$specfile")
+    name="$spec ${kind%%-*}"
+    out="$work/$spec.$kind"
+    echo "+ $(printf '%q ' "$feedplan" plan "$specfile" --db "$db" --model-kind "$kind" -o "$out.nc")" >&2
+    if ! "$feedplan" plan "$specfile" --db "$db" --model-kind "$kind" -o "$out.nc" > /dev/null 2> "$work/plan.err"; then
+      cat "$work/plan.err" >&2
+      rows+=("$(printf '%-22s %8.0f  no plan: %s' "$name" "$target" "$(grep -o 'raise the target to at least [0-9.]* N' "$work/plan.err" || echo 'feedplan plan failed, see above')")")
+      continue
+    fi
     cat "$work/plan.err" >&2
-    rows+=("$(printf '%-16s %8.0f  no plan: %s' "$spec" "$target" "$(grep -o 'raise the target to at least [0-9.]* N' "$work/plan.err" || echo 'feedplan plan failed, see above')")")
-    continue
-  fi
-  cat "$work/plan.err" >&2
-  run "$feedplan" simulate "$work/$spec.nc" --spec "$specfile" --machine "$machine" --log "$work/$spec.log.csv" \
-      --peaks "$work/$spec.peaks.csv"
-  loops=no
-  [[ $spec == trochoid* ]] && loops=yes
-  rows+=("$(table_row "$spec" "$target" "$work/$spec.peaks.csv" $loops)")
+    run "$feedplan" simulate "$out.nc" --spec "$specfile" --machine "$machine" --log "$out.log.csv" --peaks "$out.peaks.csv"
+    loops=no
+    [[ $spec == trochoid* ]] && loops=yes
+    rows+=("$(table_row "$name" "$target" "$out.peaks.csv" $loops)")
+  done
 done
 
-echo "machine $machine: response surface fitted on 25 straight cutting tests, cycles planned with it and cut on the same machine"
-printf '%-16s %8s %7s %10s %11s %11s %6s %15s %14s\n' cycle target_n in_cut max_peak_n max_err_pct p50_err_pct \
+echo "machine $machine: both kinds of model fitted on 25 straight cutting tests, cycles planned with each and cut on the same machine"
+printf '%-22s %8s %7s %10s %11s %11s %6s %15s %14s\n' cycle target_n in_cut max_peak_n max_err_pct p50_err_pct \
     fronts worst_front_pct mean_front_pct
 printf '%s\n' "${rows[@]}"

@@ -195,6 +195,9 @@ void print_plan_json(const PlanCommandOptions& o, const PlanInputs& in, const Pl
   out["model"] = {{"id", record.id}, {"version", record.version}, {"tool", record.tool_name},
                   {"material", record.material_name}, {"match", model.chosen.match},
                   {"explanation", model.chosen.explanation}, {"match_status", model_match_json(model)}};
+  out["model_kind"] = model.mechanistic ? "mechanistic" : "response_surface";
+  out["model_kind_reason"] = model.kind_reason;
+  if (model.mechanistic) out["mechanistic_model"] = {{"id", model.mechanistic->id}, {"version", model.mechanistic->version}};
   out["target_force_n"] = in.target_force_n;
   out["blocks"] = result.blocks.size();
   out["samples"] = result.samples.size();
@@ -221,6 +224,7 @@ void print_plan_text(const PlanCommandOptions& o, const PlanInputs& in, const Pl
               spec.material.c_str(), shortest_number_text(in.target_force_n).c_str());
   std::printf("model: id %lld v%d (%s in %s) — %s\n", static_cast<long long>(record.id), record.version,
               record.tool_name.c_str(), record.material_name.c_str(), model.chosen.explanation.c_str());
+  std::printf("model kind: %s\n", model.kind_reason.c_str());
   std::printf("status: %s\n", plan_status_text(result, model).c_str());
   std::printf("model match: %s\n", model_match_line(model).c_str());
   std::printf("plan: %zu samples, %zu blocks, F %.0f–%.0f mm/min, predicted peak %.1f N (engagement %.3f s, plan %.3f s)\n",

@@ -1,3 +1,4 @@
+#include "feedplan/planner/sample_force_model.hpp"
 #include "feedplan/planner/constant_feed.hpp"
 
 #include <algorithm>
@@ -43,12 +44,14 @@ ConstantFeedPrediction predict_constant_feed(const PlanGeometry& geometry, const
       run_controller(s_mm, caps, controller_stops(geometry.path, geometry.engagement), cutting, accel_mm_per_s2);
   out.cycle_time_s = run.cycle_time_s;
   out.cutting_time_s = run.cutting_time_s;
+  const SampleForceModel forces(settings.model, settings.mechanistic ? &*settings.mechanistic : nullptr,
+                                geometry.engagement, geometry.tool);
   for (std::size_t i = 0; i < samples.size(); ++i) {
     const double correction = settings.force_correction.empty() ? 1.0 : settings.force_correction[i];
-    const double load_ratio = chip_load_ratio(settings.model, geometry.engagement, samples[i], geometry.tool);
-    out.peak_force_n = std::max(out.peak_force_n, correction * predicted_force_n(settings.model, samples[i], load_ratio,
-                                                                                 run.speed_mm_per_s[i] * 60.0,
-                                                                                 geometry.tool.flutes, settings.spindle_rpm));
+    out.peak_force_n = std::max(out.peak_force_n, correction * forces.predicted_force_n(samples[i], forces.load_ratio(samples[i]),
+                                                                                        run.speed_mm_per_s[i] * 60.0,
+                                                                                        geometry.tool.flutes,
+                                                                                        settings.spindle_rpm));
   }
   return out;
 }

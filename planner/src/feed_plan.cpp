@@ -1,3 +1,6 @@
+#include "feedplan/planner/engaged_sections.hpp"
+#include "feedplan/model/mechanistic_force.hpp"
+#include "feedplan/planner/sample_force_model.hpp"
 #include "feedplan/planner/feed_plan.hpp"
 
 #include <algorithm>
@@ -124,6 +127,11 @@ std::vector<InputProblem> validate(const PlanSettings& settings, const geometry:
     problems.push_back({"spindle_rpm", "= " + num(settings.spindle_rpm) + ": must be a finite speed > 0 rev/min"});
   }
   if (tool.flutes < 1) problems.push_back({"tool.flutes", "= " + std::to_string(tool.flutes) + ": must be ≥ 1"});
+  if (settings.mechanistic) {
+    for (InputProblem& p : model::validate(*settings.mechanistic, cutter_geometry(tool), "mechanistic.")) {
+      problems.push_back(std::move(p));
+    }
+  }
   const geometry::MachineLimits& m = settings.machine;
   for (InputProblem& p : geometry::validate(m)) problems.push_back(std::move(p));
   if (settings.uncertainty) {
@@ -207,6 +215,7 @@ struct PlanContext {
   const geometry::Tool& tool;
   std::vector<double> s;                      // s_mm of every sample
   std::vector<int> move_first;                // first_samples(path, engagement)
+  SampleForceModel forces;                    // the force model of either kind at the samples
   std::vector<double> load_ratio;             // chip_load_ratio of every sample (feed_limit.hpp)
   // The sample the bound is evaluated on: with a correction c measured along the path, the entry factor
   // is max(ρ, c) in all (force_bound.hpp), so its chip-area ratio becomes max(ρ / c, 1).
@@ -228,6 +237,7 @@ PlanContext::PlanContext(const PlanGeometry& geometry, const PlanSettings& setti
       tool(geometry.tool),
       s(n),
       move_first(first_samples(path, engagement)),
+      forces(settings.model, settings.mechanistic ? &*settings.mechanistic : nullptr, geometry.engagement, geometry.tool),
       load_ratio(n) {
   assert(!samples.empty());
   if (uncertainty && uncertainty->off_straight_cut && !settings.force_correction.empty()) {
@@ -238,7 +248,7 @@ PlanContext::PlanContext(const PlanGeometry& geometry, const PlanSettings& setti
   }
   for (std::size_t i = 0; i < n; ++i) {
     s[i] = samples[i].s_mm;
-    load_ratio[i] = chip_load_ratio(settings.model, engagement, samples[i], tool);
+    load_ratio[i] = forces.load_ratio(samples[i]);
   }
 }
 
@@ -290,9 +300,9 @@ double feed_limit_at(const PlanContext& c, const std::vector<double>& centripeta
     planned.feed_limit_mm_per_min = machine.rapid_feed_mm_per_min;
     return machine.rapid_feed_mm_per_min;
   }
-  const SampleFeedLimit limit = sample_feed_limit(c.settings.model, c.bound_sample(i), c.load_ratio[i],
-                                                  c.settings.target_force_n / c.correction(i), c.flutes, c.rpm,
-                                                  c.air_feed, c.uncertainty);
+  const SampleFeedLimit limit = c.forces.feed_limit(c.bound_sample(i), c.load_ratio[i],
+                                                    c.settings.target_force_n / c.correction(i), c.flutes, c.rpm,
+                                                    c.air_feed, c.uncertainty);
   double feed = limit.feed_mm_per_min;
   FeedLimitReason reason = limit.reason;
   if (meets_material(sample)) {
@@ -480,12 +490,12 @@ FirstProblems predict_samples(const PlanContext& c, const ControllerRun& run, Pl
         planned.engaged ? chip_thickness_mm(samples[i], planned.feed_mm_per_min, c.flutes, c.rpm) : 0.0;
     planned.predicted_force_n =
         c.correction(i) *
-        predicted_force_n(settings.model, samples[i], c.load_ratio[i], planned.feed_mm_per_min, c.flutes, c.rpm);
+        c.forces.predicted_force_n(samples[i], c.load_ratio[i], planned.feed_mm_per_min, c.flutes, c.rpm);
     planned.transfer_factor =
-        force_transfer_factor(settings.model, samples[i], c.load_ratio[i], planned.feed_mm_per_min, c.flutes, c.rpm);
-    planned.upper_force_n = c.uncertainty ? c.correction(i) * upper_force_n(settings.model, c.bound_sample(i),
-                                                                            c.load_ratio[i], planned.feed_mm_per_min,
-                                                                            c.flutes, c.rpm, c.uncertainty)
+        c.forces.transfer_factor(samples[i], c.load_ratio[i], planned.feed_mm_per_min, c.flutes, c.rpm);
+    planned.upper_force_n = c.uncertainty ? c.correction(i) * c.forces.upper_force_n(c.bound_sample(i), c.load_ratio[i],
+                                                                                     planned.feed_mm_per_min, c.flutes,
+                                                                                     c.rpm, c.uncertainty)
                                           : planned.predicted_force_n;
     planned.within_model_range = planned.engaged && !model::chip_outside(settings.model.range, planned.chip_thickness_mm) &&
                                  !model::contact_length_outside(settings.model.range, planned.contact_length_mm);
@@ -536,9 +546,9 @@ double baseline_feed_mm_per_min(const PlanContext& c, const PlanResult& result) 
     double feed = machine.max_feed_mm_per_min;
     for (std::size_t i = 0; i < c.n; ++i) {
       if (!result.samples[i].engaged) continue;
-      const SampleFeedLimit limit = sample_feed_limit(c.settings.model, c.samples[i], c.load_ratio[i],
-                                                      summary.max_predicted_force_n / c.correction(i), c.flutes,
-                                                      c.rpm, c.air_feed);
+      const SampleFeedLimit limit = c.forces.feed_limit(c.samples[i], c.load_ratio[i],
+                                                        summary.max_predicted_force_n / c.correction(i), c.flutes,
+                                                        c.rpm, c.air_feed, nullptr);
       if (limit.reason == FeedLimitReason::kAirFeed) continue;
       feed = std::min(feed, limit.target_below_model ? machine.min_feed_mm_per_min : limit.feed_mm_per_min);
     }
@@ -572,10 +582,9 @@ void plan_baseline(const PlanContext& c, const BlockRunner& runner, PlanResult& 
   baseline.cutting_time_s = base_run.cutting_time_s;
   for (std::size_t i = 0; i < c.n; ++i) {
     baseline.peak_force_n =
-        std::max(baseline.peak_force_n, c.correction(i) * predicted_force_n(c.settings.model, c.samples[i],
-                                                                             c.load_ratio[i],
-                                                                             base_run.speed_mm_per_s[i] * 60.0,
-                                                                             c.flutes, c.rpm));
+        std::max(baseline.peak_force_n, c.correction(i) * c.forces.predicted_force_n(c.samples[i], c.load_ratio[i],
+                                                                                      base_run.speed_mm_per_s[i] * 60.0,
+                                                                                      c.flutes, c.rpm));
   }
   summary.time_saved_percent =
       baseline.cycle_time_s > 0.0 ? 100.0 * (baseline.cycle_time_s - summary.cycle_time_s) / baseline.cycle_time_s : 0.0;

@@ -1,3 +1,4 @@
+#include "feedplan/planner/sample_force_model.hpp"
 #include "feedplan/planner/safety_check.hpp"
 
 #include <algorithm>
@@ -36,10 +37,12 @@ double force_limit_mm_per_min(const SafetyCheckInput& input, const geometry::Eng
   if (uncertainty && uncertainty->off_straight_cut) {
     bound_sample.chip_area_ratio = std::max(sample.chip_area_ratio / correction, 1.0);
   }
-  const double load_ratio = chip_load_ratio(settings.model, profile, sample, *input.tool);
+  const SampleForceModel forces(settings.model, settings.mechanistic ? &*settings.mechanistic : nullptr, profile,
+                                *input.tool);
+  const double load_ratio = forces.load_ratio(sample);
   const SampleFeedLimit limit =
-      sample_feed_limit(settings.model, bound_sample, load_ratio, settings.target_force_n / correction,
-                        input.tool->flutes, settings.spindle_rpm, std::numeric_limits<double>::infinity(), uncertainty);
+      forces.feed_limit(bound_sample, load_ratio, settings.target_force_n / correction, input.tool->flutes,
+                        settings.spindle_rpm, std::numeric_limits<double>::infinity(), uncertainty);
   if (limit.target_below_model) return settings.machine.min_feed_mm_per_min;
   return std::max(limit.feed_mm_per_min, settings.machine.min_feed_mm_per_min);
 }

@@ -1,3 +1,4 @@
+#include "feedplan/planner/sample_force_model.hpp"
 #include "feedplan/planner/target_advice.hpp"
 
 #include <algorithm>
@@ -41,6 +42,8 @@ TargetAdvice target_advice(const PlanGeometry& geometry, const PlanSettings& set
   const ForceUncertainty* uncertainty = settings.uncertainty ? &*settings.uncertainty : nullptr;
   const int flutes = geometry.tool.flutes;
   a.needed_min_feed_mm_per_min = std::numeric_limits<double>::infinity();
+  const SampleForceModel forces(settings.model, settings.mechanistic ? &*settings.mechanistic : nullptr,
+                                geometry.engagement, geometry.tool);
   for (std::size_t i = 0; i < result.samples.size() && i < samples.size(); ++i) {
     const PlannedSample& planned = result.samples[i];
     if (!planned.engaged) continue;
@@ -48,16 +51,16 @@ TargetAdvice target_advice(const PlanGeometry& geometry, const PlanSettings& set
     if (!(planned.upper_force_n > settings.target_force_n * (1.0 + 1e-9))) continue;
     ++a.over_target_samples;
     const double correction = settings.force_correction.empty() ? 1.0 : settings.force_correction[i];
-    const double load_ratio = chip_load_ratio(settings.model, geometry.engagement, samples[i], geometry.tool);
-    const double zero_feed_n = correction * upper_force_n(settings.model, samples[i], load_ratio, kVanishingFeedMmPerMin,
-                                                          flutes, settings.spindle_rpm, uncertainty);
+    const double load_ratio = forces.load_ratio(samples[i]);
+    const double zero_feed_n = correction * forces.upper_force_n(samples[i], load_ratio, kVanishingFeedMmPerMin, flutes,
+                                                                 settings.spindle_rpm, uncertainty);
     if (zero_feed_n > settings.target_force_n) {
       ++a.unreachable_samples;
       a.zero_feed_force_n = std::max(a.zero_feed_force_n, zero_feed_n);
       continue;
     }
-    const SampleFeedLimit limit = sample_feed_limit(settings.model, samples[i], load_ratio, settings.target_force_n / correction,
-                                                    flutes, settings.spindle_rpm, settings.machine.max_feed_mm_per_min,
+    const SampleFeedLimit limit = forces.feed_limit(samples[i], load_ratio, settings.target_force_n / correction, flutes,
+                                                    settings.spindle_rpm, settings.machine.max_feed_mm_per_min,
                                                     uncertainty);
     a.needed_min_feed_mm_per_min = std::min(a.needed_min_feed_mm_per_min, limit.feed_mm_per_min);
   }

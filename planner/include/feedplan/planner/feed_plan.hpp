@@ -43,6 +43,7 @@
 #include "feedplan/geometry/stock.hpp"
 #include "feedplan/geometry/tool.hpp"
 #include "feedplan/geometry/tool_path.hpp"
+#include "feedplan/model/mechanistic_model.hpp"
 #include "feedplan/model/response_surface_model.hpp"
 #include "feedplan/planner/force_bound.hpp"
 
@@ -100,7 +101,12 @@ PlanGeometry analyse(const geometry::ToolPath& path, const geometry::Stock& stoc
 
 //! What the plan is asked to do.
 struct PlanSettings {
-  model::ResponseSurfaceModel model;  //!< the force model F̂(t_m, L) (seed 003 Eq. 1)
+  //! The response surface F̂(t_m, L) (seed 003 Eq. 1): the force model unless `mechanistic` is set, when
+  //! only its fitted range (the tests') is read.
+  model::ResponseSurfaceModel model;
+  //! The mechanistic model (cutting and edge coefficients, runout, helix): when set, the planner predicts
+  //! the force with the kernel on every sample's engaged arcs instead (sample_force_model.hpp).
+  std::optional<model::MechanisticModel> mechanistic;
   double target_force_n = 0.0;           //!< per-revolution peak XY force to hold, N (> 0)
   double spindle_rpm = 0.0;              //!< spindle speed, rev/min (> 0)
   geometry::MachineLimits machine;         //!< feed range, acceleration, rapid rate, block time

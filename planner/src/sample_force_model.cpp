@@ -1,0 +1,127 @@
+#include "feedplan/planner/sample_force_model.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "feedplan/model/mechanistic_force.hpp"
+#include "feedplan/model/model_prediction.hpp"
+#include "feedplan/planner/engaged_sections.hpp"
+
+namespace feedplan::planner {
+namespace {
+
+// The smallest feed the solve looks at, relative to the largest: the edge forces alone.
+constexpr double kVanishingFeedRatio = 1e-6;
+// The top of the bracket when the caller sets no air feed (the safety check asks for the force's own limit).
+constexpr double kLargestSolveFeedMmPerMin = 1e6;
+
+double feed_per_tooth_mm(const geometry::EngagementSample& sample, double feed_mm_per_min, int flutes, double rpm) {
+  return feed_mm_per_min / (flutes * rpm) * sample.xy_speed_ratio;
+}
+
+double bound_factor(const ForceUncertainty* uncertainty) {
+  return uncertainty ? 1.0 + uncertainty->sigmas * uncertainty->relative : 1.0;
+}
+
+}  // namespace
+
+SampleForceModel::SampleForceModel(const model::ResponseSurfaceModel& surface, const model::MechanisticModel* mechanistic,
+                                   const geometry::EngagementProfile& profile, const geometry::Tool& tool)
+    : surface_(surface), mechanistic_(mechanistic), profile_(profile), tool_(tool) {}
+
+double SampleForceModel::load_ratio(const geometry::EngagementSample& sample) const {
+  return mechanistic_ ? 0.0 : chip_load_ratio(surface_, profile_, sample, tool_);
+}
+
+double SampleForceModel::kernel_peak_n(const geometry::EngagementSample& sample, double feed_per_tooth_mm) const {
+  if (!is_engaged(sample) || !(feed_per_tooth_mm > 0.0)) return 0.0;
+  const SampleSections sections(profile_, sample);
+  if (sections.sections().empty()) return 0.0;
+  return model::predicted_peak_force_n(*mechanistic_, sections.sections(), cutter_geometry(tool_), feed_per_tooth_mm);
+}
+
+SampleFeedLimit SampleForceModel::kernel_feed_limit(const geometry::EngagementSample& sample, double target_force_n,
+                                                    int flutes, double spindle_rpm, double air_feed_mm_per_min,
+                                                    double bound) const {
+  SampleFeedLimit limit;
+  limit.feed_mm_per_min = air_feed_mm_per_min;
+  if (!is_engaged(sample) || sample.xy_speed_ratio < kMinChipFactor) return limit;
+  const SampleSections sections(profile_, sample);
+  if (sections.sections().empty()) return limit;
+  const model::CutterGeometry cutter = cutter_geometry(tool_);
+  const auto peak_at = [&](double feed_mm_per_min) {
+    return bound * model::predicted_peak_force_n(*mechanistic_, sections.sections(), cutter,
+                                                 feed_per_tooth_mm(sample, feed_mm_per_min, flutes, spindle_rpm));
+  };
+  limit.reason = FeedLimitReason::kForce;
+  // The bracket: [vanishing feed, air feed]; the peak rises with the feed.
+  double hi = std::isfinite(air_feed_mm_per_min) ? air_feed_mm_per_min : kLargestSolveFeedMmPerMin;
+  double lo = kVanishingFeedRatio * hi;
+  double f_lo = peak_at(lo) - target_force_n, f_hi = peak_at(hi) - target_force_n;
+  if (f_lo >= 0.0) {
+    limit.target_below_model = true;
+    limit.solve_status = model::FeedSolveStatus::kTargetBelowModel;
+    limit.feed_mm_per_min = lo;
+    return limit;
+  }
+  if (f_hi <= 0.0) {
+    limit.feed_mm_per_min = hi;  // the target is not reached below the air feed: the machine's range decides
+  } else {
+    // Illinois regula falsi: the peak is nearly affine in the feed (cutting terms ∝ f, edge terms constant).
+    int side = 0;
+    for (int evaluation = 2; evaluation < kMechanisticSolveEvaluations && hi - lo > kMechanisticFeedTolerance * hi;
+         ++evaluation) {
+      double next = (lo * f_hi - hi * f_lo) / (f_hi - f_lo);
+      if (!(next > lo && next < hi)) next = 0.5 * (lo + hi);
+      const double f_next = peak_at(next) - target_force_n;
+      if (f_next > 0.0) {
+        hi = next;
+        f_hi = f_next;
+        if (side == -1) f_lo *= 0.5;
+        side = -1;
+      } else {
+        lo = next;
+        f_lo = f_next;
+        if (side == +1) f_hi *= 0.5;
+        side = +1;
+      }
+    }
+    limit.feed_mm_per_min = lo;  // at or below the target
+  }
+  const double chip_mm = chip_thickness_mm(sample, limit.feed_mm_per_min, flutes, spindle_rpm);
+  limit.extrapolated = model::chip_outside(surface_.range, chip_mm) && chip_mm > surface_.range.chip_max_mm;
+  return limit;
+}
+
+SampleFeedLimit SampleForceModel::feed_limit(const geometry::EngagementSample& sample, double load_ratio,
+                                             double target_force_n, int flutes, double spindle_rpm,
+                                             double air_feed_mm_per_min, const ForceUncertainty* uncertainty) const {
+  if (!mechanistic_) {
+    return sample_feed_limit(surface_, sample, load_ratio, target_force_n, flutes, spindle_rpm, air_feed_mm_per_min,
+                             uncertainty);
+  }
+  return kernel_feed_limit(sample, target_force_n, flutes, spindle_rpm, air_feed_mm_per_min, bound_factor(uncertainty));
+}
+
+double SampleForceModel::predicted_force_n(const geometry::EngagementSample& sample, double load_ratio,
+                                           double feed_mm_per_min, int flutes, double spindle_rpm) const {
+  if (!mechanistic_) return planner::predicted_force_n(surface_, sample, load_ratio, feed_mm_per_min, flutes, spindle_rpm);
+  return kernel_peak_n(sample, feed_per_tooth_mm(sample, feed_mm_per_min, flutes, spindle_rpm));
+}
+
+double SampleForceModel::upper_force_n(const geometry::EngagementSample& sample, double load_ratio,
+                                       double feed_mm_per_min, int flutes, double spindle_rpm,
+                                       const ForceUncertainty* uncertainty) const {
+  if (!mechanistic_) {
+    return planner::upper_force_n(surface_, sample, load_ratio, feed_mm_per_min, flutes, spindle_rpm, uncertainty);
+  }
+  return bound_factor(uncertainty) * predicted_force_n(sample, load_ratio, feed_mm_per_min, flutes, spindle_rpm);
+}
+
+double SampleForceModel::transfer_factor(const geometry::EngagementSample& sample, double load_ratio,
+                                         double feed_mm_per_min, int flutes, double spindle_rpm) const {
+  if (!mechanistic_) return force_transfer_factor(surface_, sample, load_ratio, feed_mm_per_min, flutes, spindle_rpm);
+  return 1.0;
+}
+
+}  // namespace feedplan::planner
