@@ -72,6 +72,19 @@ Eigen::MatrixXd phase_rows(const MechanisticCuttingTest& test, double phase_rad,
   return a;
 }
 
+Eigen::MatrixXd substep_regressors(const MechanisticCuttingTest& test, double phase_rad, const MechanisticModel& model) {
+  const int steps = bin_count(test) * kPhaseStepsPerBin;
+  Eigen::MatrixXd samples(steps, 2 * kIdentifiedCoefficients);
+  for (int j = 0; j < steps; ++j) {
+    const auto r = xy_regressors(test, model, phase_rad + kTwoPi * (j + 0.5) / steps);
+    for (int c = 0; c < kIdentifiedCoefficients; ++c) {
+      samples(j, c) = r[0][c];
+      samples(j, kIdentifiedCoefficients + c) = r[1][c];
+    }
+  }
+  return samples;
+}
+
 Eigen::VectorXd measured(const MechanisticCuttingTest& test) {
   const int bins = bin_count(test);
   Eigen::VectorXd y(2 * bins);

@@ -27,6 +27,11 @@ Eigen::MatrixXd table_rows(const std::vector<XyRegressors>& table, int bins, int
 //! The same rows at any phase Ω₀, rad, with the size effect and runout of `model`.
 Eigen::MatrixXd phase_rows(const MechanisticCuttingTest& test, double phase_rad, const MechanisticModel& model);
 
+//! The regressors at every sub-step of the bins, unaveraged: row j at Ω₀ + 2π (j + ½) / (bins · kPhaseStepsPerBin),
+//! columns 0 … 3 Fx, 4 … 7 Fy (K_tc, K_rc, K_te, K_re each), with the size effect and runout of `model` — the
+//! samples phase_rows averages, for a sensor to act on first (sensed_bin_rows.hpp).
+Eigen::MatrixXd substep_regressors(const MechanisticCuttingTest& test, double phase_rad, const MechanisticModel& model);
+
 //! The measured Fx then Fy bins of the test.
 Eigen::VectorXd measured(const MechanisticCuttingTest& test);
 

@@ -14,6 +14,9 @@
 #include "feedplan/model/mechanistic_force.hpp"
 #include "bin_regressors.hpp"
 #include "runout_refinement.hpp"
+#include "sensed_bin_rows.hpp"
+#include "sensor_refinement.hpp"
+#include "sensor_search.hpp"
 
 namespace feedplan::model {
 namespace {
@@ -112,7 +115,8 @@ ImmersionArc straight_cut_arc(StraightCutSide side, double radial_depth_mm, doub
   return side == StraightCutSide::kDown ? ImmersionArc{pi - swept, pi} : ImmersionArc{0.0, swept};
 }
 
-std::vector<InputProblem> validate(const std::vector<MechanisticCuttingTest>& tests, bool identify_runout) {
+std::vector<InputProblem> validate(const std::vector<MechanisticCuttingTest>& tests, bool identify_runout,
+                                   bool identify_sensor) {
   ProblemList problems("");
   if (tests.empty()) problems.add("tests", "is empty: at least one cutting test is needed");
   if (identify_runout && !tests.empty() && tests.front().cutter.flutes < 2) {
@@ -133,6 +137,10 @@ std::vector<InputProblem> validate(const std::vector<MechanisticCuttingTest>& te
     }
     problems.positive(prefix + "axial_depth_mm", t.axial_depth_mm);
     problems.positive(prefix + "feed_per_tooth_mm", t.feed_per_tooth_mm);
+    if (identify_sensor && !(std::isfinite(t.spindle_rpm) && t.spindle_rpm > 0.0)) {
+      problems.add(prefix + "spindle_rpm", "= " + shortest_number_text(t.spindle_rpm) +
+                                               ": identifying the sensor needs the spindle speed (finite and > 0)");
+    }
     if (t.synchronous_fx_n.size() != t.synchronous_fy_n.size()) {
       problems.add(prefix + "synchronous_fy_n", "has " + std::to_string(t.synchronous_fy_n.size()) +
                                                     " bins: must have as many as synchronous_fx_n (" +
@@ -147,6 +155,18 @@ std::vector<InputProblem> validate(const std::vector<MechanisticCuttingTest>& te
         break;
       }
     }
+  }
+  return problems.take();
+}
+
+std::vector<InputProblem> validate(const MechanisticIdentificationOptions& options) {
+  ProblemList problems("options.");
+  if (!options.identify_sensor) return problems.take();
+  problems.positive("sensor_min_frequency_hz", options.sensor_min_frequency_hz);
+  problems.positive("sensor_max_frequency_hz", options.sensor_max_frequency_hz);
+  if (options.sensor_max_frequency_hz <= options.sensor_min_frequency_hz) {
+    problems.add_value("sensor_max_frequency_hz", shortest_number_text(options.sensor_max_frequency_hz),
+                       "must be > sensor_min_frequency_hz = " + shortest_number_text(options.sensor_min_frequency_hz));
   }
   return problems.take();
 }
@@ -166,6 +186,19 @@ void stack_rows(const std::vector<MechanisticCuttingTest>& tests, const std::vec
     a.middleRows(row, n) = phase_rows(tests[i], phases[i], model);
     y.segment(row, n) = measured(tests[i]);
     row += n;
+  }
+}
+
+//! As stack_rows, with the kernel's force read through `sensor`.
+void stack_sensed_rows(const std::vector<MechanisticCuttingTest>& tests, const std::vector<SensedBinning>& binnings,
+                       const std::vector<double>& phases, const MechanisticModel& model, const SensorResponse& sensor,
+                       Eigen::MatrixXd& a, Eigen::VectorXd& y) {
+  stack_rows(tests, phases, model, a, y);
+  Eigen::Index row = 0;
+  for (std::size_t i = 0; i < tests.size(); ++i) {
+    const Eigen::MatrixXd rows = binnings[i].rows(binnings[i].spectrum(tests[i], phases[i], model), sensor);
+    a.middleRows(row, rows.rows()) = rows;
+    row += rows.rows();
   }
 }
 
@@ -222,6 +255,54 @@ std::vector<double> lowest_at_zero(std::vector<double> runout_mm) {
   return runout_mm;
 }
 
+//! The sensor step of identify_mechanistic: search, then refine with the coefficients, phases and, when
+//! `model` has them, runout and helix; `result` gets the sensor, phases, runout and helix, `x` the
+//! coefficients and `a`, `y` the rows through the sensor.
+void identify_sensor(const std::vector<MechanisticCuttingTest>& tests, const MechanisticIdentificationOptions& options,
+                     MechanisticModel model, MechanisticIdentification& result, Eigen::VectorXd& x,
+                     Eigen::MatrixXd& a, Eigen::VectorXd& y) {
+  std::vector<SensedBinning> binnings;
+  double nyquist_hz = INFINITY;
+  for (const auto& t : tests) {
+    binnings.emplace_back(t);
+    nyquist_hz = std::min(nyquist_hz, binnings.back().nyquist_hz());
+  }
+  double max_hz = options.sensor_max_frequency_hz;
+  if (nyquist_hz < max_hz) {
+    max_hz = nyquist_hz;
+    result.unidentifiable.push_back(
+        "sensor modes above " + six_digit_number_text(nyquist_hz) + " Hz: the synchronous averages' bins resolve the "
+        "harmonics of the revolution only below their Nyquist frequency (bins/2 · rpm/60), so the search for the "
+        "modes stops there instead of at " + six_digit_number_text(options.sensor_max_frequency_hz) + " Hz");
+  }
+  const double min_hz = std::min(options.sensor_min_frequency_hz, 0.5 * max_hz);
+
+  SensorSearchData data;
+  for (std::size_t i = 0; i < tests.size(); ++i) {
+    data.binnings.push_back(&binnings[i]);
+    data.spectra.push_back(binnings[i].spectrum(tests[i], result.phase_rad[i], model));
+  }
+  data.measured = y;
+  SensorRefinementStart start;
+  start.sensor = search_sensor(data, min_hz, max_hz);
+  start.coefficients = {x(0), x(1), x(2), x(3)};
+  start.phase_rad = result.phase_rad;
+  start.runout_mm = model.runout_mm;
+  start.helix_deg = model.helix_deg;
+  const SensorRefinement refined = refine_sensor(tests, binnings, start, min_hz, max_hz);
+
+  result.sensor = refined.sensor;
+  result.sensor_converged = refined.converged;
+  result.sensor_report = refined.message;
+  result.phase_rad = refined.phase_rad;
+  model.runout_mm = refined.runout_mm;
+  model.helix_deg = refined.helix_deg;
+  result.model.runout_mm = model.runout_mm;
+  result.model.helix_deg = model.helix_deg;
+  stack_sensed_rows(tests, binnings, result.phase_rad, model, refined.sensor, a, y);
+  if (!refined.converged) result.unidentifiable.push_back("sensor: the refinement did not converge (" + refined.message + ")");
+}
+
 }  // namespace
 
 MechanisticModel refit_coefficients(const std::vector<MechanisticCuttingTest>& tests,
@@ -243,7 +324,9 @@ MechanisticModel refit_coefficients(const std::vector<MechanisticCuttingTest>& t
 
 MechanisticIdentification identify_mechanistic(const std::vector<MechanisticCuttingTest>& tests,
                                                const MechanisticIdentificationOptions& options) {
-  const std::vector<InputProblem> problems = validate(tests, options.identify_runout);
+  std::vector<InputProblem> problems = validate(tests, options.identify_runout, options.identify_sensor);
+  const std::vector<InputProblem> option_problems = validate(options);
+  problems.insert(problems.end(), option_problems.begin(), option_problems.end());
   if (!problems.empty()) throw InputError(problems);
 
   MechanisticIdentification result;
@@ -270,6 +353,14 @@ MechanisticIdentification identify_mechanistic(const std::vector<MechanisticCutt
         "which physical tooth is tooth 0, and a runout common to all teeth: the runout is reported with the "
         "smallest at 0, numbered from the tooth at the first test's phase");
     if (!refined.converged) result.unidentifiable.push_back("runout: the refinement did not converge (" + refined.message + ")");
+  }
+  if (options.identify_sensor) {
+    MechanisticModel fitted;
+    if (options.identify_runout) fitted.runout_mm = result.model.runout_mm;
+    fitted.helix_deg = result.model.helix_deg;
+    identify_sensor(tests, options, fitted, result, x, a, y);
+    x = fit_coefficients(tests, a, y, result, weakest);
+    if (options.identify_runout) result.model.runout_mm = lowest_at_zero(result.model.runout_mm);
   }
   set_coefficients(result.model, x);
 

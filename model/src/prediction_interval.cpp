@@ -8,6 +8,7 @@
 #include "feedplan/core/problem_list.hpp"
 #include "feedplan/model/mechanistic_force.hpp"
 #include "feedplan/model/model_prediction.hpp"
+#include "feedplan/model/sensed_peak.hpp"
 
 namespace feedplan::model {
 namespace {
@@ -60,11 +61,12 @@ PredictionInterval response_surface_interval(const ResponseSurfaceModel& model, 
   return make_interval(predicted_n, covariance.quadratic_form(psi), revolution_spread_rel, z);
 }
 
-PredictionInterval mechanistic_peak_interval(const MechanisticModel& model,
-                                             const std::array<std::array<double, 4>, 4>& covariance,
-                                             std::span<const EngagedSection> sections, const CutterGeometry& cutter,
-                                             double feed_per_tooth_mm, double revolution_spread_rel, double z) {
-  ProblemList problems;
+namespace {
+
+//! The problems of a mechanistic interval's inputs shared by both kinds of peak.
+void check_mechanistic(ProblemList& problems, const MechanisticModel& model,
+                       const std::array<std::array<double, 4>, 4>& covariance, std::span<const EngagedSection> sections,
+                       const CutterGeometry& cutter, double feed_per_tooth_mm) {
   problems.add_all(validate(model, cutter));
   for (std::size_t i = 0; i < sections.size(); ++i) {
     const EngagedSection& s = sections[i];
@@ -94,30 +96,65 @@ PredictionInterval mechanistic_peak_interval(const MechanisticModel& model,
                          shortest_number_text(covariance[i][i]), "must be ≥ 0 — a variance (diagonal entry)");
     }
   }
+}
+
+//! gᵀ C g with g = uᵀR restricted to K_tc, K_rc, K_te, K_re: R the 2×6 XY regressors at the peak's angle, u
+//! the unit XY force there (∂|F_xy|/∂K_c = u · (row_x[c], row_y[c])).
+double peak_variance_n2(const std::array<double, 6>& row_x, const std::array<double, 6>& row_y,
+                        const MechanisticModel& model, const std::array<std::array<double, 4>, 4>& covariance) {
+  const std::array<double, 6> k = coefficients(model);
+  double fx_n = 0.0, fy_n = 0.0;
+  for (int c = 0; c < 6; ++c) {
+    fx_n += row_x[c] * k[c];
+    fy_n += row_y[c] * k[c];
+  }
+  const double magnitude_n = std::hypot(fx_n, fy_n);
+  double g[4];
+  for (int i = 0; i < 4; ++i) {
+    const int c = kIdentifiedColumns[i];
+    g[i] = (fx_n * row_x[c] + fy_n * row_y[c]) / magnitude_n;
+  }
+  double variance_n2 = 0.0;
+  for (int i = 0; i < 4; ++i) {
+    for (int j = 0; j < 4; ++j) variance_n2 += g[i] * covariance[i][j] * g[j];
+  }
+  return variance_n2;
+}
+
+}  // namespace
+
+PredictionInterval mechanistic_peak_interval(const MechanisticModel& model,
+                                             const std::array<std::array<double, 4>, 4>& covariance,
+                                             std::span<const EngagedSection> sections, const CutterGeometry& cutter,
+                                             double feed_per_tooth_mm, double revolution_spread_rel, double z) {
+  ProblemList problems;
+  check_mechanistic(problems, model, covariance, sections, cutter, feed_per_tooth_mm);
   check_spread_and_z(problems, revolution_spread_rel, z);
   problems.throw_if_any();
 
   const MechanisticPeak peak = predicted_peak(model, sections, cutter, feed_per_tooth_mm);
   if (!(peak.force_n > 0.0)) return make_interval(0.0, 0.0, revolution_spread_rel, z);
   const ForceRegressors r = regressors(model, sections, cutter, feed_per_tooth_mm, peak.spindle_angle_rad);
-  const std::array<double, 6> k = coefficients(model);
-  double fx_n = 0.0, fy_n = 0.0;
-  for (int c = 0; c < 6; ++c) {
-    fx_n += r.rows[0][c] * k[c];
-    fy_n += r.rows[1][c] * k[c];
-  }
-  const double magnitude_n = std::hypot(fx_n, fy_n);
-  // ∂|F_xy|/∂K_c = u · (row_x[c], row_y[c]), u the unit XY force at the peak.
-  double g[4];
-  for (int i = 0; i < 4; ++i) {
-    const int c = kIdentifiedColumns[i];
-    g[i] = (fx_n * r.rows[0][c] + fy_n * r.rows[1][c]) / magnitude_n;
-  }
-  double variance_n2 = 0.0;
-  for (int i = 0; i < 4; ++i) {
-    for (int j = 0; j < 4; ++j) variance_n2 += g[i] * covariance[i][j] * g[j];
-  }
-  return make_interval(peak.force_n, variance_n2, revolution_spread_rel, z);
+  return make_interval(peak.force_n, peak_variance_n2(r.rows[0], r.rows[1], model, covariance), revolution_spread_rel, z);
+}
+
+PredictionInterval mechanistic_sensed_peak_interval(const MechanisticModel& model,
+                                                    const std::array<std::array<double, 4>, 4>& covariance,
+                                                    std::span<const EngagedSection> sections,
+                                                    const CutterGeometry& cutter, double feed_per_tooth_mm,
+                                                    const SensorResponse& sensor, double spindle_rpm,
+                                                    double revolution_spread_rel, double z) {
+  ProblemList problems;
+  check_mechanistic(problems, model, covariance, sections, cutter, feed_per_tooth_mm);
+  problems.add_all(validate(sensor));
+  problems.positive("spindle_rpm", spindle_rpm);
+  check_spread_and_z(problems, revolution_spread_rel, z);
+  problems.throw_if_any();
+
+  const SensedPeak peak = predicted_sensed_peak(model, sections, cutter, feed_per_tooth_mm, sensor, spindle_rpm);
+  if (!(peak.force_n > 0.0)) return make_interval(0.0, 0.0, revolution_spread_rel, z);
+  return make_interval(peak.force_n, peak_variance_n2(peak.regressors[0], peak.regressors[1], model, covariance),
+                       revolution_spread_rel, z);
 }
 
 }  // namespace feedplan::model

@@ -1,14 +1,16 @@
 // Real data: leave-one-feed-out prediction of the per-revolution peak with the mechanistic model on the
 // three Kistler slot recordings (tests/data/kistler_full/README.md: 2 flutes, full slot, a_p 3 mm,
 // 6000 rpm, f_z 0.025 / 0.075 / 0.125 mm; tool diameter, helix and material not stated). For each held-out
-// feed the coefficients are identified (identify_mechanistic, with and without identify_runout) from the
-// other two recordings as the cutting-test import keeps them (model_db::import_cutting_test: the steady
-// per-revolution peaks and the revolution-synchronous average), the held-out feed's peak is predicted
-// with its mechanistic_peak_interval (spread pooled from the two fitting recordings' per-revolution
-// peaks), and both are compared with the held-out recording's measured mean per-revolution peak.
+// feed the coefficients are identified (identify_mechanistic, with and without identify_runout, and in 6.
+// with identify_sensor) from the other two recordings as the cutting-test import keeps them
+// (model_db::import_cutting_test: the steady per-revolution peaks and the revolution-synchronous average),
+// the held-out feed's peak is predicted with its mechanistic_peak_interval (in 6. the sensed peak's
+// mechanistic_sensed_peak_interval; spread pooled from the two fitting recordings' per-revolution peaks),
+// and both are compared with the held-out recording's measured mean per-revolution peak.
 //
 // The product owner's acceptance: within ±8 % for every held-out feed, and the interval covers the
-// measured mean. It is met for f_z 0.025 mm only. What the data show, each asserted below:
+// measured mean. It is met for f_z 0.025 mm with the kernel's own peak, and for 0.075 mm through the identified
+// sensor (6.); for no identification for all three. What the data show, each asserted below:
 //   1. Frame. The recorded force turns the other way round than the kernel's (the tooth-frequency part
 //      of Fx + iFy turns counter-clockwise, the kernel's clockwise): the dynamometer's XY frame is the
 //      mirror image of the feed frame (x along the feed, y to its left, seen from above), e.g. Kistler's Z
@@ -26,9 +28,10 @@
 //      D10, 30° as the other Kistler tests do (ψ = 0.346 rad) and repeat everything over D16 20° … D6 45°
 //      (ψ = 0.136 … 1.0 rad), where the conclusions hold (the f_z 0.025 mm prediction with runout drifts
 //      from +4.7 % to +10.7 %).
-//   3. Why 0.075 and 0.125 mm fail: the dynamometer rings. The recorded force has harmonics rising towards
-//      800 Hz in Fx and 1 kHz in Fy (its lateral modes with the workpiece; a slot's cutting force, and the
-//      kernel's, fall off above the 200 Hz tooth frequency). Each tooth pulse excites them, and the
+//   3. Why 0.075 and 0.125 mm fail: the recordings ring. The recorded force has harmonics rising towards
+//      800 Hz in Fx and 1 kHz in Fy (lateral modes of the dynamometer with the workpiece; a slot's cutting
+//      force, and the kernel's, fall off above the 200 Hz tooth frequency; 6. and 7.). They ring at every
+//      tooth pulse, and the
 //      per-revolution peaks hold the ringing: they exceed the peaks of the same signals restricted to the
 //      mean, once- and twice-per-revolution parts by 10, 31 and 53 % at the three feeds. The kernel has no
 //      sensor dynamics: it comes out −27 % and −37 % under the measured mean peak with runout, −42 % and
@@ -43,8 +46,16 @@
 //   5. Interval. The coefficient covariance measures the noise of the fit, not the bias above (ringing, size
 //      effect); the spread is 1.3 % for the two steady recordings and 7 % with the 1500 mm/min one. So the
 //      interval covers 0.025 mm (its spread comes from the fitting pair with 1500 mm/min) and misses the others.
-// If a sensor model or a size effect makes these predictions meet the acceptance, the assertions that
-// pin the failures below must become the acceptance.
+//   6. The dynamometer's modes (sensor_response.hpp), identified with the coefficients and runout
+//      (identify_sensor), lie where the spectra ring — about 790 Hz along x and 1000 Hz along y — and where the
+//      recordings vibrate between the revolution's harmonics; through them the held-out 0.075 mm is predicted
+//      at −4 %, but 0.025 mm at +94 % and 0.125 mm at −34 %.
+//   7. Why: what rings is not a linear response to the kernel's force. The harmonics that drive the modes grow
+//      with the feed far faster than the force at the tooth frequency, while the kernel's grow not at all in a
+//      slot (there only the edge terms and runout make them), and the modes vibrate at the larger feeds also
+//      without the revolution's period: a structure with these modes looks to take part in the cut.
+// If a model makes these predictions meet the acceptance, the assertions that pin the failures below must
+// become the acceptance.
 
 #include <gtest/gtest.h>
 
@@ -65,6 +76,7 @@
 #include "feedplan/model/mechanistic_identification.hpp"
 #include "feedplan/model/prediction_interval.hpp"
 #include "feedplan/model/revolution_spread.hpp"
+#include "feedplan/model/sensor_response.hpp"
 #include "feedplan/model_db/cutting_test_import.hpp"
 
 namespace feedplan::model {
@@ -197,6 +209,7 @@ MechanisticCuttingTest cutting_test(const model_db::CuttingTestRecord& record, c
   t.synchronous_fx_n = record.synchronous_fx_n;
   t.synchronous_fy_n = record.synchronous_fy_n;
   t.name = name;
+  t.spindle_rpm = kRpm;
   return t;
 }
 
@@ -475,6 +488,225 @@ TEST(KistlerMechanistic, LeaveOneFeedOutOnTheInBandPeaks) {
     EXPECT_GT(std::abs(runout[0] - runout[1]), 0.015);
     EXPECT_LT(std::abs(runout[0] - runout[1]), 0.035);
   }
+}
+
+//! The leave-one-feed-out prediction of the measured peak through the identified sensor (6. above).
+struct SensedHeldOut {
+  MechanisticIdentification identification;
+  PredictionInterval interval;
+  double force_peak_n = 0.0;  //!< the kernel's own peak (the force on the tool), N
+  double measured_n = 0.0;
+  double error() const { return (interval.predicted_n - measured_n) / measured_n; }
+  bool covered() const { return measured_n >= interval.lower_n && measured_n <= interval.upper_n; }
+};
+
+//! Identified from the other two recordings with runout, the sensor and, with `helix`, the helix (cached:
+//! each identification takes 2–15 s).
+const SensedHeldOut& sensed_held_out(int held, bool helix) {
+  static std::map<std::pair<int, bool>, SensedHeldOut> cache;
+  const auto key = std::make_pair(held, helix);
+  if (cache.count(key)) return cache[key];
+  std::vector<MechanisticCuttingTest> tests;
+  std::vector<std::vector<double>> peaks;
+  for (int i = 0; i < 3; ++i) {
+    if (i == held) continue;
+    tests.push_back(cutting_test(record(i, Band::kMeasured, kAssumed), kAssumedTool, kRecordings[i].file));
+    peaks.push_back(record(i, Band::kMeasured, kAssumed).steady_peaks_n);
+  }
+  MechanisticIdentificationOptions options;
+  options.identify_runout = true;
+  options.identify_helix = helix;
+  options.identify_sensor = true;
+  SensedHeldOut h;
+  h.identification = identify_mechanistic(tests, options);
+  const ImmersionArc arc = straight_cut_arc(StraightCutSide::kSlot, 2 * kAssumedTool.radius_mm, kAssumedTool.radius_mm);
+  const EngagedSection section{0.0, kAxialDepthMm, std::span<const ImmersionArc>(&arc, 1)};
+  const std::span<const EngagedSection> sections(&section, 1);
+  h.interval = mechanistic_sensed_peak_interval(h.identification.model, h.identification.covariance, sections,
+                                                kAssumedTool, kRecordings[held].feed_per_tooth_mm,
+                                                *h.identification.sensor, kRpm, pooled_revolution_spread_rel(peaks));
+  h.force_peak_n = predicted_peak_force_n(h.identification.model, sections, kAssumedTool, kRecordings[held].feed_per_tooth_mm);
+  h.measured_n = record(held, Band::kMeasured, kAssumed).peak_mean_n;
+  return cache[key] = h;
+}
+
+void print_sensed(int held, bool helix) {
+  const SensedHeldOut& h = sensed_held_out(held, helix);
+  const MechanisticIdentification& id = h.identification;
+  const SensorResponse& s = *id.sensor;
+  std::printf("through the identified sensor, runout%s, held out f_z %.3f mm: predicted %6.1f N, measured mean peak "
+              "%6.1f N, error %+6.2f %%, interval [%6.1f, %6.1f] N %s (fit σ %.1f N, spread %.2f %%); force on the tool "
+              "%6.1f N | modes %.0f Hz ζ %.3f, %.0f Hz ζ %.3f, θ %+.1f° | K_tc %.0f K_rc %.0f K_te %.1f K_re %.1f runout "
+              "%.1f/%.1f µm",
+              helix ? ", helix" : "", kRecordings[held].feed_per_tooth_mm, h.interval.predicted_n, h.measured_n,
+              100 * h.error(), h.interval.lower_n, h.interval.upper_n, h.covered() ? "covers" : "misses",
+              h.interval.fit_sd_n, 100 * h.interval.spread_sd_n / h.interval.predicted_n, h.force_peak_n,
+              s.modes[0].natural_frequency_hz, s.modes[0].damping_ratio, s.modes[1].natural_frequency_hz,
+              s.modes[1].damping_ratio, s.mode_angle_deg, id.model.ktc_n_per_mm2, id.model.krc_n_per_mm2,
+              id.model.kte_n_per_mm, id.model.kre_n_per_mm, 1000 * id.model.runout_mm[0], 1000 * id.model.runout_mm[1]);
+  if (id.model.helix_deg) std::printf(" helix %.1f°", *id.model.helix_deg);
+  std::printf(", RMS residual %.1f N\n", id.rms_residual_n);
+}
+
+//! The frequency in [lo_hz, hi_hz] at which the part of a channel that does not repeat every revolution (the
+//! log less its synchronous average, over the first 100 revolutions of 100 samples) is strongest: its
+//! amplitude spectrum at 1 Hz steps, power summed over ±12 Hz. Also that part's RMS.
+struct NonSynchronous {
+  double rms_n = 0.0;
+  double strongest_hz = 0.0;
+};
+NonSynchronous non_synchronous(const force_log::ForceLog& log, bool y, double lo_hz, double hi_hz) {
+  constexpr int kRevolutions = 100, kPerRevolution = 100;  // 10 kHz at 6000 rpm
+  constexpr int n = kRevolutions * kPerRevolution;
+  std::vector<double> x(n), average(kPerRevolution, 0.0);
+  for (int i = 0; i < n; ++i) {
+    x[i] = y ? log.rows[i].fy_n : log.rows[i].fx_n;
+    average[i % kPerRevolution] += x[i] / kRevolutions;
+  }
+  NonSynchronous result;
+  for (int i = 0; i < n; ++i) {
+    x[i] -= average[i % kPerRevolution];
+    result.rms_n += x[i] * x[i] / n;
+  }
+  result.rms_n = std::sqrt(result.rms_n);
+  const double rate_hz = 1.0 / (log.rows[1].t_s - log.rows[0].t_s);
+  std::vector<double> power;
+  for (int f = static_cast<int>(lo_hz) - 12; f <= static_cast<int>(hi_hz) + 12; ++f) {
+    Complex sum = 0;
+    for (int i = 0; i < n; ++i) sum += x[i] * std::polar(1.0, -2 * kPi * f * i / rate_hz);
+    power.push_back(std::norm(2.0 * sum / static_cast<double>(n)));
+  }
+  double best = -1;
+  for (std::size_t c = 12; c + 12 < power.size(); ++c) {
+    double band = 0;
+    for (std::size_t k = c - 12; k <= c + 12; ++k) band += power[k];
+    if (band > best) best = band, result.strongest_hz = lo_hz - 12 + static_cast<double>(c);
+  }
+  return result;
+}
+
+// 6. The dynamometer's modes identified with the coefficients and runout, and each feed's measured mean peak
+// predicted through them from the other two (identify_sensor, mechanistic_sensed_peak_interval). The modes
+// come out where the spectra ring: from the two pairs with 1500 mm/min, one mode along x (θ within 10°) at
+// 775–800 Hz and one along y at 985–1010 Hz, within 25 Hz of where the recordings' non-synchronous vibration is
+// strongest (an independent look at the modes: the log less its synchronous average, between 600 and
+// 1400 Hz, at 1500 mm/min). From 0.025 and 0.075 mm alone the y mode is not resolved (it runs to the
+// top of the range, the residual hardly changing).
+// The acceptance is met for 0.075 mm only (interpolated: −4 %, the interval covers); 0.025 mm comes out
+// nearly twice its reading and 0.125 mm a third under, and identifying the helix as well (it runs to 10–11°,
+// against its 10° bound, in two of the three fits) meets it for none. Why, in 7. and the test below.
+TEST(KistlerMechanistic, LeaveOneFeedOutThroughTheIdentifiedSensor) {
+  for (bool helix : {false, true}) {
+    for (int held = 0; held < 3; ++held) print_sensed(held, helix);
+  }
+  const NonSynchronous x_vibration = non_synchronous(feed_frame_log(2, Band::kMeasured), false, 600, 1400);
+  const NonSynchronous y_vibration = non_synchronous(feed_frame_log(2, Band::kMeasured), true, 600, 1400);
+  std::printf("n6000_f1500_ap3.csv non-synchronous vibration strongest at %.0f Hz in Fx, %.0f Hz in Fy\n",
+              x_vibration.strongest_hz, y_vibration.strongest_hz);
+  // The import's bins: 50 per revolution (two 10 kHz samples each), which resolve harmonics below the 25th,
+  // 2500 Hz: the modes' harmonics (8–10) are well inside, and the search for them stops at 2500 Hz, not 3 kHz.
+  EXPECT_EQ(record(2, Band::kMeasured, kAssumed).synchronous_fx_n.size(), 50u);
+  bool said = false;
+  for (const std::string& u : sensed_held_out(0, false).identification.unidentifiable) {
+    said = said || u.find("sensor modes above 2500 Hz") != std::string::npos;
+  }
+  EXPECT_TRUE(said);
+  for (int held : {0, 1}) {
+    const SensorResponse& s = *sensed_held_out(held, false).identification.sensor;
+    EXPECT_LT(std::abs(s.mode_angle_deg), 10.0) << held;
+    EXPECT_GT(s.modes[0].natural_frequency_hz, 775.0) << held;
+    EXPECT_LT(s.modes[0].natural_frequency_hz, 800.0) << held;
+    EXPECT_GT(s.modes[1].natural_frequency_hz, 985.0) << held;
+    EXPECT_LT(s.modes[1].natural_frequency_hz, 1010.0) << held;
+    EXPECT_NEAR(s.modes[0].natural_frequency_hz, x_vibration.strongest_hz, 25.0) << held;
+    EXPECT_NEAR(s.modes[1].natural_frequency_hz, y_vibration.strongest_hz, 25.0) << held;
+  }
+  EXPECT_LE(std::abs(sensed_held_out(1, false).error()), kAcceptance);
+  EXPECT_TRUE(sensed_held_out(1, false).covered());
+  EXPECT_GT(sensed_held_out(0, false).error(), kAcceptance) << "acceptance now met? see 7.";
+  EXPECT_FALSE(sensed_held_out(0, false).covered());
+  EXPECT_LT(sensed_held_out(2, false).error(), -kAcceptance) << "acceptance now met? see 7.";
+  EXPECT_FALSE(sensed_held_out(2, false).covered());
+  for (int held = 0; held < 3; ++held) EXPECT_GT(std::abs(sensed_held_out(held, true).error()), kAcceptance) << held;
+}
+
+// 7. Why a sensor does not make the kernel predict the readings: what rings is not a linear response to the
+// kernel's force.
+//   a. In a 2-flute slot without runout the kernel's cutting force is a constant plus one sinusoid at the
+//      tooth frequency, whatever the helix: one tooth is in the cut at every height, and its force,
+//      K f_z sin φ (−cos φ, sin φ) and the like, holds only the harmonics 0 and 2 of the revolution. So above
+//      the tooth frequency the kernel's force comes from its edge terms (the same at every feed) and runout.
+//   b. The recordings' harmonics 4, 6 and 8 (400–800 Hz) grow 4.4–5.8× from f_z 0.025 to 0.125 mm, the tooth
+//      frequency's 2.4×: what drives the modes grows with the chip, faster than the force at the tooth
+//      frequency. A linear sensor multiplies each harmonic by a gain that does not depend on the feed.
+//   c. So even fitted to all three recordings at once, the kernel through the identified sensor leaves an RMS
+//      bin residual of about 70 N, against a noise of the synchronous averages of at most 5 N (the
+//      non-synchronous part's RMS over √100 revolutions); the same fit in band leaves 20–30 N (4.).
+//   d. The modes also vibrate without the revolution's period, more so the larger the feed: the
+//      non-synchronous part's RMS |F_xy| grows from 6.6 N at 300 mm/min to 60 N at 1500 mm/min, strongest at
+//      the modes (6.). This points to a structure with these modes (the workpiece on the dynamometer, or the
+//      tool: force data alone cannot tell) taking part in the cut, its vibration changing the chip, rather than
+//      a sensor reading a periodic force. Predicting what this dynamometer reads needs that dynamics of the cut.
+TEST(KistlerMechanistic, RingingIsNotALinearResponseToTheKernelsForce) {
+  // a.
+  MechanisticModel cutting_only;
+  cutting_only.ktc_n_per_mm2 = 900;
+  cutting_only.krc_n_per_mm2 = 300;
+  const ImmersionArc arc{0.0, kPi};
+  const EngagedSection section{0.0, kAxialDepthMm, std::span<const ImmersionArc>(&arc, 1)};
+  for (double helix_deg : {0.0, 30.0, 45.0}) {
+    const CutterGeometry cutter{5.0, kFlutes, helix_deg};
+    std::vector<double> fx, fy;
+    for (int b = 0; b < 360; ++b) {
+      const MechanisticForce f = predicted_force(cutting_only, std::span<const EngagedSection>(&section, 1), cutter, 0.075, 2 * kPi * b / 360);
+      fx.push_back(f.fx_n);
+      fy.push_back(f.fy_n);
+    }
+    for (int k : {1, 3, 4, 6, 8, 10}) {
+      EXPECT_LT(channel_amplitude(fx, k), 1e-3 * channel_amplitude(fx, 2)) << helix_deg << " " << k;
+      EXPECT_LT(channel_amplitude(fy, k), 1e-3 * channel_amplitude(fy, 2)) << helix_deg << " " << k;
+    }
+  }
+  // b.
+  const model_db::CuttingTestRecord& low = record(0, Band::kMeasured, kAssumed);
+  const model_db::CuttingTestRecord& high = record(2, Band::kMeasured, kAssumed);
+  const double tooth_growth = channel_amplitude(high.synchronous_fx_n, 2) / channel_amplitude(low.synchronous_fx_n, 2);
+  std::printf("Fx harmonics from f_z 0.025 to 0.125 mm: 2 × %.2f", tooth_growth);
+  for (int k : {4, 6, 8}) {
+    const double growth = channel_amplitude(high.synchronous_fx_n, k) / channel_amplitude(low.synchronous_fx_n, k);
+    std::printf(", %d × %.2f", k, growth);
+    EXPECT_GT(growth, 1.5 * tooth_growth) << k;
+  }
+  std::printf("\n");
+  // c.
+  std::vector<MechanisticCuttingTest> tests;
+  for (int i = 0; i < 3; ++i) tests.push_back(cutting_test(record(i, Band::kMeasured, kAssumed), kAssumedTool, kRecordings[i].file));
+  MechanisticIdentificationOptions options;
+  options.identify_runout = true;
+  options.identify_sensor = true;
+  const MechanisticIdentification all = identify_mechanistic(tests, options);
+  double noise_n = 0.0;
+  for (int i = 0; i < 3; ++i) {
+    for (bool y : {false, true}) {
+      noise_n = std::max(noise_n, non_synchronous(feed_frame_log(i, Band::kMeasured), y, 700, 700).rms_n / std::sqrt(100.0));
+    }
+  }
+  const SensorResponse& s = *all.sensor;
+  std::printf("all three recordings through the identified sensor: RMS residual %.1f N (per recording %.1f, %.1f, %.1f N), "
+              "noise of the synchronous averages at most %.1f N | modes %.0f Hz ζ %.3f, %.0f Hz ζ %.3f, θ %+.1f°\n",
+              all.rms_residual_n, all.test_rms_residual_n[0], all.test_rms_residual_n[1], all.test_rms_residual_n[2],
+              noise_n, s.modes[0].natural_frequency_hz, s.modes[0].damping_ratio, s.modes[1].natural_frequency_hz,
+              s.modes[1].damping_ratio, s.mode_angle_deg);
+  EXPECT_GT(all.rms_residual_n, 5 * noise_n);
+  // d.
+  double rms_n[3];
+  for (int i = 0; i < 3; ++i) {
+    rms_n[i] = std::hypot(non_synchronous(feed_frame_log(i, Band::kMeasured), false, 700, 700).rms_n,
+                          non_synchronous(feed_frame_log(i, Band::kMeasured), true, 700, 700).rms_n);
+    std::printf("%s non-synchronous vibration: RMS |F_xy| %.1f N\n", kRecordings[i].file, rms_n[i]);
+  }
+  EXPECT_LT(rms_n[0], rms_n[1]);
+  EXPECT_GT(rms_n[2], 5 * rms_n[0]);
 }
 
 }  // namespace

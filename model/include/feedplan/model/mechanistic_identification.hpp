@@ -13,14 +13,21 @@
 // Only the force in the XY plane is averaged, so K_ac and K_ae (axial) are not identified: the result
 // keeps them at 0 and says so. Runout is identified on request (options.identify_runout): it makes the
 // force non-linear in the unknowns, and Ceres refines coefficients, runout and phases together.
+//
+// The dynamometer's modes are identified on request too (options.identify_sensor, docs/method.md §5.8): the
+// bins are then matched with the kernel's force as the sensor reads it (sensor_response.hpp), the modes
+// found first by a search over their natural frequency and damping with the coefficients fitted at each
+// try, then refined by Ceres with the coefficients, the phases (and runout and helix when asked).
 
 #include <array>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "feedplan/core/input_error.hpp"
 #include "feedplan/model/engaged_section.hpp"
 #include "feedplan/model/mechanistic_model.hpp"
+#include "feedplan/model/sensor_response.hpp"
 
 namespace feedplan::model {
 
@@ -51,6 +58,9 @@ struct MechanisticCuttingTest {
   std::vector<double> synchronous_fx_n;
   std::vector<double> synchronous_fy_n;  //!< Fy (left of the feed), same bins, N
   std::string name;                      //!< what the result's messages call it ("tests[2]" when empty)
+  //! Spindle speed of the test, rev/min: the harmonics of the revolution lie at multiples of rpm/60 Hz.
+  //! Needed (> 0) only with identify_sensor, whose modes are in Hz; 0: not given.
+  double spindle_rpm = 0.0;
 };
 
 //! How to identify.
@@ -70,6 +80,17 @@ struct MechanisticIdentificationOptions {
   //! degrees off changes the peak of such a cut by as much as the runout does. The result is
   //! MechanisticModel::helix_deg.
   bool identify_helix = false;
+  //! Also fit the dynamometer's two XY modes (SensorResponse: natural frequency, damping, direction), which
+  //! make it ring at every tooth pulse: the bins are matched with the kernel's force as the sensor reads it.
+  //! Every test needs its spindle_rpm. The result is MechanisticIdentification::sensor; the coefficients are
+  //! then those of the force on the tool, not of the reading.
+  bool identify_sensor = false;
+  //! With identify_sensor: the range searched for the natural frequencies, Hz (a table dynamometer with a
+  //! workpiece: its first modes lie between a few hundred hertz and a few kilohertz). The upper end is
+  //! lowered to the bins' Nyquist frequency (bins/2 · rpm/60) of the test with the lowest, above which the
+  //! synchronous averages hold no harmonic; the result says so.
+  double sensor_min_frequency_hz = 300.0;
+  double sensor_max_frequency_hz = 3000.0;  //!< upper end of that range, Hz
 };
 
 //! Whether the tests could separate the coefficients.
@@ -87,6 +108,11 @@ struct MechanisticIdentification {
   MechanisticModel model;
   bool runout_converged = false;  //!< with identify_runout: Ceres reported a usable solution
   std::string runout_report;      //!< with identify_runout: Ceres' one-line summary
+  //! With identify_sensor: the dynamometer's modes the tests show, in the tests' force frame; else empty.
+  //! The bins are fitted through it, and the covariance is conditional on it.
+  std::optional<SensorResponse> sensor;
+  bool sensor_converged = false;  //!< with identify_sensor: Ceres reported a usable solution
+  std::string sensor_report;      //!< with identify_sensor: Ceres' one-line summary
   IdentificationStatus status = IdentificationStatus::kIdentified;
   //! Covariance of (K_tc, K_rc, K_te, K_re), σ²·(AᵀA)⁻¹ with A the regressors at the found phases and
   //! σ² the residual variance (sum of squares over rows − 4); units N²/mm⁴, N²/mm³, N²/mm².
@@ -101,11 +127,17 @@ struct MechanisticIdentification {
 
 //! Every problem with the tests: at least one; per test, a cutter that passes validate(), an arc with
 //! entry < exit, a_p and f_z finite and > 0, Fx and Fy of equal length, at least 8 bins, all finite; with
-//! `identify_runout`, every test with the first test's flute count, at least 2.
-std::vector<InputProblem> validate(const std::vector<MechanisticCuttingTest>& tests, bool identify_runout = false);
+//! `identify_runout`, every test with the first test's flute count, at least 2; with `identify_sensor`,
+//! every test's spindle_rpm finite and > 0.
+std::vector<InputProblem> validate(const std::vector<MechanisticCuttingTest>& tests, bool identify_runout = false,
+                                   bool identify_sensor = false);
 
-//! Fits K_tc, K_rc, K_te, K_re (and, on request, the runout) to the tests' synchronous averages, each test
-//! with its own phase (see the file comment). The covariance is conditional on the phases and runout found. Throws InputError with validate()'s problems. Always returns a fit; when the tests
+//! Every problem with the options: with identify_sensor, a frequency range with 0 < min < max, finite.
+std::vector<InputProblem> validate(const MechanisticIdentificationOptions& options);
+
+//! Fits K_tc, K_rc, K_te, K_re (and, on request, the runout, helix and sensor) to the tests' synchronous
+//! averages, each test with its own phase (see the file comment). The covariance is conditional on the
+//! phases, runout and sensor found. Throws InputError with both validate()s' problems. Always returns a fit; when the tests
 //! leave a combination of coefficients poorly determined (condition number above the option's, e.g.
 //! every test at one feed, where cutting and edge terms are told apart only by the pulse's shape) the
 //! status is kIllConditioned and `unidentifiable` says which combination and why.

@@ -20,6 +20,7 @@
 #include "feedplan/model/engaged_section.hpp"
 #include "feedplan/model/mechanistic_model.hpp"
 #include "feedplan/model/response_surface_model.hpp"
+#include "feedplan/model/sensor_response.hpp"
 
 namespace feedplan::model {
 
@@ -62,5 +63,19 @@ PredictionInterval mechanistic_peak_interval(const MechanisticModel& model,
                                              const std::array<std::array<double, 4>, 4>& covariance,
                                              std::span<const EngagedSection> sections, const CutterGeometry& cutter,
                                              double feed_per_tooth_mm, double revolution_spread_rel, double z = 2.0);
+
+//! The interval of the peak the dynamometer `sensor` reads at `spindle_rpm` (predicted_sensed_peak,
+//! sensed_peak.hpp), for comparing with a cutting test's measured per-revolution peaks when the dynamometer
+//! rings. As mechanistic_peak_interval, with the reading's regressors at the angle of its peak in place of
+//! the force's (the reading is linear in the coefficients). The sensor is held fixed: `covariance` is
+//! conditional on it, as identification reports it. Same requirements, and a sensor that passes
+//! validate(sensor) (fields "sensor.…") and spindle_rpm finite and > 0 ("spindle_rpm"); otherwise throws
+//! feedplan::InputError listing every problem.
+PredictionInterval mechanistic_sensed_peak_interval(const MechanisticModel& model,
+                                                    const std::array<std::array<double, 4>, 4>& covariance,
+                                                    std::span<const EngagedSection> sections,
+                                                    const CutterGeometry& cutter, double feed_per_tooth_mm,
+                                                    const SensorResponse& sensor, double spindle_rpm,
+                                                    double revolution_spread_rel, double z = 2.0);
 
 }  // namespace feedplan::model
