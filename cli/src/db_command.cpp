@@ -28,6 +28,8 @@
 #include "feedplan/model_db/mechanistic_fit.hpp"
 #include "feedplan/model/model_json.hpp"
 #include "feedplan/model/model_prediction.hpp"
+#include "feedplan/model/prediction_interval.hpp"
+#include "feedplan/model/revolution_spread.hpp"
 #include "feedplan/model_db/store.hpp"
 
 namespace feedplan::cli {
@@ -493,6 +495,38 @@ int run_fit(const DbOptions& o) {
   return 0;
 }
 
+// The leave-one-out RMS error of `version` relative to the mean peak of the tests it was fitted on (0 when
+// unknown).
+double cross_validated_rel(const mdb::ModelRecord& version, const std::vector<mdb::StoredCuttingTest>& tests) {
+  double sum = 0.0;
+  for (const auto& t : tests) sum += t.test.peak_mean_n;
+  const double mean_n = tests.empty() ? 0.0 : sum / static_cast<double>(tests.size());
+  return mean_n > 0.0 ? version.fit.loo_rmse_n / mean_n : 0.0;
+}
+
+// The pooled revolution-to-revolution spread of the pair's stored tests (0 when none has two peaks).
+double tests_spread_rel(const std::vector<mdb::StoredCuttingTest>& tests) {
+  std::vector<std::vector<double>> peaks;
+  for (const auto& t : tests) {
+    if (t.test.steady_peaks_n.size() >= 2) peaks.push_back(t.test.steady_peaks_n);
+  }
+  return peaks.empty() ? 0.0 : model::pooled_revolution_spread_rel(peaks);
+}
+
+json interval_json(const model::PredictionInterval& i) {
+  return json{{"predicted_n", i.predicted_n}, {"lower_n", i.lower_n}, {"upper_n", i.upper_n},
+              {"fit_sd_n", i.fit_sd_n}, {"spread_sd_n", i.spread_sd_n}};
+}
+
+std::string interval_text(const model::PredictionInterval& i) {
+  char text[200];
+  std::snprintf(text, sizeof text,
+                "%.1f N, 95 %% of revolutions in %.1f … %.1f N (model σ %.1f N: fit or leave-one-out, the larger; "
+                "revolution spread σ %.1f N)",
+                i.predicted_n, i.lower_n, i.upper_n, i.fit_sd_n, i.spread_sd_n);
+  return text;
+}
+
 int run_predict(const DbOptions& o) {
   const mdb::Store store = open_store(o, mdb::OpenMode::kReadOnly);
   const mdb::ToolRecord tool = require_tool(store, o.tool);
@@ -506,25 +540,59 @@ int run_predict(const DbOptions& o) {
   if (!(std::isfinite(o.feed_per_tooth_mm) && o.feed_per_tooth_mm > 0)) {
     throw InputError("--feed-per-tooth-mm", "= " + shortest_number_text(o.feed_per_tooth_mm) + ": must be a finite number > 0");
   }
+  const mdb::CutMode mode = parse_mode(o.mode);
   if (closest.match != mdb::ModelMatch::kExact) {
     std::cerr << "feedplan: warning: no model for " << o.tool << " in " << o.material << "; " << closest.explanation << "\n";
   }
+  const mdb::ModelRecord& surface = *closest.model;
+  const auto tests = store.cutting_tests(surface.tool_name, surface.material_name);
+  const double spread_rel = tests_spread_rel(tests);
   const auto [chip, contact] = straight_cut_inputs(0.5 * tool.diameter_mm, o.radial_depth_mm, o.feed_per_tooth_mm);
-  const model::ForcePrediction p = model::predict(closest.model->model, chip, contact);
+  const model::ForcePrediction p = model::predict(surface.model, chip, contact);
+  const model::PredictionInterval surface_interval = model::with_cross_validated_error(
+      model::response_surface_interval(surface.model, surface.fit.covariance, chip, contact, spread_rel),
+      cross_validated_rel(surface, tests));
+
+  // The mechanistic version of the same pair, on the straight cut's arc with the asked tool's cutter.
+  std::optional<model::PredictionInterval> mechanistic_interval;
+  const auto mechanistic = store.active_model(surface.tool_name, surface.material_name, mdb::ModelKind::kMechanistic);
+  const bool fits_cutter = mechanistic && (mechanistic->mechanistic->model.runout_mm.empty() ||
+                                           mechanistic->mechanistic->model.runout_mm.size() ==
+                                               static_cast<std::size_t>(tool.flutes));
+  if (fits_cutter) {
+    mdb::CuttingTestRecord cut;
+    cut.conditions.radial_depth_mm = o.radial_depth_mm;
+    cut.conditions.axial_depth_mm = surface.model.axial_depth_mm > 0.0 ? surface.model.axial_depth_mm : tool.diameter_mm;
+    cut.conditions.mode = mode;
+    cut.feed_per_tooth_mm = o.feed_per_tooth_mm;
+    mechanistic_interval = model::with_cross_validated_error(
+        mdb::predicted_test_interval(*mechanistic->mechanistic, tool, cut, spread_rel),
+        cross_validated_rel(*mechanistic, tests));
+  }
   if (o.json) {
-    std::cout << json{{"model", model_json(*closest.model)},
-                      {"match", closest.explanation},
-                      {"chip_mm", chip},
-                      {"contact_length_mm", contact},
-                      {"force_n", p.force_n},
-                      {"chip_outside_fitted_range", p.chip_outside},
-                      {"contact_length_outside_fitted_range", p.contact_length_outside}}
-                     .dump(2)
-              << "\n";
+    json out{{"model", model_json(surface)},
+             {"match", closest.explanation},
+             {"chip_mm", chip},
+             {"contact_length_mm", contact},
+             {"force_n", p.force_n},
+             {"interval", interval_json(surface_interval)},
+             {"revolution_spread_rel", spread_rel},
+             {"chip_outside_fitted_range", p.chip_outside},
+             {"contact_length_outside_fitted_range", p.contact_length_outside}};
+    if (mechanistic_interval) {
+      out["mechanistic"] = {{"model", model_json(*mechanistic)}, {"interval", interval_json(*mechanistic_interval)}};
+    }
+    std::cout << out.dump(2) << "\n";
   } else {
     std::printf("model: %s\n", closest.explanation.c_str());
-    std::printf("t_m %.4g mm, L %.4g mm: predicted per-revolution peak %.1f N%s\n", chip, contact, p.force_n,
+    std::printf("t_m %.4g mm, L %.4g mm: predicted per-revolution peak %s%s\n", chip, contact,
+                interval_text(surface_interval).c_str(),
                 p.chip_outside || p.contact_length_outside ? " (outside the fitted range: extrapolated)" : "");
+    if (mechanistic_interval) {
+      std::printf("mechanistic v%d (%s milling, a_p %.4g mm): %s\n", mechanistic->version, mode_text(mode).c_str(),
+                  surface.model.axial_depth_mm > 0.0 ? surface.model.axial_depth_mm : tool.diameter_mm,
+                  interval_text(*mechanistic_interval).c_str());
+    }
   }
   return 0;
 }
@@ -688,6 +756,7 @@ void add_db_command(CLI::App& app, DbOptions& o) {
   tool_material(predict);
   add_number_flag(predict, "--radial-depth-mm", o.radial_depth_mm, "Radial depth a_e, mm")->required();
   add_number_flag(predict, "--feed-per-tooth-mm", o.feed_per_tooth_mm, "Feed per tooth f_z, mm")->required();
+  predict->add_option("--mode", o.mode, "down (default), up or slot: the side the mechanistic kind cuts on");
   auto* export_cmd = db->add_subcommand("export", "Export tools, materials, models and cutting tests as JSON");
   common(export_cmd);
   export_cmd->add_option("file", o.file, "JSON file to write")->required();

@@ -157,4 +157,18 @@ PredictionInterval mechanistic_sensed_peak_interval(const MechanisticModel& mode
                        revolution_spread_rel, z);
 }
 
+PredictionInterval with_cross_validated_error(const PredictionInterval& interval, double cross_validated_rel,
+                                              double z) {
+  if (!(std::isfinite(cross_validated_rel) && cross_validated_rel >= 0.0)) {
+    throw InputError("cross_validated_rel", "= " + shortest_number_text(cross_validated_rel) + ": must be finite and ≥ 0");
+  }
+  if (!(std::isfinite(z) && z > 0.0)) throw InputError("z", "= " + shortest_number_text(z) + ": must be finite and > 0");
+  PredictionInterval widened = interval;
+  widened.fit_sd_n = std::max(interval.fit_sd_n, cross_validated_rel * std::abs(interval.predicted_n));
+  const double half_width_n = z * std::hypot(widened.fit_sd_n, widened.spread_sd_n);
+  widened.lower_n = interval.predicted_n - half_width_n;
+  widened.upper_n = interval.predicted_n + half_width_n;
+  return widened;
+}
+
 }  // namespace feedplan::model

@@ -140,6 +140,14 @@ double predicted_test_peak_n(const model::MechanisticModel& model, const ToolRec
                                        test.feed_per_tooth_mm);
 }
 
+model::PredictionInterval predicted_test_interval(const MechanisticFit& fit, const ToolRecord& tool,
+                                                  const CuttingTestRecord& test, double revolution_spread_rel) {
+  const model::ImmersionArc arc = arc_of(tool, test.conditions);
+  const model::EngagedSection section{0.0, test.conditions.axial_depth_mm, std::span<const model::ImmersionArc>(&arc, 1)};
+  return model::mechanistic_peak_interval(fit.model, fit.covariance, std::span<const model::EngagedSection>(&section, 1),
+                                          cutter_of(tool), test.feed_per_tooth_mm, revolution_spread_rel);
+}
+
 MechanisticFitResult fit_mechanistic(const ToolRecord& tool, const std::string& material_name,
                                      const std::vector<StoredCuttingTest>& tests, const MechanisticFitOptions& options) {
   MechanisticFitResult result;

@@ -78,4 +78,13 @@ PredictionInterval mechanistic_sensed_peak_interval(const MechanisticModel& mode
                                                     const SensorResponse& sensor, double spindle_rpm,
                                                     double revolution_spread_rel, double z = 2.0);
 
+//! `interval` with its model part widened to the error the model showed on cutting tests it was not fitted
+//! on: the fit σ becomes max(fit σ, cross_validated_rel · |F̂|), with cross_validated_rel the leave-one-out
+//! RMS error relative to the tests' mean peak. The covariance measures only the noise of the coefficients;
+//! a model whose shape is not quite the machine's (a size effect it lacks, a sensor it does not model) errs
+//! by more, and the leave-one-out error is the measured size of that. Throws InputError for
+//! cross_validated_rel not finite and ≥ 0 ("cross_validated_rel") or z not finite and > 0 ("z").
+PredictionInterval with_cross_validated_error(const PredictionInterval& interval, double cross_validated_rel,
+                                              double z = 2.0);
+
 }  // namespace feedplan::model

@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "feedplan/model/prediction_interval.hpp"
 #include "feedplan/model_db/store_records.hpp"
 
 namespace feedplan::model_db {
@@ -48,5 +49,10 @@ MechanisticFitResult fit_mechanistic(const ToolRecord& tool, const std::string& 
 //! The straight cut of `test` as the mechanistic kernel sees it: the predicted mean steady peak of `model`
 //! for the test's conditions with `tool`'s cutter, N.
 double predicted_test_peak_n(const model::MechanisticModel& model, const ToolRecord& tool, const CuttingTestRecord& test);
+
+//! The prediction interval (model/prediction_interval.hpp) of that peak: the version's coefficient
+//! covariance and the tests' revolution-to-revolution spread `revolution_spread_rel`.
+model::PredictionInterval predicted_test_interval(const MechanisticFit& fit, const ToolRecord& tool,
+                                                  const CuttingTestRecord& test, double revolution_spread_rel);
 
 }  // namespace feedplan::model_db
