@@ -26,24 +26,13 @@
 #include "feedplan/planner/feed_plan.hpp"
 #include "feedplan/sim/material.hpp"
 #include "feedplan/sim/milling_simulation.hpp"
+#include "simulator_coefficients.hpp"
 #include "feedplan/sim/motion_profile.hpp"
 
 namespace feedplan::planner {
 namespace {
 
-model::MechanisticModel mechanistic(const sim::CuttingCoefficients& k) {
-  model::MechanisticModel m;
-  m.ktc_n_per_mm2 = k.ktc_n_per_mm2;
-  m.krc_n_per_mm2 = k.krc_n_per_mm2;
-  m.kac_n_per_mm2 = k.kac_n_per_mm2;
-  m.kte_n_per_mm = k.kte_n_per_mm;
-  m.kre_n_per_mm = k.kre_n_per_mm;
-  m.kae_n_per_mm = k.kae_n_per_mm;
-  m.size_exponent = k.size_exponent;
-  m.size_reference_chip_mm = k.size_reference_chip_mm;
-  m.size_min_chip_mm = k.size_min_chip_mm;
-  return m;
-}
+using testing::mechanistic;
 
 TEST(MechanisticTransfer, KnownCoefficientsPredictTheTrochoidsPeaksOnTheVirtualMachine) {
   const cycles::CycleSpec spec = cycles::load_cycle_spec(FEEDPLAN_SAMPLES_DIR "/trochoid.yaml");
