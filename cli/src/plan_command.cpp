@@ -138,8 +138,8 @@ void choose_model_kind(const PlanCommandOptions& o, const mdb::Store& store, con
                                            "-flute cutter (fit one: feedplan db fit --kind mechanistic)");
     }
     model.kind_reason = "mechanistic v" + std::to_string(mechanistic->version) +
-                        ", as asked (--model-kind); note: it reads each place as a steady cut and can under-predict "
-                        "where the tool enters material (loop fronts)";
+                        ", as asked (--model-kind); note: identified on straight cuts it can under-predict where the "
+                        "tool enters material (loop fronts, thin chips)";
     model.mechanistic = std::move(mechanistic);
     return;
   }
@@ -147,12 +147,13 @@ void choose_model_kind(const PlanCommandOptions& o, const mdb::Store& store, con
     model.kind_reason = "response surface: the pair has no mechanistic version";
     return;
   }
-  // The mechanistic kind reads each place as a steady cut and under-predicts the revolution that enters
-  // the material (a loop front: +27 % on the virtual machine with its own coefficients); the response
-  // surface's chip-load transfer is cautious there. Until entries are read per tooth period the
-  // mechanistic kind plans only when asked; the comparison is printed so the user can decide.
-  model.kind_reason = "response surface (the mechanistic kind plans only with --model-kind mechanistic: it does not "
-                      "yet hold the target where the tool enters material); leave-one-out error on the cutting tests " +
+  // Identified on straight cuts, the mechanistic kind overshoots the test machines' spirals, corners and
+  // tight trochoid fronts by up to +15 % (their size effect is not in its linear coefficients), more than
+  // the response surface does; it plans only when asked, and the comparison is printed so the user can
+  // decide.
+  model.kind_reason = "response surface (the mechanistic kind plans only with --model-kind mechanistic: identified on "
+                      "straight cuts it can overshoot where the tool enters material); leave-one-out error on the "
+                      "cutting tests " +
                       loo(surface) + " N (response surface v" + std::to_string(surface.version) + "), " +
                       loo(*mechanistic) + " N (mechanistic v" + std::to_string(mechanistic->version) + ")";
 }
