@@ -1,6 +1,7 @@
 // Planning speed: the long trochoid slot (770 loops of the Table 2 trochoid, ≈ 100 000 blocks) —
 // engagement once, then plan (what learning repeats between two parts), then the G-code text — and
-// the 10-loop trochoid sample re-planned from its engagement (seed 003 re-planned in the air cut).
+// the 10-loop trochoid sample re-planned from its engagement (seed 003 re-planned in the air cut), with the
+// response surface and with the mechanistic kind.
 //
 // To compare with LinuxCNC reading the same program: FEEDPLAN_BENCH_PROGRAM=/tmp/long.ngc makes the
 // bench write the long program there once, then `time rs274 -g /tmp/long.ngc /tmp/long.out`.
@@ -103,10 +104,33 @@ void BM_ReplanTrochoidSample(benchmark::State& state) {
   state.counters["samples"] = static_cast<double>(job.geometry.engagement.samples.size());
 }
 
+// The 10-loop sample planned with the mechanistic kind: cutting and edge coefficients of S50C's size
+// (data/materials.yaml) with 3 µm of runout on one tooth — the kernel's slower path, a peak scan over the
+// whole revolution — beside the response surface's re-plan above.
+void BM_PlanTrochoidSampleMechanistic(benchmark::State& state) {
+  static const Job job = [] {
+    Job j = make_job(9.0);
+    model::MechanisticModel mechanistic;
+    mechanistic.ktc_n_per_mm2 = 2000.0;
+    mechanistic.krc_n_per_mm2 = 700.0;
+    mechanistic.kte_n_per_mm = 20.0;
+    mechanistic.kre_n_per_mm = 22.0;
+    mechanistic.runout_mm = {0.003, 0.0, 0.0, 0.0};
+    j.settings.mechanistic = mechanistic;
+    return j;
+  }();
+  for (auto _ : state) {
+    auto result = planner::plan(job.geometry, job.settings);
+    benchmark::DoNotOptimize(result);
+  }
+  state.counters["samples"] = static_cast<double>(job.geometry.engagement.samples.size());
+}
+
 BENCHMARK(BM_EngagementLongTrochoid)->Unit(benchmark::kMillisecond)->Iterations(3);
 BENCHMARK(BM_PlanLongTrochoid)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_WriteLongTrochoid)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_ReplanTrochoidSample)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_PlanTrochoidSampleMechanistic)->Unit(benchmark::kMillisecond);
 
 }  // namespace
 
