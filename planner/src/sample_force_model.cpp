@@ -12,6 +12,8 @@ namespace {
 
 // The smallest feed the solve looks at, relative to the largest: the edge forces alone.
 constexpr double kVanishingFeedRatio = 1e-6;
+// Half-width (as a ratio) of the bracket around the previous sample's solution.
+constexpr double kWarmBracketRatio = 1.1;
 // The top of the bracket when the caller sets no air feed (the safety check asks for the force's own limit).
 constexpr double kLargestSolveFeedMmPerMin = 1e6;
 
@@ -54,10 +56,38 @@ SampleFeedLimit SampleForceModel::kernel_feed_limit(const geometry::EngagementSa
                                                  feed_per_tooth_mm(sample, feed_mm_per_min, flutes, spindle_rpm));
   };
   limit.reason = FeedLimitReason::kForce;
-  // The bracket: [vanishing feed, air feed]; the peak rises with the feed.
-  double hi = std::isfinite(air_feed_mm_per_min) ? air_feed_mm_per_min : kLargestSolveFeedMmPerMin;
-  double lo = kVanishingFeedRatio * hi;
-  double f_lo = peak_at(lo) - target_force_n, f_hi = peak_at(hi) - target_force_n;
+  // The bracket, within [vanishing feed, air feed]; the peak rises with the feed. Neighbouring samples
+  // have nearly the same solution, so the last one found starts a bracket of ±kWarmBracketRatio around it
+  // (two evaluations), widened to the whole range when the solution lies outside.
+  const double top = std::isfinite(air_feed_mm_per_min) ? air_feed_mm_per_min : kLargestSolveFeedMmPerMin;
+  const double bottom = kVanishingFeedRatio * top;
+  double lo = bottom, hi = top, f_lo = 0.0, f_hi = 0.0;
+  bool bracketed = false;
+  if (last_solution_mm_per_min_ > bottom && last_solution_mm_per_min_ < top) {
+    lo = std::max(bottom, last_solution_mm_per_min_ / kWarmBracketRatio);
+    hi = std::min(top, last_solution_mm_per_min_ * kWarmBracketRatio);
+    f_lo = peak_at(lo) - target_force_n;
+    f_hi = peak_at(hi) - target_force_n;
+    bracketed = f_lo < 0.0 && f_hi > 0.0;
+    if (!bracketed && f_lo < 0.0) {  // above the bracket: from its top to the air feed
+      lo = hi;
+      f_lo = f_hi;
+      hi = top;
+      f_hi = peak_at(hi) - target_force_n;
+      bracketed = true;
+    } else if (!bracketed) {  // below: from the vanishing feed to its bottom
+      hi = lo;
+      f_hi = f_lo;
+      lo = bottom;
+      f_lo = peak_at(lo) - target_force_n;
+      bracketed = true;
+    }
+  }
+  if (!bracketed) {
+    f_lo = peak_at(lo) - target_force_n;
+    f_hi = peak_at(hi) - target_force_n;
+  }
+  last_solution_mm_per_min_ = 0.0;
   if (f_lo >= 0.0) {
     limit.target_below_model = true;
     limit.solve_status = model::FeedSolveStatus::kTargetBelowModel;
@@ -87,6 +117,7 @@ SampleFeedLimit SampleForceModel::kernel_feed_limit(const geometry::EngagementSa
       }
     }
     limit.feed_mm_per_min = lo;  // at or below the target
+    last_solution_mm_per_min_ = lo;
   }
   const double chip_mm = chip_thickness_mm(sample, limit.feed_mm_per_min, flutes, spindle_rpm);
   limit.extrapolated = model::chip_outside(surface_.range, chip_mm) && chip_mm > surface_.range.chip_max_mm;

@@ -8,8 +8,8 @@
 //   f_z = F / (Z·n) · xy_speed_ratio. No transfer is needed: the kernel integrates the edge forces over the
 //   arcs the sample really has. The feed limit solves peak(F) = target by a safeguarded 1-D search
 //   (the peak rises with the feed at a place: every chip grows with it): bracketed regula falsi on
-//   log F (Illinois), ending within kMechanisticFeedTolerance of the feed, never above a feed whose
-//   peak is at or below the target. The uncertainty bound is F̂·(1 + z·r) (ForceUncertainty::sigmas
+//   F (Illinois), started around the previous sample's solution, ending within kMechanisticFeedTolerance
+//   of the feed, never above a feed whose peak is at or below the target. The uncertainty bound is F̂·(1 + z·r) (ForceUncertainty::sigmas
 //   and ::relative; the response surface's covariance does not apply).
 //
 // One object per path: plan(), the safety check, the target advice and the constant-feed baseline all
@@ -67,6 +67,9 @@ class SampleForceModel {
   SampleFeedLimit kernel_feed_limit(const geometry::EngagementSample& sample, double target_force_n, int flutes,
                                     double spindle_rpm, double air_feed_mm_per_min, double bound_factor) const;
 
+  //! The last feed limit the mechanistic solve found, mm/min (0: none): the next sample's starting bracket.
+  //! Only a starting point — the solve's result does not depend on it beyond its tolerance.
+  mutable double last_solution_mm_per_min_ = 0.0;
   const model::ResponseSurfaceModel& surface_;
   const model::MechanisticModel* mechanistic_;
   const geometry::EngagementProfile& profile_;
