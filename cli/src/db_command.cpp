@@ -421,6 +421,7 @@ mdb::ModelRecord fit_mechanistic_version(const DbOptions& o, const mdb::ToolReco
   mdb::MechanisticFitOptions options;
   options.identify_runout = !o.no_runout;
   options.identify_helix = !o.no_helix;
+  options.identify_size_effect = !o.no_size_effect;
   mdb::MechanisticFitResult fit = mdb::fit_mechanistic(tool, o.material, tests, options);
   for (const auto& note : fit.notes) notes.push_back("mechanistic: " + note);
   per_test = json::array();
@@ -751,6 +752,8 @@ void add_db_command(CLI::App& app, DbOptions& o) {
                   "response-surface (seed 003 Eq. 1 on the peaks) or both (default): each a version of its kind");
   fit->add_flag("--no-runout", o.no_runout, "Mechanistic: do not identify the per-tooth runout (nor the helix)");
   fit->add_flag("--no-helix", o.no_helix, "Mechanistic: keep the tool record's helix instead of identifying it");
+  fit->add_flag("--no-size-effect", o.no_size_effect,
+                "Mechanistic: no size effect (cutting coefficients independent of the chip thickness)");
   auto* predict = db->add_subcommand("predict", "Predict the per-revolution peak force of a straight cut");
   common(predict);
   tool_material(predict);

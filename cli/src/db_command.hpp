@@ -36,6 +36,7 @@ struct DbOptions {
   std::string kind = "both";    //!< fit: mechanistic, response-surface or both
   bool no_runout = false;       //!< fit: do not identify the per-tooth runout (mechanistic)
   bool no_helix = false;        //!< fit: keep the tool record's helix (mechanistic)
+  bool no_size_effect = false;  //!< fit: no size-effect exponent (mechanistic)
   double feed_per_tooth_mm = 0.0;  //!< predict
   std::string file;             //!< export / import
   bool all_versions = false;    //!< export

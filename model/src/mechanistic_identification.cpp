@@ -17,6 +17,7 @@
 #include "sensed_bin_rows.hpp"
 #include "sensor_refinement.hpp"
 #include "sensor_search.hpp"
+#include "size_effect_search.hpp"
 
 namespace feedplan::model {
 namespace {
@@ -260,8 +261,7 @@ std::vector<double> lowest_at_zero(std::vector<double> runout_mm) {
 //! coefficients and `a`, `y` the rows through the sensor.
 void identify_sensor(const std::vector<MechanisticCuttingTest>& tests, const MechanisticIdentificationOptions& options,
                      MechanisticModel model, MechanisticIdentification& result, Eigen::VectorXd& x,
-                     Eigen::MatrixXd& a, Eigen::VectorXd& y) {
-  std::vector<SensedBinning> binnings;
+                     Eigen::MatrixXd& a, Eigen::VectorXd& y, std::vector<SensedBinning>& binnings) {
   double nyquist_hz = INFINITY;
   for (const auto& t : tests) {
     binnings.emplace_back(t);
@@ -289,6 +289,8 @@ void identify_sensor(const std::vector<MechanisticCuttingTest>& tests, const Mec
   start.phase_rad = result.phase_rad;
   start.runout_mm = model.runout_mm;
   start.helix_deg = model.helix_deg;
+  start.size_exponent = model.size_exponent;
+  start.size_reference_chip_mm = model.size_reference_chip_mm;
   const SensorRefinement refined = refine_sensor(tests, binnings, start, min_hz, max_hz);
 
   result.sensor = refined.sensor;
@@ -301,6 +303,31 @@ void identify_sensor(const std::vector<MechanisticCuttingTest>& tests, const Mec
   result.model.helix_deg = model.helix_deg;
   stack_sensed_rows(tests, binnings, result.phase_rad, model, refined.sensor, a, y);
   if (!refined.converged) result.unidentifiable.push_back("sensor: the refinement did not converge (" + refined.message + ")");
+}
+
+//! The size-effect step of identify_mechanistic: m by search_size_exponent with the runout, helix, phases and
+//! (when identified, `binnings` holding the tests' binnings) sensor of `result` held, and h_ref the tests'
+//! geometric mean feed; `result.model` gets m and h_ref, `x` the coefficients refitted with them and `a`, `y`
+//! the rows. Returns whether the search stopped at its upper bound.
+bool search_size_effect(const std::vector<MechanisticCuttingTest>& tests, const std::vector<SensedBinning>& binnings,
+                        MechanisticIdentification& result, Eigen::VectorXd& x, Eigen::MatrixXd& a, Eigen::VectorXd& y,
+                        Eigen::VectorXd& weakest) {
+  MechanisticModel held = result.model;
+  held.size_reference_chip_mm = size_reference_chip_mm(tests);
+  const auto stack = [&](double exponent) {
+    held.size_exponent = exponent;
+    if (result.sensor) stack_sensed_rows(tests, binnings, result.phase_rad, held, *result.sensor, a, y);
+    else stack_rows(tests, result.phase_rad, held, a, y);
+  };
+  const SizeEffectSearch search = search_size_exponent([&](double exponent) {
+    stack(exponent);
+    return fit_residual(a, y);
+  });
+  stack(search.exponent);
+  x = fit_coefficients(tests, a, y, result, weakest);
+  result.model.size_exponent = search.exponent;
+  result.model.size_reference_chip_mm = held.size_reference_chip_mm;
+  return search.at_upper_bound;
 }
 
 }  // namespace
@@ -335,16 +362,25 @@ MechanisticIdentification identify_mechanistic(const std::vector<MechanisticCutt
   Eigen::VectorXd y, weakest;
   stack_rows(tests, result.phase_rad, MechanisticModel{}, a, y);
   Eigen::VectorXd x = fit_coefficients(tests, a, y, result, weakest);
+  std::vector<SensedBinning> binnings;
+  const bool one_feed = !single_feed_text(tests, options.same_feed_tolerance).empty();
+  const bool size_effect = options.identify_size_effect && !one_feed;
+  // A first exponent without runout: the runout's refinement starts from it and refines it with the rest.
+  if (size_effect) search_size_effect(tests, binnings, result, x, a, y, weakest);
 
   if (options.identify_runout) {
+    RunoutSizeEffect size{size_effect, result.model.size_exponent, result.model.size_reference_chip_mm};
     const RunoutRefinement refined =
-        refine_runout(tests, result.phase_rad, {x(0), x(1), x(2), x(3)}, options.identify_helix);
+        refine_runout(tests, result.phase_rad, {x(0), x(1), x(2), x(3)}, options.identify_helix, size);
     result.runout_converged = refined.converged;
     result.runout_report = refined.message;
     result.phase_rad = refined.phase_rad;
+    result.model.size_exponent = refined.size_exponent;
     MechanisticModel with_runout;
     with_runout.runout_mm = refined.runout_mm;
     with_runout.helix_deg = refined.helix_deg;
+    with_runout.size_exponent = refined.size_exponent;
+    with_runout.size_reference_chip_mm = result.model.size_reference_chip_mm;
     result.model.helix_deg = refined.helix_deg;
     stack_rows(tests, result.phase_rad, with_runout, a, y);
     x = fit_coefficients(tests, a, y, result, weakest);
@@ -358,9 +394,20 @@ MechanisticIdentification identify_mechanistic(const std::vector<MechanisticCutt
     MechanisticModel fitted;
     if (options.identify_runout) fitted.runout_mm = result.model.runout_mm;
     fitted.helix_deg = result.model.helix_deg;
-    identify_sensor(tests, options, fitted, result, x, a, y);
+    fitted.size_exponent = result.model.size_exponent;
+    fitted.size_reference_chip_mm = result.model.size_reference_chip_mm;
+    identify_sensor(tests, options, fitted, result, x, a, y, binnings);
     x = fit_coefficients(tests, a, y, result, weakest);
     if (options.identify_runout) result.model.runout_mm = lowest_at_zero(result.model.runout_mm);
+  }
+  if (size_effect && search_size_effect(tests, binnings, result, x, a, y, weakest)) {
+    result.unidentifiable.push_back("size effect: the fit keeps improving up to the largest exponent searched (" +
+                                    six_digit_number_text(kMaxSizeExponent) + "), where it is held; the tests' feeds "
+                                    "do not separate the exponent from the edge coefficients");
+  }
+  if (options.identify_size_effect && one_feed) {
+    result.unidentifiable.push_back("size effect: every test is at one feed per tooth, and the exponent shows only in "
+                                    "how the force grows with the chip; it is left at 0");
   }
   set_coefficients(result.model, x);
 

@@ -16,8 +16,16 @@ namespace feedplan::model::detail {
 //! How far an identified helix may lie from the catalogue value, deg.
 inline constexpr double kMaxHelixChangeDeg = 20.0;
 
+//! The size effect during the refinement: held at `exponent`, or refined from it within [0, kMaxSizeExponent].
+struct RunoutSizeEffect {
+  bool refine = false;
+  double exponent = 0.0;
+  double reference_chip_mm = 0.1;  //!< h_ref, mm, always held
+};
+
 //! The refined unknowns.
 struct RunoutRefinement {
+  double size_exponent = 0.0;  //!< the size effect's exponent, refined or held
   std::optional<double> helix_deg;  //!< with identify_helix: the helix the tests show, deg
   std::vector<double> runout_mm;  //!< per tooth, mm, tooth 0 at 0 (only differences are seen)
   std::vector<double> phase_rad;  //!< per test, rad
@@ -29,8 +37,10 @@ struct RunoutRefinement {
 //! fitted with them: fits tooth 0's test alone (which fixes the tooth numbering), gives every other test
 //! the tooth period shift of its phase that fits best the runout found, then fits all tests together.
 //! Needs tests with one cutter (same flute count ≥ 2). With `identify_helix` the helix angle (one for all
-//! tests, starting at the first test's cutter's) is refined in the last fit too, within kMaxHelixChangeDeg.
+//! tests, starting at the first test's cutter's) is refined in the last fit too, within kMaxHelixChangeDeg; so is
+//! the size effect's exponent with `size.refine` (else held at `size.exponent` throughout).
 RunoutRefinement refine_runout(const std::vector<MechanisticCuttingTest>& tests, const std::vector<double>& phases_rad,
-                               const std::array<double, 4>& coefficients, bool identify_helix = false);
+                               const std::array<double, 4>& coefficients, bool identify_helix = false,
+                               const RunoutSizeEffect& size = {});
 
 }  // namespace feedplan::model::detail

@@ -33,6 +33,8 @@ struct SensedBinResidual {
   Eigen::VectorXd y;
   bool runout = false;
   bool helix = false;
+  double size_exponent = 0.0;
+  double size_reference_chip_mm = 0.1;
   mutable std::vector<double> cached_key;
   mutable Eigen::MatrixXcd cached_spectrum;
 
@@ -40,6 +42,8 @@ struct SensedBinResidual {
     const int flutes = test->cutter.flutes;
     std::vector<double> key{p[2][0]};
     MechanisticModel model;
+    model.size_exponent = size_exponent;
+    model.size_reference_chip_mm = size_reference_chip_mm;
     int block = 3;
     if (runout) {
       model.runout_mm.assign(static_cast<std::size_t>(flutes), 0.0);
@@ -96,7 +100,8 @@ SensorRefinement refine_sensor(const std::vector<MechanisticCuttingTest>& tests,
   ceres::NumericDiffOptions diff;
   diff.relative_step_size = 1e-4;
   for (std::size_t i = 0; i < tests.size(); ++i) {
-    auto* residual = new SensedBinResidual{&tests[i], &binnings[i], measured(tests[i]), runout, start.helix_deg.has_value(), {}, {}};
+    auto* residual = new SensedBinResidual{&tests[i], &binnings[i], measured(tests[i]), runout, start.helix_deg.has_value(),
+                                           start.size_exponent, start.size_reference_chip_mm, {}, {}};
     auto* cost = new ceres::DynamicNumericDiffCostFunction<SensedBinResidual, ceres::CENTRAL>(residual, ceres::TAKE_OWNERSHIP, diff);
     std::vector<double*> blocks{k.data(), sensor, &phases[i]};
     cost->AddParameterBlock(kIdentifiedCoefficients);

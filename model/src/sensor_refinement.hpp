@@ -26,6 +26,8 @@ struct SensorRefinementStart {
   std::vector<double> phase_rad;         //!< per test
   std::vector<double> runout_mm;         //!< per tooth; refined (teeth 1 … N−1) when not empty
   std::optional<double> helix_deg;       //!< refined when set, within kMaxHelixChangeDeg of the cutter's
+  double size_exponent = 0.0;            //!< the size effect, held
+  double size_reference_chip_mm = 0.1;   //!< its reference chip, mm
 };
 
 //! The refined unknowns.

@@ -51,6 +51,7 @@ model::MechanisticIdentificationOptions identification_options(const ToolRecord&
   model::MechanisticIdentificationOptions o;
   o.identify_runout = options.identify_runout && tool.flutes >= 2;
   o.identify_helix = o.identify_runout && options.identify_helix;
+  o.identify_size_effect = options.identify_size_effect;
   return o;
 }
 

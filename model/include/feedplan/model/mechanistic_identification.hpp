@@ -12,7 +12,9 @@
 //
 // Only the force in the XY plane is averaged, so K_ac and K_ae (axial) are not identified: the result
 // keeps them at 0 and says so. Runout is identified on request (options.identify_runout): it makes the
-// force non-linear in the unknowns, and Ceres refines coefficients, runout and phases together.
+// force non-linear in the unknowns, and Ceres refines coefficients, runout and phases together. The
+// size effect is identified on request (options.identify_size_effect) by a search over its exponent, each
+// try scored by the coefficients' linear fit.
 //
 // The dynamometer's modes are identified on request too (options.identify_sensor, docs/method.md §5.8): the
 // bins are then matched with the kernel's force as the sensor reads it (sensor_response.hpp), the modes
@@ -80,6 +82,11 @@ struct MechanisticIdentificationOptions {
   //! degrees off changes the peak of such a cut by as much as the runout does. The result is
   //! MechanisticModel::helix_deg.
   bool identify_helix = false;
+  //! Also fit the size-effect exponent m (MechanisticModel::size_exponent, in [0, 0.6]) with the reference chip
+  //! h_ref at the tests' geometric mean f_z, after the runout, helix and sensor: a one-dimensional search of the
+  //! coefficients' fit residual over m (with m fixed the force is linear in them). It needs tests at more than
+  //! one feed; the exponent shows in how the force grows with the chip, against the edge coefficients.
+  bool identify_size_effect = false;
   //! Also fit the dynamometer's two XY modes (SensorResponse: natural frequency, damping, direction), which
   //! make it ring at every tooth pulse: the bins are matched with the kernel's force as the sensor reads it.
   //! Every test needs its spindle_rpm. The result is MechanisticIdentification::sensor; the coefficients are
@@ -101,7 +108,8 @@ enum class IdentificationStatus {
 
 //! The fitted model, how well it fits, and what the tests cannot tell.
 struct MechanisticIdentification {
-  //! K_tc, K_rc, K_te, K_re fitted; K_ac = K_ae = 0 (not identifiable from Fx, Fy); no size effect. With
+  //! K_tc, K_rc, K_te, K_re fitted; K_ac = K_ae = 0 (not identifiable from Fx, Fy); with identify_size_effect
+  //! the size effect (else none), the coefficients then holding at its reference chip. With
   //! identify_runout, runout_mm per tooth with the smallest at 0, tooth 0 being the tooth at the kernel's
   //! tooth-0 position at the first test's phase (without an encoder the physical tooth is not known, so the
   //! runout is known up to a rotation of the tooth numbers); else empty.

@@ -22,6 +22,9 @@ struct MechanisticFitOptions {
   bool identify_runout = true;
   //! With the runout, identify the flutes' helix too (model::MechanisticIdentificationOptions::identify_helix).
   bool identify_helix = true;
+  //! Identify the size-effect exponent (model::MechanisticIdentificationOptions::identify_size_effect); tests
+  //! at one feed leave it at 0 and say so.
+  bool identify_size_effect = true;
   //! Compute the leave-one-out error (one identification per test); false leaves fit.loo_rmse_n at 0.
   bool leave_one_out = true;
 };
