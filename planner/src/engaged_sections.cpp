@@ -1,6 +1,7 @@
 #include "feedplan/planner/engaged_sections.hpp"
 
 #include <algorithm>
+#include <numbers>
 #include <span>
 
 namespace feedplan::planner {
@@ -39,6 +40,15 @@ SampleSections::SampleSections(const geometry::EngagementProfile& profile, const
   arcs_.reserve(static_cast<std::size_t>(sample.interval_count));
   append_arcs(profile, sample.interval_begin, sample.interval_count, arcs_);
   sections_.push_back({0.0, sample.axial_depth_mm, std::span<const model::ImmersionArc>(arcs_.data(), arcs_.size())});
+}
+
+void SampleSections::turn(double turn_rad) {
+  if (feed_frame_arcs_.empty()) feed_frame_arcs_ = arcs_;
+  constexpr double kLowest = -0.5 * std::numbers::pi, kHighest = 1.5 * std::numbers::pi;
+  for (std::size_t i = 0; i < arcs_.size(); ++i) {  // in place: the sections point into arcs_
+    arcs_[i].entry_rad = std::clamp(feed_frame_arcs_[i].entry_rad + turn_rad, kLowest, kHighest);
+    arcs_[i].exit_rad = std::clamp(feed_frame_arcs_[i].exit_rad + turn_rad, kLowest, kHighest);
+  }
 }
 
 model::CutterGeometry cutter_geometry(const geometry::Tool& tool) {

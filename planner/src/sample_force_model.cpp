@@ -6,6 +6,7 @@
 #include "feedplan/model/mechanistic_force.hpp"
 #include "feedplan/model/model_prediction.hpp"
 #include "feedplan/planner/engaged_sections.hpp"
+#include "feedplan/planner/tooth_chord.hpp"
 
 namespace feedplan::planner {
 namespace {
@@ -19,6 +20,16 @@ constexpr double kLargestSolveFeedMmPerMin = 1e6;
 
 double feed_per_tooth_mm(const geometry::EngagementSample& sample, double feed_mm_per_min, int flutes, double rpm) {
   return feed_mm_per_min / (flutes * rpm) * sample.xy_speed_ratio;
+}
+
+//! The kernel's peak at `sample` for the XY feed per tooth `feed_per_tooth_mm`, read along the chord of the last
+//! tooth period (tooth_chord.hpp): `sections` turned into its frame, its length the feed per tooth.
+double chord_peak_n(const model::MechanisticModel& model, SampleSections& sections, const model::CutterGeometry& cutter,
+                    const geometry::EngagementProfile& profile, const geometry::EngagementSample& sample,
+                    double feed_per_tooth_mm) {
+  const ToothChord chord = tooth_chord(profile, sample, feed_per_tooth_mm / sample.xy_speed_ratio);
+  sections.turn(chord.angle_rad);
+  return model::predicted_peak_force_n(model, sections.sections(), cutter, chord.length_mm);
 }
 
 double bound_factor(const ForceUncertainty* uncertainty) {
@@ -37,9 +48,9 @@ double SampleForceModel::load_ratio(const geometry::EngagementSample& sample) co
 
 double SampleForceModel::kernel_peak_n(const geometry::EngagementSample& sample, double feed_per_tooth_mm) const {
   if (!is_engaged(sample) || !(feed_per_tooth_mm > 0.0)) return 0.0;
-  const SampleSections sections(profile_, sample);
+  SampleSections sections(profile_, sample);
   if (sections.sections().empty()) return 0.0;
-  return model::predicted_peak_force_n(*mechanistic_, sections.sections(), cutter_geometry(tool_), feed_per_tooth_mm);
+  return chord_peak_n(*mechanistic_, sections, cutter_geometry(tool_), profile_, sample, feed_per_tooth_mm);
 }
 
 SampleFeedLimit SampleForceModel::kernel_feed_limit(const geometry::EngagementSample& sample, double target_force_n,
@@ -48,12 +59,12 @@ SampleFeedLimit SampleForceModel::kernel_feed_limit(const geometry::EngagementSa
   SampleFeedLimit limit;
   limit.feed_mm_per_min = air_feed_mm_per_min;
   if (!is_engaged(sample) || sample.xy_speed_ratio < kMinChipFactor) return limit;
-  const SampleSections sections(profile_, sample);
+  SampleSections sections(profile_, sample);
   if (sections.sections().empty()) return limit;
   const model::CutterGeometry cutter = cutter_geometry(tool_);
   const auto peak_at = [&](double feed_mm_per_min) {
-    return bound * model::predicted_peak_force_n(*mechanistic_, sections.sections(), cutter,
-                                                 feed_per_tooth_mm(sample, feed_mm_per_min, flutes, spindle_rpm));
+    return bound * chord_peak_n(*mechanistic_, sections, cutter, profile_, sample,
+                                feed_per_tooth_mm(sample, feed_mm_per_min, flutes, spindle_rpm));
   };
   limit.reason = FeedLimitReason::kForce;
   // The bracket, within [vanishing feed, air feed]; the peak rises with the feed. Neighbouring samples

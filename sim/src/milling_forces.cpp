@@ -39,6 +39,30 @@ bool engaged_at(std::span<const geometry::EngagedInterval> arcs, double phi) {
   return false;
 }
 
+// The part of the immersions [φ − w, φ + w] that lies in the arcs: a slice's flute spans that range over its
+// height (w = half the slice's helix lag), and the slice cuts with that part of its height, at the part's
+// centre. Counting a slice whole or not at all by its midpoint made the force jump by a slice each time a
+// flute crossed an arc's end, and the per-revolution peak pick the upper jumps (+2.5 % on a 20° arc with
+// 0.25 mm slices of a 30° helix). With w = 0 (straight flutes) it is the midpoint test.
+struct EngagedPart {
+  double fraction = 0.0;  // of the slice's height, in [0, 1]
+  double centre_rad = 0.0;  // immersion at the middle of the engaged part
+};
+
+EngagedPart engaged_part(std::span<const geometry::EngagedInterval> arcs, double phi, double half_width_rad) {
+  if (!(half_width_rad > 0.0)) return {engaged_at(arcs, phi) ? 1.0 : 0.0, phi};
+  const double lo = phi - half_width_rad, hi = phi + half_width_rad;
+  double inside = 0.0, moment = 0.0;
+  for (const auto& arc : arcs) {
+    const double a = std::max(lo, arc.entry_rad), b = std::min(hi, arc.exit_rad);
+    if (b <= a) continue;
+    inside += b - a;
+    moment += 0.5 * (b * b - a * a);
+  }
+  if (inside <= 0.0) return {};
+  return {std::min(1.0, inside / (hi - lo)), moment / inside};
+}
+
 double size_factor(const CuttingCoefficients& k, double h_mm) {
   if (k.size_exponent == 0.0) return 1.0;
   return std::pow(std::max(h_mm, k.size_min_chip_mm) / k.size_reference_chip_mm, -k.size_exponent);
@@ -120,25 +144,34 @@ double chip_mm(const CutterGeometry& cutter, const CutterState& state, const Tee
 void add_slice_force(Force3& force, const CutterGeometry& cutter, const CuttingCoefficients& k,
                      const CutterState& state, const Teeth& teeth, const ForceSlice& slice, double lag,
                      const ToothZeroAngle& tooth0) {
-  const double dz = slice.thickness_mm;
+  const double half_lag_rad = 0.5 * std::abs(slice.thickness_mm * teeth.lag_per_mm);
   int at_tooth = 0;  // the tooth whose angle c, s hold
   double c = tooth0.cos();
   double s = tooth0.sin();
   for (int j = 0; j < teeth.count; ++j) {
-    if (!engaged_at(slice.engaged, wrapped_immersion(teeth.phi0_rad - lag - j * teeth.pitch_rad))) continue;
+    const double phi = wrapped_immersion(teeth.phi0_rad - lag - j * teeth.pitch_rad);
+    const EngagedPart part = engaged_part(slice.engaged, phi, half_lag_rad);
+    if (part.fraction == 0.0) continue;
+    const double dz = part.fraction * slice.thickness_mm;
     for (; at_tooth < j; ++at_tooth) {
       const double next_c = c * teeth.cos_pitch - s * teeth.sin_pitch;
       s = s * teeth.cos_pitch + c * teeth.sin_pitch;
       c = next_c;
     }
-    const double h = chip_mm(cutter, state, teeth, j, c, s);
+    double c_part = c, s_part = s;
+    if (part.fraction < 1.0) {  // the world angle falls as the immersion rises
+      const double turn = phi - part.centre_rad;
+      c_part = c * std::cos(turn) - s * std::sin(turn);
+      s_part = s * std::cos(turn) + c * std::sin(turn);
+    }
+    const double h = chip_mm(cutter, state, teeth, j, c_part, s_part);
     if (!(h > 0.0)) continue;
     const double scale = size_factor(k, h);
     const double ft = (k.ktc_n_per_mm2 * scale * h + k.kte_n_per_mm) * dz;
     const double fr = (k.krc_n_per_mm2 * scale * h + k.kre_n_per_mm) * dz;
     const double fa = (k.kac_n_per_mm2 * scale * h + k.kae_n_per_mm) * dz;
-    force.fx_n += -ft * s - fr * c;
-    force.fy_n += ft * c - fr * s;
+    force.fx_n += -ft * s_part - fr * c_part;
+    force.fy_n += ft * c_part - fr * s_part;
     force.fz_n += fa;
   }
 }

@@ -23,8 +23,13 @@ class SampleSections {
 
   const std::vector<model::EngagedSection>& sections() const { return sections_; }
 
+  //! Reads the arcs in a frame turned by `turn_rad` counter-clockwise from the feed direction (immersions
+  //! + turn_rad, kept inside the kernel's [−π/2, 3π/2)): tooth_chord.hpp. 0 restores the sample's own.
+  void turn(double turn_rad);
+
  private:
   std::vector<model::ImmersionArc> arcs_;
+  std::vector<model::ImmersionArc> feed_frame_arcs_;
   std::vector<model::EngagedSection> sections_;
 };
 
