@@ -5,6 +5,7 @@
 
 #include "cutting_test_rows.hpp"
 #include "feedplan/core/atomic_file.hpp"
+#include "feedplan/model/mechanistic_json.hpp"
 #include "feedplan/model/model_json.hpp"
 #include "feedplan/model_db/model_exchange.hpp"
 
@@ -32,25 +33,15 @@ Json to_json(const MaterialRecord& material) {
 }
 
 Json to_json(const MechanisticFit& fit) {
-  const model::MechanisticModel& m = fit.model;
   std::vector<double> covariance;
   for (const auto& row : fit.covariance) covariance.insert(covariance.end(), row.begin(), row.end());
-  return Json{{"ktc_n_per_mm2", m.ktc_n_per_mm2},
-              {"krc_n_per_mm2", m.krc_n_per_mm2},
-              {"kac_n_per_mm2", m.kac_n_per_mm2},
-              {"kte_n_per_mm", m.kte_n_per_mm},
-              {"kre_n_per_mm", m.kre_n_per_mm},
-              {"kae_n_per_mm", m.kae_n_per_mm},
-              {"size_exponent", m.size_exponent},
-              {"size_reference_chip_mm", m.size_reference_chip_mm},
-              {"size_min_chip_mm", m.size_min_chip_mm},
-              {"runout_mm", m.runout_mm},
-              {"helix_deg", m.helix_deg ? Json(*m.helix_deg) : Json(nullptr)},
-              {"covariance", covariance},
-              {"signal_rms_residual_n", fit.signal_rms_residual_n},
-              {"condition_number", fit.condition_number},
-              {"identified", fit.identified},
-              {"unidentifiable", fit.unidentifiable}};
+  Json json = model::to_json(fit.model);
+  json["covariance"] = covariance;
+  json["signal_rms_residual_n"] = fit.signal_rms_residual_n;
+  json["condition_number"] = fit.condition_number;
+  json["identified"] = fit.identified;
+  json["unidentifiable"] = fit.unidentifiable;
+  return json;
 }
 
 Json to_json(const ModelRecord& record, const std::optional<int>& parent_version) {

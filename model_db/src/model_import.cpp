@@ -13,6 +13,7 @@
 #include "feedplan/core/json_document.hpp"
 #include "feedplan/core/json_fields.hpp"
 #include "feedplan/core/number_text.hpp"
+#include "feedplan/model/mechanistic_json.hpp"
 #include "feedplan/model/model_json.hpp"
 #include "feedplan/model_db/model_exchange.hpp"
 #include "learning_rows.hpp"
@@ -136,19 +137,7 @@ ModelFitStatistics read_fit(const Node& node) {
 
 MechanisticFit read_mechanistic(const Node& node) {
   MechanisticFit fit;
-  model::MechanisticModel& m = fit.model;
-  m.ktc_n_per_mm2 = node.number("ktc_n_per_mm2");
-  m.krc_n_per_mm2 = node.number("krc_n_per_mm2");
-  m.kac_n_per_mm2 = node.number("kac_n_per_mm2");
-  m.kte_n_per_mm = node.number("kte_n_per_mm");
-  m.kre_n_per_mm = node.number("kre_n_per_mm");
-  m.kae_n_per_mm = node.number("kae_n_per_mm");
-  m.size_exponent = node.number("size_exponent");
-  m.size_reference_chip_mm = node.number("size_reference_chip_mm");
-  m.size_min_chip_mm = node.number("size_min_chip_mm");
-  m.runout_mm = node.numbers("runout_mm");
-  const Json* helix = node.member("helix_deg", JsonPresence::kOptional);
-  if (helix != nullptr && !helix->is_null()) m.helix_deg = node.number("helix_deg");
+  fit.model = model::read_mechanistic_json(node);
   const std::array<double, 16> covariance = node.fixed_numbers<16>("covariance");
   for (std::size_t i = 0; i < 16; ++i) fit.covariance[i / 4][i % 4] = covariance[i];
   fit.signal_rms_residual_n = node.number("signal_rms_residual_n");

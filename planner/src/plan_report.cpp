@@ -14,6 +14,7 @@
 #include "feedplan/core/json_document.hpp"
 #include "feedplan/core/json_fields.hpp"
 #include "feedplan/core/number_text.hpp"
+#include "feedplan/model/mechanistic_json.hpp"
 #include "feedplan/model/model_json.hpp"
 
 namespace feedplan::planner {
@@ -66,7 +67,8 @@ Json summary_json(const PlanSummary& summary) {
 }
 
 // The model's identity (the plan's context), then its members as model_json.hpp writes them.
-Json model_json(const model::ResponseSurfaceModel& model, const PlanReportContext& context) {
+Json model_json(const PlanSettings& settings, const PlanReportContext& context) {
+  const model::ResponseSurfaceModel& model = settings.model;
   Json json{{"id", context.model_id},
             {"version", context.model_version},
             {"database", context.database_path},
@@ -77,6 +79,8 @@ Json model_json(const model::ResponseSurfaceModel& model, const PlanReportContex
             {"differences", context.model_differences},
             {"relative_uncertainty", json_number(context.model_relative_uncertainty)}};
   json.update(model::to_json(model));
+  json["kind"] = settings.mechanistic ? "mechanistic" : "response_surface";
+  if (settings.mechanistic) json["mechanistic"] = model::to_json(*settings.mechanistic);
   return json;
 }
 
@@ -253,6 +257,13 @@ void read_model_identity(const Node& model, PlanReportContext& context) {
 // The model, target, spindle speed, machine limits, options and force correction.
 void read_settings(const Node& root, const Node& model, PlanSettings& settings) {
   settings.model = model::read_model_json(model);
+  // Reports written before the mechanistic kind: the response surface.
+  const std::string kind = model.member("kind", JsonPresence::kOptional) ? model.text("kind") : "response_surface";
+  if (kind == "mechanistic") {
+    settings.mechanistic = model::read_mechanistic_json(model.object("mechanistic"));
+  } else if (kind != "response_surface") {
+    model.report(model.child_path("kind"), "= '" + kind + "': must be response_surface or mechanistic");
+  }
   settings.target_force_n = root.number("target_force_n");
   settings.spindle_rpm = root.number("spindle_rpm");
   const Node machine = root.object("machine");
@@ -368,7 +379,7 @@ std::string plan_report_json(const PlanResult& result, const PlanSettings& setti
     root["tool"]["max_plunge_feed_per_tooth_mm"] = json_number(context.tool.max_plunge_feed_per_tooth_mm);
   }
   root["material"] = context.material;
-  root["model"] = model_json(settings.model, context);
+  root["model"] = model_json(settings, context);
   root["target_force_n"] = json_number(settings.target_force_n);
   root["spindle_rpm"] = json_number(settings.spindle_rpm);
   root["machine"] = Json{{"max_feed_mm_per_min", json_number(machine.max_feed_mm_per_min)},

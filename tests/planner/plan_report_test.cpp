@@ -334,6 +334,55 @@ TEST(PlanReportRoundTrip, ReplanningFromTheReadSettingsGivesTheSameSchedule) {
   EXPECT_EQ(again.summary.cycle_time_s, p.result.summary.cycle_time_s);
 }
 
+// A plan made with the mechanistic kind carries its model (every member, the runout and helix too) and
+// reads back to the same schedule: what `learn` re-makes the plan from.
+TEST(PlanReportRoundTrip, TheMechanisticKindIsCarriedAndReplansTheSame) {
+  const CornerPlan& p = corner_plan();
+  PlanSettings settings = p.settings;
+  model::MechanisticModel m;
+  m.ktc_n_per_mm2 = 1834.5;
+  m.krc_n_per_mm2 = 611.25;
+  m.kte_n_per_mm = 17.125;
+  m.kre_n_per_mm = 19.5;
+  m.size_exponent = 0.1875;
+  m.size_reference_chip_mm = 0.0437;
+  m.runout_mm = {0.0, 0.0031, 0.0066, 0.0029};
+  m.helix_deg = 26.25;
+  settings.mechanistic = m;
+  const PlanResult result = plan(p.geometry, settings);
+  const std::string text = plan_report_json(result, settings, p.context);
+  EXPECT_EQ(nlohmann::json::parse(text)["model"]["kind"], "mechanistic");
+  const PlanReport report = parse_plan_report(text);
+  ASSERT_TRUE(report.settings.mechanistic.has_value());
+  const model::MechanisticModel& back = *report.settings.mechanistic;
+  EXPECT_EQ(back.ktc_n_per_mm2, m.ktc_n_per_mm2);
+  EXPECT_EQ(back.krc_n_per_mm2, m.krc_n_per_mm2);
+  EXPECT_EQ(back.kte_n_per_mm, m.kte_n_per_mm);
+  EXPECT_EQ(back.kre_n_per_mm, m.kre_n_per_mm);
+  EXPECT_EQ(back.size_exponent, m.size_exponent);
+  EXPECT_EQ(back.size_reference_chip_mm, m.size_reference_chip_mm);
+  EXPECT_EQ(back.size_min_chip_mm, m.size_min_chip_mm);
+  EXPECT_EQ(back.runout_mm, m.runout_mm);
+  EXPECT_EQ(back.helix_deg, m.helix_deg);
+  const PlanResult again = plan(p.geometry, report.settings);
+  ASSERT_EQ(again.blocks.size(), result.blocks.size());
+  for (std::size_t b = 0; b < again.blocks.size(); ++b) {
+    EXPECT_EQ(again.blocks[b].feed_mm_per_min, result.blocks[b].feed_mm_per_min) << "block " << b;
+  }
+  // A report of the response surface says so, and one from before the kinds reads as the response surface.
+  nlohmann::json old = nlohmann::json::parse(plan_report_json(p.result, p.settings, p.context));
+  EXPECT_EQ(old["model"]["kind"], "response_surface");
+  old["model"].erase("kind");
+  EXPECT_FALSE(parse_plan_report(old.dump()).settings.mechanistic.has_value());
+  old["model"]["kind"] = "quadratic";
+  try {
+    parse_plan_report(old.dump());
+    ADD_FAILURE() << "an unknown kind was accepted";
+  } catch (const InputError& e) {
+    EXPECT_THAT(e.what(), HasSubstr("model.kind = 'quadratic': must be response_surface or mechanistic"));
+  }
+}
+
 TEST(PlanReportRoundTrip, WritingIntoAMissingDirectoryFailsWithAMessageAndWritesNothing) {
   const CornerPlan& p = corner_plan();
   const fs::path path = temporary_path("no_such_dir") / "plan.json";

@@ -12,7 +12,10 @@
 //   model {id, version, database, tool, material, match, beta[6], chip_center_mm, chip_scale_mm,
 //          contact_length_center_mm, contact_length_scale_mm,
 //          range {chip_min_mm, chip_max_mm, contact_length_min_mm, contact_length_max_mm},
-//          axial_depth_mm, spindle_rpm, quantity},
+//          axial_depth_mm, spindle_rpm, quantity, kind ("response_surface" or "mechanistic"; optional on
+//          reading: the response surface), mechanistic {model/mechanistic_json.hpp's members} (only with
+//          the mechanistic kind, which plans with it: the response surface's members then give only its
+//          tests' range)},
 //   target_force_n, spindle_rpm,
 //   machine {max_feed_mm_per_min, min_feed_mm_per_min, max_accel_mm_per_s2, rapid_feed_mm_per_min,
 //            block_time_min_s},
