@@ -17,6 +17,7 @@
 #include "feedplan/cycles/spec_reader.hpp"
 #include "feedplan/gcode/writer.hpp"
 #include "feedplan/learning/current_calibration.hpp"
+#include "feedplan/learning/mechanistic_update.hpp"
 #include "feedplan/learning/model_update.hpp"
 #include "feedplan/learning/path_correction.hpp"
 #include "feedplan/model_db/stale_model_error.hpp"
@@ -149,7 +150,7 @@ model_db::ModelRecord planned_model(const model_db::Store& store, const LearnOpt
 // is filed as its child; a borrowed plan's pair must have no model yet (one made since would be the
 // plan's model now): said before learning, and checked again when storing (Store::add_learned_model).
 void require_learnable(const model_db::Store& store, const model_db::ModelRecord& before, const LearningPair& pair) {
-  const auto active = store.active_model(pair.tool_name, pair.material_name);
+  const auto active = store.active_model(pair.tool_name, pair.material_name, before.kind);
   if (active && active->id != before.id) throw model_db::StaleModelError(before, *active);
 }
 
@@ -339,6 +340,139 @@ void print_learn_text(const LearnOptions& o, const LearnInputs& in, const ModelV
               in.report.summary.cycle_time_s, next.plan.blocks.size(), o.program_path.c_str());
 }
 
+// --- the mechanistic kind ---------------------------------------------------------------------------
+
+// The plan with the learned mechanistic model; learning along the path is the response surface's and is
+// not carried (its corrections were made against that model's predictions).
+Replanned replan_mechanistic(const LearnInputs& in, const RemadePlan& remade, const learning::MechanisticUpdate& update) {
+  Replanned next;
+  next.settings = remade.settings;
+  next.settings.mechanistic = update.model;
+  next.settings.force_correction.clear();
+  next.plan = planner::plan(remade.geometry, next.settings);
+  gcode::WriterOptions writer;
+  writer.dialect = gcode::dialect_from_string(in.report.context.dialect).value_or(gcode::Dialect::kLinuxCnc);
+  writer.program_name = in.spec.cycle + " " + in.spec.tool.name;
+  next.program_text = gcode::write_gcode(next.plan.program, writer);
+  return next;
+}
+
+// The learned mechanistic version with its learning entry (one transaction); returns it as stored.
+model_db::ModelRecord store_learned_mechanistic(const LearnOptions& o, const LearnInputs& in, model_db::Store& store,
+                                                const model_db::ModelRecord& before, const LearningPair& pair,
+                                                const learning::MechanisticUpdate& update) {
+  model_db::ModelRecord learned = before;  // the tests' range and the identification's diagnostics
+  learned.tool_name = pair.tool_name;
+  learned.material_name = pair.material_name;
+  learned.kind = model_db::ModelKind::kMechanistic;
+  learned.mechanistic->model = update.model;
+  learned.mechanistic->covariance = update.covariance;
+  learned.fit.n = static_cast<int>(update.samples.size());
+  learned.fit.rmse_n = update.rms_error_after_n;
+  learned.source = model_db::ModelSource::kLearned;
+  learned.note = o.note.empty() ? "mechanistic, learned from " + std::to_string(in.logs.size()) + " log(s) of " + in.spec.cycle
+                                : o.note;
+  model_db::LearningEntry entry;
+  entry.model_id_before = before.id;
+  entry.part_name = fs::path(o.plan_path).filename().string();
+  entry.n_samples = static_cast<int>(update.samples.size());
+  entry.error_before_n = update.before.rms_n;
+  entry.error_after_n = update.after_batch.rms_n;
+  entry.note = learned.note;
+  return store.add_learned_model(learned, entry).first;
+}
+
+void print_mechanistic_learn(const LearnOptions& o, const LearnInputs& in, const ModelVersions& models,
+                             const learning::MechanisticUpdate& update, const Replanned& next) {
+  const model_db::ModelRecord& stored = models.after;
+  const model::MechanisticModel& k = update.model;
+  if (o.json) {
+    nlohmann::json out;
+    out["kind"] = "mechanistic";
+    out["model_before"] = {{"id", models.before.id}, {"version", models.before.version}};
+    out["model_after"] = {{"id", stored.id}, {"version", stored.version}};
+    out["samples"] = update.samples.size();
+    out["coefficients"] = {{"ktc_n_per_mm2", k.ktc_n_per_mm2}, {"krc_n_per_mm2", k.krc_n_per_mm2},
+                           {"kte_n_per_mm", k.kte_n_per_mm}, {"kre_n_per_mm", k.kre_n_per_mm}};
+    const auto errors = [](const learning::PredictionErrors& e) {
+      return nlohmann::json{{"rms_n", e.rms_n}, {"median_abs_percent", e.median_abs_percent},
+                            {"p95_abs_percent", e.p95_abs_percent}, {"max_abs_percent", e.max_abs_percent},
+                            {"mean_percent", e.mean_percent}};
+    };
+    out["before"] = errors(update.before);
+    out["after_rls"] = errors(update.after_rls);
+    out["after_batch"] = errors(update.after_batch);
+    out["cycle_time_s"] = {{"before", in.report.summary.cycle_time_s}, {"after", next.plan.summary.cycle_time_s}};
+    std::cout << out.dump(2) << "\n";
+    return;
+  }
+  std::printf("learned from %zu log(s): %zu per-revolution samples; mechanistic model %s in %s v%d → v%d (id %lld)\n",
+              in.logs.size(), update.samples.size(), stored.tool_name.c_str(), stored.material_name.c_str(),
+              models.before.version, stored.version, static_cast<long long>(stored.id));
+  std::printf("  K_tc %.1f N/mm², K_rc %.1f N/mm², K_te %.2f N/mm, K_re %.2f N/mm (runout, helix, size effect held)\n",
+              k.ktc_n_per_mm2, k.krc_n_per_mm2, k.kte_n_per_mm, k.kre_n_per_mm);
+  std::printf("per-revolution measured vs predicted:\n");
+  print_errors("model planned with", update.before);
+  print_errors("after RLS (seed 003 Eq. 5)", update.after_rls);
+  print_errors("after robust batch refit", update.after_batch);
+  std::printf("re-planned: cycle time %.2f s (was %.2f s), %zu blocks; wrote %s\n", next.plan.summary.cycle_time_s,
+              in.report.summary.cycle_time_s, next.plan.blocks.size(), o.program_path.c_str());
+}
+
+// learn for a plan made with the mechanistic kind: the same inputs, checks and outputs as the response
+// surface's, the coefficients learned by learning::update_mechanistic.
+int run_mechanistic_learn(const LearnOptions& o, const LearnInputs& in, model_db::Store& store, ModelVersions& models,
+                          const LearningPair& pair) {
+  if (models.before.kind != model_db::ModelKind::kMechanistic || !models.before.mechanistic) {
+    throw InputError("model.kind", "= mechanistic, but model id " + std::to_string(models.before.id) +
+                                       " in the database is a response surface: the report and the database disagree");
+  }
+  const RemadePlan remade = remake_plan(in, models.before);
+  const learning::MechanisticUpdate update =
+      learning::update_mechanistic(remade.plan, remade.settings, remade.geometry.engagement, in.spec.tool, in.logs,
+                                   models.before.mechanistic->covariance);
+  std::vector<InputProblem> problems;
+  for (std::size_t i = 0; i < update.logs.size(); ++i) {
+    const auto status = update.logs[i].alignment.status;
+    if (status == learning::AlignmentStatus::kNotThisProgram || status == learning::AlignmentStatus::kUnitsLookWrong) {
+      problems.push_back({o.log_paths[i], learning::to_string(status) + ": " + update.logs[i].alignment.message});
+    }
+  }
+  if (!problems.empty()) throw InputError(std::move(problems));
+  for (const std::string& message : update.messages) std::cerr << "feedplan: " << message << "\n";
+  if (update.status != learning::ModelUpdateStatus::kOk) {
+    std::cerr << "feedplan: failed: nothing to learn from; the database is unchanged\n";
+    return 1;
+  }
+  const Replanned next = replan_mechanistic(in, remade, update);
+  OutputFiles files;
+  if (!files.add(o.program_path, next.program_text)) {
+    std::cerr << "feedplan: failed: " << files.error() << "; the database is unchanged\n";
+    return 1;
+  }
+  models.after = store_learned_mechanistic(o, in, store, models.before, pair, update);
+  if (!o.report_path.empty()) {
+    planner::PlanReportContext context = next_context(o, in, models.after, next.along_path);
+    files.add(o.report_path, planner::plan_report_json(next.plan, next.settings, context));
+  }
+  if (!o.plot_path.empty()) {
+    planner::PlanPlotOptions plot;
+    plot.title = in.spec.cycle + " re-planned with mechanistic model v" + std::to_string(models.after.version) +
+                 " (markers: measured peaks)";
+    std::vector<std::pair<double, double>> peaks;
+    for (const auto& s : update.samples) peaks.emplace_back(s.s_mm, s.force_n);
+    plot.measured_peaks = peaks;
+    files.add(o.plot_path, planner::plan_plot_svg(next.plan, next.settings.target_force_n, plot));
+  }
+  if (auto error = files.commit(); !error.empty()) {
+    std::cerr << "feedplan: failed: " << error << "; the learned version v" << models.after.version << " (id "
+              << models.after.id << ") is stored (feedplan db history)\n";
+    return 1;
+  }
+  print_mechanistic_learn(o, in, models, update, next);
+  return 0;
+}
+
 }  // namespace
 
 void add_learn_command(CLI::App& app, LearnOptions& options) {
@@ -365,6 +499,7 @@ int run_learn_command(const LearnOptions& o) {
   models.before = planned_model(store, o, in);
   const LearningPair pair = learning_pair(store, in.db_path, in.spec, models.before, in.report.context.model_match_status);
   require_learnable(store, models.before, pair);
+  if (in.report.settings.mechanistic) return run_mechanistic_learn(o, in, store, models, pair);
   const RemadePlan remade = remake_plan(in, models.before);
   const learning::ModelUpdate update = learn_from_logs(o, in, store, models.before, pair, remade);
   for (const std::string& message : update.messages) std::cerr << "feedplan: " << message << "\n";

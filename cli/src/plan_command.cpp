@@ -260,7 +260,8 @@ std::string program_text(const PlanCommandOptions& o, const PlanInputs& in, cons
 
 planner::PlanReportContext report_context(const PlanCommandOptions& o, const PlanInputs& in, const PlanModel& model,
                                           const ProgramChoice& program, const gcode::WriterOptions& writer) {
-  const mdb::ModelRecord& record = model.chosen.record;
+  // The version that planned: the mechanistic one when the kind is mechanistic (learn then learns that kind).
+  const mdb::ModelRecord& record = model.mechanistic ? *model.mechanistic : model.chosen.record;
   planner::PlanReportContext context;
   context.spec_path = stored_path(o.spec_path);  // absolute, as the database: learn finds both from any folder
   context.cycle = in.spec.cycle;

@@ -246,6 +246,8 @@ LearningSample learning_sample(const WindowContext& c, const force_log::Revoluti
   }
   sample.weight = 1.0;
   sample.s_mm = 0.5 * (w.s0 + w.s1);
+  sample.feed_mm_per_min = at.feed_mm_per_min;
+  sample.s_peak_mm = w.s_peak;
   return sample;
 }
 

@@ -16,16 +16,16 @@ double percentile(const std::vector<double>& sorted, double p) {
 
 }  // namespace
 
-PredictionErrors prediction_errors(const model::ResponseSurfaceModel& model, const std::vector<LearningSample>& samples) {
+PredictionErrors prediction_errors(const std::vector<double>& measured_n, const std::vector<double>& predicted_n) {
   PredictionErrors out;
   std::vector<double> abs_percent;
   double sum_squares_n = 0.0;
   double sum_squares_percent = 0.0;
   double sum_percent = 0.0;
-  for (const LearningSample& sample : samples) {
-    if (!(sample.force_n > 0.0)) continue;
-    const double error_n = model::predict(model, sample.chip_mm, sample.contact_length_mm).force_n - sample.force_n;
-    const double error_percent = 100.0 * error_n / sample.force_n;
+  for (std::size_t i = 0; i < std::min(measured_n.size(), predicted_n.size()); ++i) {
+    if (!(measured_n[i] > 0.0)) continue;
+    const double error_n = predicted_n[i] - measured_n[i];
+    const double error_percent = 100.0 * error_n / measured_n[i];
     sum_squares_n += error_n * error_n;
     sum_squares_percent += error_percent * error_percent;
     sum_percent += error_percent;
@@ -42,6 +42,15 @@ PredictionErrors prediction_errors(const model::ResponseSurfaceModel& model, con
   out.p95_abs_percent = percentile(abs_percent, 95.0);
   out.mean_percent = sum_percent / out.n;
   return out;
+}
+
+PredictionErrors prediction_errors(const model::ResponseSurfaceModel& model, const std::vector<LearningSample>& samples) {
+  std::vector<double> measured, predicted;
+  for (const LearningSample& sample : samples) {
+    measured.push_back(sample.force_n);
+    predicted.push_back(model::predict(model, sample.chip_mm, sample.contact_length_mm).force_n);
+  }
+  return prediction_errors(measured, predicted);
 }
 
 }  // namespace feedplan::learning

@@ -20,6 +20,8 @@ struct LearningSample {
   //! The factor force_n was divided by to stand for the straight-cut model's own force there
   //! (planner::force_transfer_factor; 1 when not transferred): force_n × transfer_factor is the measured peak
   double transfer_factor = 1.0;
+  double feed_mm_per_min = 0.0;  //!< the feed actually run where the peak was measured, mm/min (0: not known)
+  double s_peak_mm = 0.0;        //!< where on the planned path the peak was measured, mm
 };
 
 //! Appends the problems with one sample's numbers to `problems`, fields named `prefix` + member

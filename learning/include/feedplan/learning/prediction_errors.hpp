@@ -22,6 +22,10 @@ struct PredictionErrors {
   double mean_percent = 0.0;          //!< mean signed (F̂ − F)/F, %: > 0 the model over-predicts
 };
 
+//! The errors of predictions `predicted_n` of the measured forces `measured_n` (pairwise; pairs with a
+//! measured force ≤ 0 are skipped). Percentiles by the nearest-rank rule. All zero when no pair qualifies.
+PredictionErrors prediction_errors(const std::vector<double>& measured_n, const std::vector<double>& predicted_n);
+
 //! The errors of `model` on `samples` (forces > 0; samples with F ≤ 0 are skipped). Percentiles by the
 //! nearest-rank rule. All zero when no sample qualifies.
 PredictionErrors prediction_errors(const model::ResponseSurfaceModel& model, const std::vector<LearningSample>& samples);
