@@ -340,6 +340,17 @@ void print_learn_text(const LearnOptions& o, const LearnInputs& in, const ModelV
               in.report.summary.cycle_time_s, next.plan.blocks.size(), o.program_path.c_str());
 }
 
+// The report's kind must be the stored version's: a report edited by hand would otherwise learn one kind
+// from the other's plan.
+void require_same_kind(const planner::PlanReport& report, const model_db::ModelRecord& before) {
+  const bool report_mechanistic = report.settings.mechanistic.has_value();
+  if (report_mechanistic == (before.kind == model_db::ModelKind::kMechanistic)) return;
+  throw InputError("model.kind", std::string("= ") + (report_mechanistic ? "mechanistic" : "response_surface") +
+                                     ", but model id " + std::to_string(before.id) + " in the database is " +
+                                     (report_mechanistic ? "a response surface" : "a mechanistic version") +
+                                     ": the report and the database disagree (was the report edited?)");
+}
+
 // --- the mechanistic kind ---------------------------------------------------------------------------
 
 // The plan with the learned mechanistic model; learning along the path is the response surface's and is
@@ -423,10 +434,6 @@ void print_mechanistic_learn(const LearnOptions& o, const LearnInputs& in, const
 // surface's, the coefficients learned by learning::update_mechanistic.
 int run_mechanistic_learn(const LearnOptions& o, const LearnInputs& in, model_db::Store& store, ModelVersions& models,
                           const LearningPair& pair) {
-  if (models.before.kind != model_db::ModelKind::kMechanistic || !models.before.mechanistic) {
-    throw InputError("model.kind", "= mechanistic, but model id " + std::to_string(models.before.id) +
-                                       " in the database is a response surface: the report and the database disagree");
-  }
   const RemadePlan remade = remake_plan(in, models.before);
   const learning::MechanisticUpdate update =
       learning::update_mechanistic(remade.plan, remade.settings, remade.geometry.engagement, in.spec.tool, in.logs,
@@ -497,6 +504,7 @@ int run_learn_command(const LearnOptions& o) {
   model_db::Store store = model_db::Store::open(in.db_path, model_db::OpenMode::kExisting);
   ModelVersions models;
   models.before = planned_model(store, o, in);
+  require_same_kind(in.report, models.before);
   const LearningPair pair = learning_pair(store, in.db_path, in.spec, models.before, in.report.context.model_match_status);
   require_learnable(store, models.before, pair);
   if (in.report.settings.mechanistic) return run_mechanistic_learn(o, in, store, models, pair);
