@@ -25,14 +25,21 @@
 # The planner knows only the catalogue tool: the machine's helix offset, runout and size effect reach
 # the model only through what the cutting tests measured.
 #
-# Usage: scripts/transfer-check.sh MACHINE.yaml   (runs build/cli/feedplan, or $FEEDPLAN_BIN)
+# With --check-fronts it is a test too: for every trochoid whose worst loop front the response surface misses by
+# more than ±10 %, the mechanistic kind's worst front must lie within ±5 %; it fails (exit 1) otherwise, or when no
+# trochoid has such a front (the machine then shows nothing about the kinds).
+#
+# Usage: scripts/transfer-check.sh MACHINE.yaml [--check-fronts]   (runs build/cli/feedplan, or $FEEDPLAN_BIN)
 # Takes about 2 minutes (25 cutting tests, the mechanistic identification, 8 plans, 8 programs on the
 # virtual machine).
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 feedplan=${FEEDPLAN_BIN:-"$root/build/cli/feedplan"}
-if [[ $# -ne 1 ]]; then
-  echo "usage: $0 MACHINE.yaml" >&2
+check_fronts=no
+if [[ $# -eq 2 && $2 == --check-fronts ]]; then
+  check_fronts=yes
+elif [[ $# -ne 1 ]]; then
+  echo "usage: $0 MACHINE.yaml [--check-fronts]" >&2
   exit 2
 fi
 machine=$1
@@ -73,7 +80,7 @@ run "$feedplan" db fit --db "$db" --tool "$tool" --material $material --kind bot
 
 # Table of one cycle from its peaks CSV (revolution,t_start_s,t_end_s,t_peak_s,peak_xy_n,mean_xy_n).
 table_row() {  # name target peaks.csv loops(yes/no)
-  awk -F, -v name="$1" -v target="$2" -v loops="$4" '
+  awk -F, -v name="$1" -v target="$2" -v loops="$4" -v fronts_file="$work/fronts.txt" '
     NR == 1 { next }
     {
       peak = $5; air = peak <= 0.05 * target
@@ -96,6 +103,7 @@ table_row() {  # name target peaks.csv loops(yes/no)
       printf "%-22s %8.0f %7d %10.1f %11.1f %11.1f", name, target, n, max, 100 * (max - target) / target, p50
       if (loops == "yes") printf " %6d %15.1f %14.1f\n", fronts, worst, fronts ? sum / fronts : 0
       else printf " %6s %15s %14s\n", "-", "-", "-"
+      if (loops == "yes") printf "%s %.2f\n", name, worst >> fronts_file
     }' "$3"
 }
 
@@ -124,3 +132,23 @@ echo "machine $machine: both kinds of model fitted on 25 straight cutting tests,
 printf '%-22s %8s %7s %10s %11s %11s %6s %15s %14s\n' cycle target_n in_cut max_peak_n max_err_pct p50_err_pct \
     fronts worst_front_pct mean_front_pct
 printf '%s\n' "${rows[@]}"
+
+if [[ $check_fronts == yes ]]; then
+  # fronts.txt: "<spec> <kind> <worst front %>" per trochoid planned (a kind that could not plan has no line).
+  awk -v machine="$machine" '
+    { worst[$1 " " $2] = $3; specs[$1] = 1 }
+    END {
+      for (spec in specs) {
+        rs = spec " response"; mech = spec " mechanistic"
+        if (!(rs in worst)) continue
+        if (worst[rs] <= 10 && worst[rs] >= -10) continue
+        compared++
+        if (!(mech in worst)) { printf "FAIL %s: the response surface misses its worst front by %+.1f %% and the mechanistic kind did not plan\n", spec, worst[rs]; failed++; continue }
+        ok = worst[mech] <= 5 && worst[mech] >= -5
+        printf "%s %s: worst front response surface %+.1f %%, mechanistic %+.1f %%\n", ok ? "ok" : "FAIL", spec, worst[rs], worst[mech]
+        if (!ok) failed++
+      }
+      if (!compared) { printf "FAIL: on %s no trochoid front is missed by more than ±10 %% by the response surface: nothing to compare\n", machine; exit 1 }
+      exit failed ? 1 : 0
+    }' "$work/fronts.txt"
+fi
