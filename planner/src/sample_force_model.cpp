@@ -123,6 +123,7 @@ SampleFeedLimit SampleForceModel::kernel_feed_limit(const geometry::EngagementSa
       } else {
         lo = next;
         f_lo = f_next;
+        if (f_next > -kMechanisticForceTolerance * target_force_n) break;  // at the target, from below
         if (side == +1) f_hi *= 0.5;
         side = +1;
       }

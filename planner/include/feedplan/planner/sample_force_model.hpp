@@ -28,6 +28,8 @@ namespace feedplan::planner {
 
 //! Relative width of the feed bracket at which the mechanistic solve stops.
 inline constexpr double kMechanisticFeedTolerance = 1e-3;
+//! The mechanistic solve also stops at a feed whose peak lies within this fraction of the target below it.
+inline constexpr double kMechanisticForceTolerance = 1e-3;
 //! Most peak evaluations of the mechanistic solve at one sample.
 inline constexpr int kMechanisticSolveEvaluations = 40;
 
