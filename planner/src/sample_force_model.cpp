@@ -13,8 +13,8 @@ namespace {
 
 // The smallest feed the solve looks at, relative to the largest: the edge forces alone.
 constexpr double kVanishingFeedRatio = 1e-6;
-// Half-width (as a ratio) of the bracket around the previous sample's solution.
-constexpr double kWarmBracketRatio = 1.1;
+// The secant step from the previous sample's solution moves the feed by at most this ratio.
+constexpr double kSecantStepRatio = 1.5;
 // The top of the bracket when the caller sets no air feed (the safety check asks for the force's own limit).
 constexpr double kLargestSolveFeedMmPerMin = 1e6;
 
@@ -53,6 +53,15 @@ double SampleForceModel::kernel_peak_n(const geometry::EngagementSample& sample,
   return chord_peak_n(*mechanistic_, sections, cutter_geometry(tool_), profile_, sample, feed_per_tooth_mm);
 }
 
+SampleFeedLimit SampleForceModel::finish_kernel_limit(SampleFeedLimit limit, const geometry::EngagementSample& sample,
+                                                      double feed_mm_per_min, int flutes, double spindle_rpm) const {
+  limit.feed_mm_per_min = feed_mm_per_min;
+  last_solution_mm_per_min_ = feed_mm_per_min;  // the slope stays the one the secant step used
+  const double chip_mm = chip_thickness_mm(sample, feed_mm_per_min, flutes, spindle_rpm);
+  limit.extrapolated = model::chip_outside(surface_.range, chip_mm) && chip_mm > surface_.range.chip_max_mm;
+  return limit;
+}
+
 SampleFeedLimit SampleForceModel::kernel_feed_limit(const geometry::EngagementSample& sample, double target_force_n,
                                                     int flutes, double spindle_rpm, double air_feed_mm_per_min,
                                                     double bound) const {
@@ -67,26 +76,31 @@ SampleFeedLimit SampleForceModel::kernel_feed_limit(const geometry::EngagementSa
                                 feed_per_tooth_mm(sample, feed_mm_per_min, flutes, spindle_rpm));
   };
   limit.reason = FeedLimitReason::kForce;
-  // The bracket, within [vanishing feed, air feed]; the peak rises with the feed. Neighbouring samples
-  // have nearly the same solution, so the last one found starts a bracket of ±kWarmBracketRatio around it
-  // (two evaluations), widened to the whole range when the solution lies outside.
   const double top = std::isfinite(air_feed_mm_per_min) ? air_feed_mm_per_min : kLargestSolveFeedMmPerMin;
   const double bottom = kVanishingFeedRatio * top;
+  const double close_n = kMechanisticForceTolerance * target_force_n;
   double lo = bottom, hi = top, f_lo = 0.0, f_hi = 0.0;
+  // Neighbouring samples have nearly the same solution and slope: a secant step from the last solution with
+  // the last slope usually lands within the tolerance at once (one or two evaluations); its two points
+  // bracket the solution or say on which side of them it lies.
   bool bracketed = false;
-  if (last_solution_mm_per_min_ > bottom && last_solution_mm_per_min_ < top) {
-    lo = std::max(bottom, last_solution_mm_per_min_ / kWarmBracketRatio);
-    hi = std::min(top, last_solution_mm_per_min_ * kWarmBracketRatio);
-    f_lo = peak_at(lo) - target_force_n;
-    f_hi = peak_at(hi) - target_force_n;
+  if (last_solution_mm_per_min_ > bottom && last_solution_mm_per_min_ < top && last_slope_n_per_mm_per_min_ > 0.0) {
+    const double f0 = last_solution_mm_per_min_, e0 = peak_at(f0) - target_force_n;
+    if (e0 <= 0.0 && e0 > -close_n) return finish_kernel_limit(limit, sample, f0, flutes, spindle_rpm);
+    const double aim = f0 - (e0 + 0.5 * close_n) / last_slope_n_per_mm_per_min_;
+    const double f1 = std::clamp(aim, std::max(bottom, f0 / kSecantStepRatio), std::min(top, f0 * kSecantStepRatio));
+    const double e1 = peak_at(f1) - target_force_n;
+    if (e1 <= 0.0 && e1 > -close_n) return finish_kernel_limit(limit, sample, f1, flutes, spindle_rpm);
+    lo = std::min(f0, f1), hi = std::max(f0, f1);
+    f_lo = f0 < f1 ? e0 : e1, f_hi = f0 < f1 ? e1 : e0;
     bracketed = f_lo < 0.0 && f_hi > 0.0;
-    if (!bracketed && f_lo < 0.0) {  // above the bracket: from its top to the air feed
+    if (!bracketed && f_hi < 0.0) {  // both below the target: from the higher to the air feed
       lo = hi;
       f_lo = f_hi;
       hi = top;
       f_hi = peak_at(hi) - target_force_n;
       bracketed = true;
-    } else if (!bracketed) {  // below: from the vanishing feed to its bottom
+    } else if (!bracketed && f_lo > 0.0) {  // both above: from the vanishing feed to the lower
       hi = lo;
       f_hi = f_lo;
       lo = bottom;
@@ -95,10 +109,12 @@ SampleFeedLimit SampleForceModel::kernel_feed_limit(const geometry::EngagementSa
     }
   }
   if (!bracketed) {
+    lo = bottom, hi = top;
     f_lo = peak_at(lo) - target_force_n;
     f_hi = peak_at(hi) - target_force_n;
   }
   last_solution_mm_per_min_ = 0.0;
+  last_slope_n_per_mm_per_min_ = 0.0;
   if (f_lo >= 0.0) {
     limit.target_below_model = true;
     limit.solve_status = model::FeedSolveStatus::kTargetBelowModel;
@@ -130,6 +146,7 @@ SampleFeedLimit SampleForceModel::kernel_feed_limit(const geometry::EngagementSa
     }
     limit.feed_mm_per_min = lo;  // at or below the target
     last_solution_mm_per_min_ = lo;
+    last_slope_n_per_mm_per_min_ = hi > lo ? (f_hi - f_lo) / (hi - lo) : 0.0;
   }
   const double chip_mm = chip_thickness_mm(sample, limit.feed_mm_per_min, flutes, spindle_rpm);
   limit.extrapolated = model::chip_outside(surface_.range, chip_mm) && chip_mm > surface_.range.chip_max_mm;

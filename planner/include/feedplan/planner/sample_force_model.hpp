@@ -8,7 +8,8 @@
 //   f_z = F / (Z·n) · xy_speed_ratio. No transfer is needed: the kernel integrates the edge forces over the
 //   arcs the sample really has. The feed limit solves peak(F) = target by a safeguarded 1-D search
 //   (the peak rises with the feed at a place: every chip grows with it): bracketed regula falsi on
-//   F (Illinois), started around the previous sample's solution, ending within kMechanisticFeedTolerance
+//   F (Illinois), started by a secant step from the previous sample's solution with its slope (which often
+//   lands within kMechanisticForceTolerance of the target at once), ending within kMechanisticFeedTolerance
 //   of the feed, never above a feed whose peak is at or below the target. The uncertainty bound is F̂·(1 + z·r) (ForceUncertainty::sigmas
 //   and ::relative; the response surface's covariance does not apply).
 //
@@ -66,12 +67,18 @@ class SampleForceModel {
 
  private:
   double kernel_peak_n(const geometry::EngagementSample& sample, double feed_per_tooth_mm) const;
+  //! The kernel's limit at `feed_mm_per_min`, found within the tolerance by the warm start (remembered as the
+  //! next sample's start, the slope kept).
+  SampleFeedLimit finish_kernel_limit(SampleFeedLimit limit, const geometry::EngagementSample& sample,
+                                      double feed_mm_per_min, int flutes, double spindle_rpm) const;
   SampleFeedLimit kernel_feed_limit(const geometry::EngagementSample& sample, double target_force_n, int flutes,
                                     double spindle_rpm, double air_feed_mm_per_min, double bound_factor) const;
 
   //! The last feed limit the mechanistic solve found, mm/min (0: none): the next sample's starting bracket.
   //! Only a starting point — the solve's result does not depend on it beyond its tolerance.
   mutable double last_solution_mm_per_min_ = 0.0;
+  //! The slope of the peak in the feed at that solution, N per mm/min (0: none): the next secant step's.
+  mutable double last_slope_n_per_mm_per_min_ = 0.0;
   const model::ResponseSurfaceModel& surface_;
   const model::MechanisticModel* mechanistic_;
   const geometry::EngagementProfile& profile_;
