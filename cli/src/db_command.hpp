@@ -37,6 +37,7 @@ struct DbOptions {
   bool no_runout = false;       //!< fit: do not identify the per-tooth runout (mechanistic)
   bool no_helix = false;        //!< fit: keep the tool record's helix (mechanistic)
   bool no_size_effect = false;  //!< fit: no size-effect exponent (mechanistic)
+  bool sensor = false;          //!< fit: identify the dynamometer's modes too (mechanistic)
   double feed_per_tooth_mm = 0.0;  //!< predict
   std::string file;             //!< export / import
   bool all_versions = false;    //!< export

@@ -39,6 +39,7 @@ model::MechanisticCuttingTest identification_test(const ToolRecord& tool, const 
   t.feed_per_tooth_mm = test.feed_per_tooth_mm;
   t.synchronous_fx_n = test.synchronous_fx_n;
   t.synchronous_fy_n = test.synchronous_fy_n;
+  t.spindle_rpm = test.conditions.spindle_rpm;
   char name[96];
   std::snprintf(name, sizeof name, "cutting_tests[%d] (a_e %.4g mm, f_z %.4g mm)", index,
                 test.conditions.radial_depth_mm, test.feed_per_tooth_mm);
@@ -52,6 +53,7 @@ model::MechanisticIdentificationOptions identification_options(const ToolRecord&
   o.identify_runout = options.identify_runout && tool.flutes >= 2;
   o.identify_helix = o.identify_runout && options.identify_helix;
   o.identify_size_effect = options.identify_size_effect;
+  o.identify_sensor = options.identify_sensor;
   return o;
 }
 
@@ -190,7 +192,7 @@ MechanisticFitResult fit_mechanistic(const ToolRecord& tool, const std::string& 
     result.measured_peaks_n.push_back(stored->test.peak_mean_n);
   }
   peak_statistics(result.predicted_peaks_n, result.measured_peaks_n, record.fit);
-  if (options.leave_one_out && used.size() >= 3) {
+  if (options.leave_one_out && !options.identify_sensor && used.size() >= 3) {
     record.fit.loo_rmse_n = leave_one_out_rmse_n(tool, used, identification_tests, identification);
   }
   for (const std::string& what : identification.unidentifiable) result.notes.push_back(what);

@@ -25,6 +25,10 @@ struct MechanisticFitOptions {
   //! Identify the size-effect exponent (model::MechanisticIdentificationOptions::identify_size_effect); tests
   //! at one feed leave it at 0 and say so.
   bool identify_size_effect = true;
+  //! Identify the dynamometer's modes too (model::MechanisticIdentificationOptions::identify_sensor) and fit the
+  //! coefficients of the force on the tool through them: for tests read by a sensor that rings at the tooth
+  //! pulses. The leave-one-out error is then not computed (its refit does not model the sensor).
+  bool identify_sensor = false;
   //! Compute the leave-one-out error (one identification per test); false leaves fit.loo_rmse_n at 0.
   bool leave_one_out = true;
 };
