@@ -125,6 +125,24 @@ LearnInputs read_learn_inputs(const LearnOptions& o) {
   return in;
 }
 
+// Logs that are not of this program, or whose units look wrong, stop the run: each named with why.
+void throw_if_not_these_parts(const std::vector<learning::LogEvidence>& logs, const std::vector<std::string>& paths) {
+  std::vector<InputProblem> problems;
+  for (std::size_t i = 0; i < logs.size(); ++i) {
+    const auto status = logs[i].alignment.status;
+    if (status == learning::AlignmentStatus::kNotThisProgram || status == learning::AlignmentStatus::kUnitsLookWrong) {
+      problems.push_back({paths[i], learning::to_string(status) + ": " + logs[i].alignment.message});
+    }
+  }
+  if (!problems.empty()) throw InputError(std::move(problems));
+}
+
+nlohmann::json errors_json(const learning::PredictionErrors& e) {
+  return nlohmann::json{{"rms_n", e.rms_n}, {"median_abs_percent", e.median_abs_percent},
+                        {"p95_abs_percent", e.p95_abs_percent}, {"max_abs_percent", e.max_abs_percent},
+                        {"mean_percent", e.mean_percent}};
+}
+
 // The plan's model, by the report's id; its version, tool and material must be the report's too, or the
 // file is not the database the plan was made with (another one, or rebuilt since).
 model_db::ModelRecord planned_model(const model_db::Store& store, const LearnOptions& o, const LearnInputs& in) {
@@ -199,15 +217,16 @@ learning::ModelUpdate learn_from_logs(const LearnOptions& o, const LearnInputs& 
   }
   const learning::ModelUpdate update =
       learning::update_model(remade.plan, remade.settings, in.spec.tool.flutes, in.logs, earlier, prior_covariance);
-  std::vector<InputProblem> problems;
-  for (std::size_t i = 0; i < update.logs.size(); ++i) {
-    const auto status = update.logs[i].alignment.status;
-    if (status == learning::AlignmentStatus::kNotThisProgram || status == learning::AlignmentStatus::kUnitsLookWrong) {
-      problems.push_back({o.log_paths[i], learning::to_string(status) + ": " + update.logs[i].alignment.message});
-    }
-  }
-  if (!problems.empty()) throw InputError(std::move(problems));
+  throw_if_not_these_parts(update.logs, o.log_paths);
   return update;
+}
+
+// The re-planned program's G-code, in the dialect the plan was written in.
+std::string program_text(const LearnInputs& in, const planner::PlanResult& plan) {
+  gcode::WriterOptions writer;
+  writer.dialect = gcode::dialect_from_string(in.report.context.dialect).value_or(gcode::Dialect::kLinuxCnc);
+  writer.program_name = in.spec.cycle + " " + in.spec.tool.name;
+  return gcode::write_gcode(plan.program, writer);
 }
 
 // Learning along this path too (learning/path_correction.hpp), carried in the report to the next part.
@@ -232,10 +251,7 @@ Replanned replan(const LearnInputs& in, const RemadePlan& remade, const learning
   next.along_path = learn_along_this_path(report, remade.plan, update);
   next.settings.force_correction = next.along_path.correction;
   next.plan = planner::plan(remade.geometry, next.settings);
-  gcode::WriterOptions writer;
-  writer.dialect = gcode::dialect_from_string(report.context.dialect).value_or(gcode::Dialect::kLinuxCnc);
-  writer.program_name = in.spec.cycle + " " + in.spec.tool.name;
-  next.program_text = gcode::write_gcode(next.plan.program, writer);
+  next.program_text = program_text(in, next.plan);
   return next;
 }
 
@@ -314,14 +330,9 @@ void print_learn_json(const LearnInputs& in, const ModelVersions& models, const 
   out["model_after"] = {{"id", models.after.id}, {"version", models.after.version}};
   out["samples"] = update.samples.size();
   out["gain"] = update.gain;
-  const auto errors = [](const learning::PredictionErrors& e) {
-    return nlohmann::json{{"rms_n", e.rms_n}, {"median_abs_percent", e.median_abs_percent},
-                          {"p95_abs_percent", e.p95_abs_percent}, {"max_abs_percent", e.max_abs_percent},
-                          {"mean_percent", e.mean_percent}};
-  };
-  out["before"] = errors(update.before);
-  out["after_rls"] = errors(update.after_rls);
-  out["after_batch"] = errors(update.after_batch);
+  out["before"] = errors_json(update.before);
+  out["after_rls"] = errors_json(update.after_rls);
+  out["after_batch"] = errors_json(update.after_batch);
   out["cycle_time_s"] = {{"before", in.report.summary.cycle_time_s}, {"after", next.plan.summary.cycle_time_s}};
   std::cout << out.dump(2) << "\n";
 }
@@ -361,10 +372,7 @@ Replanned replan_mechanistic(const LearnInputs& in, const RemadePlan& remade, co
   next.settings.mechanistic = update.model;
   next.settings.force_correction.clear();
   next.plan = planner::plan(remade.geometry, next.settings);
-  gcode::WriterOptions writer;
-  writer.dialect = gcode::dialect_from_string(in.report.context.dialect).value_or(gcode::Dialect::kLinuxCnc);
-  writer.program_name = in.spec.cycle + " " + in.spec.tool.name;
-  next.program_text = gcode::write_gcode(next.plan.program, writer);
+  next.program_text = program_text(in, next.plan);
   return next;
 }
 
@@ -405,14 +413,9 @@ void print_mechanistic_learn(const LearnOptions& o, const LearnInputs& in, const
     out["samples"] = update.samples.size();
     out["coefficients"] = {{"ktc_n_per_mm2", k.ktc_n_per_mm2}, {"krc_n_per_mm2", k.krc_n_per_mm2},
                            {"kte_n_per_mm", k.kte_n_per_mm}, {"kre_n_per_mm", k.kre_n_per_mm}};
-    const auto errors = [](const learning::PredictionErrors& e) {
-      return nlohmann::json{{"rms_n", e.rms_n}, {"median_abs_percent", e.median_abs_percent},
-                            {"p95_abs_percent", e.p95_abs_percent}, {"max_abs_percent", e.max_abs_percent},
-                            {"mean_percent", e.mean_percent}};
-    };
-    out["before"] = errors(update.before);
-    out["after_rls"] = errors(update.after_rls);
-    out["after_batch"] = errors(update.after_batch);
+    out["before"] = errors_json(update.before);
+    out["after_rls"] = errors_json(update.after_rls);
+    out["after_batch"] = errors_json(update.after_batch);
     out["cycle_time_s"] = {{"before", in.report.summary.cycle_time_s}, {"after", next.plan.summary.cycle_time_s}};
     std::cout << out.dump(2) << "\n";
     return;
@@ -438,14 +441,7 @@ int run_mechanistic_learn(const LearnOptions& o, const LearnInputs& in, model_db
   const learning::MechanisticUpdate update =
       learning::update_mechanistic(remade.plan, remade.settings, remade.geometry.engagement, in.spec.tool, in.logs,
                                    models.before.mechanistic->covariance);
-  std::vector<InputProblem> problems;
-  for (std::size_t i = 0; i < update.logs.size(); ++i) {
-    const auto status = update.logs[i].alignment.status;
-    if (status == learning::AlignmentStatus::kNotThisProgram || status == learning::AlignmentStatus::kUnitsLookWrong) {
-      problems.push_back({o.log_paths[i], learning::to_string(status) + ": " + update.logs[i].alignment.message});
-    }
-  }
-  if (!problems.empty()) throw InputError(std::move(problems));
+  throw_if_not_these_parts(update.logs, o.log_paths);
   for (const std::string& message : update.messages) std::cerr << "feedplan: " << message << "\n";
   if (update.status != learning::ModelUpdateStatus::kOk) {
     std::cerr << "feedplan: failed: nothing to learn from; the database is unchanged\n";

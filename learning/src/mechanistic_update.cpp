@@ -127,28 +127,20 @@ void collect_samples(const planner::PlanResult& plan, const planner::PlanSetting
                      const MechanisticUpdateOptions& options, MechanisticUpdate& update) {
   MeasuredRevolutionOptions revolutions = options.revolutions;
   revolutions.transfer_to_model = false;  // the kernel predicts the peak itself, at the depth cut
-  for (const NamedLog& named : logs) {
-    LogEvidence evidence;
-    evidence.name = named.name;
-    evidence.alignment = align_log(named.log, plan, options.alignment);
-    update.messages.push_back(named.name + ": " + to_string(evidence.alignment.status) + " — " + evidence.alignment.message);
-    if (usable(evidence.alignment.status)) {
-      evidence.revolutions = measured_revolutions(named.log, evidence.alignment, plan, settings.model, flutes,
-                                                  settings.spindle_rpm, revolutions);
-      for (const LearningSample& sample : evidence.revolutions.samples) {
-        if (!(sample.feed_mm_per_min > 0.0)) continue;
-        MechanisticSample m;
-        m.s_mm = sample.s_peak_mm;
-        m.feed_mm_per_min = sample.feed_mm_per_min;
-        m.force_n = sample.force_n;
-        const Vector4 g = kernel.regressor(*settings.mechanistic, nearest_sample(profile, m.s_mm), m.feed_mm_per_min);
-        if (!(g.squaredNorm() > 0.0)) continue;  // the kernel sees no cut there
-        for (int j = 0; j < 4; ++j) m.regressor[static_cast<std::size_t>(j)] = g(j);
-        update.samples.push_back(m);
-      }
-      if (!evidence.revolutions.message.empty()) update.messages.push_back(named.name + ": " + evidence.revolutions.message);
+  update.logs = log_evidence(plan, settings.model, flutes, settings.spindle_rpm, logs, options.alignment, revolutions,
+                             update.messages);
+  for (const LogEvidence& evidence : update.logs) {
+    for (const LearningSample& sample : evidence.revolutions.samples) {
+      if (!(sample.feed_mm_per_min > 0.0)) continue;
+      MechanisticSample m;
+      m.s_mm = sample.s_peak_mm;
+      m.feed_mm_per_min = sample.feed_mm_per_min;
+      m.force_n = sample.force_n;
+      const Vector4 g = kernel.regressor(*settings.mechanistic, nearest_sample(profile, m.s_mm), m.feed_mm_per_min);
+      if (!(g.squaredNorm() > 0.0)) continue;  // the kernel sees no cut there
+      for (int j = 0; j < 4; ++j) m.regressor[static_cast<std::size_t>(j)] = g(j);
+      update.samples.push_back(m);
     }
-    update.logs.push_back(std::move(evidence));
   }
 }
 

@@ -30,6 +30,25 @@ double median_force_ratio(const model::ResponseSurfaceModel& model, const std::v
 
 }  // namespace
 
+std::vector<LogEvidence> log_evidence(const planner::PlanResult& plan, const model::ResponseSurfaceModel& model, int flutes,
+                                      double spindle_rpm, const std::vector<NamedLog>& logs,
+                                      const AlignmentOptions& alignment, const MeasuredRevolutionOptions& revolutions,
+                                      std::vector<std::string>& messages) {
+  std::vector<LogEvidence> evidence_of_logs;
+  for (const NamedLog& named : logs) {
+    LogEvidence evidence;
+    evidence.name = named.name;
+    evidence.alignment = align_log(named.log, plan, alignment);
+    messages.push_back(named.name + ": " + to_string(evidence.alignment.status) + " — " + evidence.alignment.message);
+    if (usable(evidence.alignment.status)) {
+      evidence.revolutions = measured_revolutions(named.log, evidence.alignment, plan, model, flutes, spindle_rpm, revolutions);
+      if (!evidence.revolutions.message.empty()) messages.push_back(named.name + ": " + evidence.revolutions.message);
+    }
+    evidence_of_logs.push_back(std::move(evidence));
+  }
+  return evidence_of_logs;
+}
+
 std::string to_string(ModelUpdateStatus status) { return status == ModelUpdateStatus::kOk ? "ok" : "no evidence"; }
 
 ModelUpdate update_model(const planner::PlanResult& plan, const planner::PlanSettings& settings, int flutes,
@@ -38,18 +57,10 @@ ModelUpdate update_model(const planner::PlanResult& plan, const planner::PlanSet
                          const ModelUpdateOptions& options) {
   ModelUpdate update;
   update.model = settings.model;
-  for (const NamedLog& named : logs) {
-    LogEvidence evidence;
-    evidence.name = named.name;
-    evidence.alignment = align_log(named.log, plan, options.alignment);
-    update.messages.push_back(named.name + ": " + to_string(evidence.alignment.status) + " — " + evidence.alignment.message);
-    if (usable(evidence.alignment.status)) {
-      evidence.revolutions = measured_revolutions(named.log, evidence.alignment, plan, settings.model, flutes,
-                                                  settings.spindle_rpm, options.revolutions);
-      update.samples.insert(update.samples.end(), evidence.revolutions.samples.begin(), evidence.revolutions.samples.end());
-      if (!evidence.revolutions.message.empty()) update.messages.push_back(named.name + ": " + evidence.revolutions.message);
-    }
-    update.logs.push_back(std::move(evidence));
+  update.logs = log_evidence(plan, settings.model, flutes, settings.spindle_rpm, logs, options.alignment,
+                             options.revolutions, update.messages);
+  for (const LogEvidence& evidence : update.logs) {
+    update.samples.insert(update.samples.end(), evidence.revolutions.samples.begin(), evidence.revolutions.samples.end());
   }
   if (update.samples.empty()) {
     update.messages.push_back("no usable per-revolution sample in any log: the model is unchanged");

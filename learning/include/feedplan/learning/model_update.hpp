@@ -78,6 +78,14 @@ struct ModelUpdate {
   model::Covariance covariance;              //!< its covariance, N² (for the next cautious plan)
 };
 
+//! Each log aligned with `plan` (align_log) and, when usable, its revolutions (measured_revolutions with
+//! `model`, `flutes`, `spindle_rpm` and `revolutions`), in the order of `logs`; a line per log (and per
+//! revolutions' message) appended to `messages`. What both kinds of model learn from.
+std::vector<LogEvidence> log_evidence(const planner::PlanResult& plan, const model::ResponseSurfaceModel& model, int flutes,
+                                      double spindle_rpm, const std::vector<NamedLog>& logs,
+                                      const AlignmentOptions& alignment, const MeasuredRevolutionOptions& revolutions,
+                                      std::vector<std::string>& messages);
+
 //! Learns from `logs` of cycles cut with `plan` (planned with `settings`, tool with `flutes`). The batch
 //! refit spans `earlier` samples (of earlier cycles of the same tool, material and machine) and this
 //! step's, its prior is settings.model with `prior_covariance` when given. Throws InputError on invalid
