@@ -4,6 +4,7 @@
 
 #include <cstdio>
 #include <filesystem>
+#include <functional>
 #include <iostream>
 
 #include "calibration_command.hpp"
@@ -308,19 +309,67 @@ planner::PlanReportContext next_context(const LearnOptions& o, const LearnInputs
 
 // Stages --report and --plot (with the measured peaks), which name the stored version.
 void stage_learn_reports(const LearnOptions& o, const LearnInputs& in, const model_db::ModelRecord& stored,
-                         const learning::ModelUpdate& update, const Replanned& next, OutputFiles& files) {
+                         const std::string& model_label, const std::vector<std::pair<double, double>>& peaks,
+                         const Replanned& next, OutputFiles& files) {
   const planner::PlanReportContext context = next_context(o, in, stored, next.along_path);
   if (!o.report_path.empty()) files.add(o.report_path, planner::plan_report_json(next.plan, next.settings, context));
   if (!o.plot_path.empty()) {
     planner::PlanPlotOptions plot;
-    plot.title = in.spec.cycle + " re-planned with model v" + std::to_string(stored.version) + " (markers: measured peaks)";
-    std::vector<std::pair<double, double>> peaks;
-    for (const auto& log : update.logs) {
-      for (const auto& r : log.revolutions.revolutions) peaks.emplace_back(0.5 * (r.s_start_mm + r.s_end_mm), r.peak_n);
-    }
+    plot.title = in.spec.cycle + " re-planned with " + model_label + " v" + std::to_string(stored.version) +
+                 " (markers: measured peaks)";
     plot.measured_peaks = peaks;
     files.add(o.plot_path, planner::plan_plot_svg(next.plan, next.settings.target_force_n, plot));
   }
+}
+
+// The measured per-revolution peaks at the middle of their span on the path, for the plot.
+std::vector<std::pair<double, double>> measured_peaks(const std::vector<learning::LogEvidence>& logs) {
+  std::vector<std::pair<double, double>> peaks;
+  for (const auto& log : logs) {
+    for (const auto& r : log.revolutions.revolutions) peaks.emplace_back(0.5 * (r.s_start_mm + r.s_end_mm), r.peak_n);
+  }
+  return peaks;
+}
+
+// The outputs are staged around the store write: one that cannot be written stops the run before anything
+// is stored (`store_version` is not called), and none is put in place unless the learned version was stored.
+// Returns 0, or 1 after saying what failed.
+int store_and_write(const LearnOptions& o, const Replanned& next, ModelVersions& models,
+                    const std::function<model_db::ModelRecord()>& store_version,
+                    const std::function<void(OutputFiles&)>& stage_reports) {
+  OutputFiles files;
+  if (!files.add(o.program_path, next.program_text)) {
+    std::cerr << "feedplan: failed: " << files.error() << "; the database is unchanged\n";
+    return 1;
+  }
+  models.after = store_version();
+  stage_reports(files);
+  if (auto error = files.commit(); !error.empty()) {
+    std::cerr << "feedplan: failed: " << error << "; the learned version v" << models.after.version << " (id "
+              << models.after.id << ") is stored (feedplan db history)\n";
+    return 1;
+  }
+  return 0;
+}
+
+// The step's messages on stderr; false (after saying so) when it found nothing to learn from.
+bool report_update(const std::vector<std::string>& messages, learning::ModelUpdateStatus status) {
+  for (const std::string& message : messages) std::cerr << "feedplan: " << message << "\n";
+  if (status == learning::ModelUpdateStatus::kOk) return true;
+  std::cerr << "feedplan: failed: nothing to learn from; the database is unchanged\n";
+  return false;
+}
+
+// The before/after errors and the re-planned cycle, as text.
+void print_errors_and_replan(const LearnOptions& o, const LearnInputs& in, const learning::PredictionErrors& before,
+                             const learning::PredictionErrors& after_rls, const learning::PredictionErrors& after_batch,
+                             const Replanned& next) {
+  std::printf("per-revolution measured vs predicted:\n");
+  print_errors("model planned with", before);
+  print_errors("after RLS (seed 003 Eq. 5)", after_rls);
+  print_errors("after robust batch refit", after_batch);
+  std::printf("re-planned: cycle time %.2f s (was %.2f s), %zu blocks; wrote %s\n", next.plan.summary.cycle_time_s,
+              in.report.summary.cycle_time_s, next.plan.blocks.size(), o.program_path.c_str());
 }
 
 void print_learn_json(const LearnInputs& in, const ModelVersions& models, const learning::ModelUpdate& update,
@@ -343,12 +392,7 @@ void print_learn_text(const LearnOptions& o, const LearnInputs& in, const ModelV
   std::printf("learned from %zu log(s): %zu per-revolution samples; model %s in %s v%d → v%d (id %lld)\n", in.logs.size(),
               update.samples.size(), stored.tool_name.c_str(), stored.material_name.c_str(), models.before.version,
               stored.version, static_cast<long long>(stored.id));
-  std::printf("per-revolution measured vs predicted:\n");
-  print_errors("model planned with", update.before);
-  print_errors("after RLS (seed 003 Eq. 5)", update.after_rls);
-  print_errors("after robust batch refit", update.after_batch);
-  std::printf("re-planned: cycle time %.2f s (was %.2f s), %zu blocks; wrote %s\n", next.plan.summary.cycle_time_s,
-              in.report.summary.cycle_time_s, next.plan.blocks.size(), o.program_path.c_str());
+  print_errors_and_replan(o, in, update.before, update.after_rls, update.after_batch, next);
 }
 
 // The report's kind must be the stored version's: a report edited by hand would otherwise learn one kind
@@ -425,12 +469,7 @@ void print_mechanistic_learn(const LearnOptions& o, const LearnInputs& in, const
               models.before.version, stored.version, static_cast<long long>(stored.id));
   std::printf("  K_tc %.1f N/mm², K_rc %.1f N/mm², K_te %.2f N/mm, K_re %.2f N/mm (runout, helix, size effect held)\n",
               k.ktc_n_per_mm2, k.krc_n_per_mm2, k.kte_n_per_mm, k.kre_n_per_mm);
-  std::printf("per-revolution measured vs predicted:\n");
-  print_errors("model planned with", update.before);
-  print_errors("after RLS (seed 003 Eq. 5)", update.after_rls);
-  print_errors("after robust batch refit", update.after_batch);
-  std::printf("re-planned: cycle time %.2f s (was %.2f s), %zu blocks; wrote %s\n", next.plan.summary.cycle_time_s,
-              in.report.summary.cycle_time_s, next.plan.blocks.size(), o.program_path.c_str());
+  print_errors_and_replan(o, in, update.before, update.after_rls, update.after_batch, next);
 }
 
 // learn for a plan made with the mechanistic kind: the same inputs, checks and outputs as the response
@@ -442,36 +481,14 @@ int run_mechanistic_learn(const LearnOptions& o, const LearnInputs& in, model_db
       learning::update_mechanistic(remade.plan, remade.settings, remade.geometry.engagement, in.spec.tool, in.logs,
                                    models.before.mechanistic->covariance);
   throw_if_not_these_parts(update.logs, o.log_paths);
-  for (const std::string& message : update.messages) std::cerr << "feedplan: " << message << "\n";
-  if (update.status != learning::ModelUpdateStatus::kOk) {
-    std::cerr << "feedplan: failed: nothing to learn from; the database is unchanged\n";
-    return 1;
-  }
+  if (!report_update(update.messages, update.status)) return 1;
   const Replanned next = replan_mechanistic(in, remade, update);
-  OutputFiles files;
-  if (!files.add(o.program_path, next.program_text)) {
-    std::cerr << "feedplan: failed: " << files.error() << "; the database is unchanged\n";
-    return 1;
-  }
-  models.after = store_learned_mechanistic(o, in, store, models.before, pair, update);
-  if (!o.report_path.empty()) {
-    planner::PlanReportContext context = next_context(o, in, models.after, next.along_path);
-    files.add(o.report_path, planner::plan_report_json(next.plan, next.settings, context));
-  }
-  if (!o.plot_path.empty()) {
-    planner::PlanPlotOptions plot;
-    plot.title = in.spec.cycle + " re-planned with mechanistic model v" + std::to_string(models.after.version) +
-                 " (markers: measured peaks)";
-    std::vector<std::pair<double, double>> peaks;
-    for (const auto& s : update.samples) peaks.emplace_back(s.s_mm, s.force_n);
-    plot.measured_peaks = peaks;
-    files.add(o.plot_path, planner::plan_plot_svg(next.plan, next.settings.target_force_n, plot));
-  }
-  if (auto error = files.commit(); !error.empty()) {
-    std::cerr << "feedplan: failed: " << error << "; the learned version v" << models.after.version << " (id "
-              << models.after.id << ") is stored (feedplan db history)\n";
-    return 1;
-  }
+  std::vector<std::pair<double, double>> peaks;
+  for (const auto& s : update.samples) peaks.emplace_back(s.s_mm, s.force_n);
+  const int written = store_and_write(
+      o, next, models, [&] { return store_learned_mechanistic(o, in, store, models.before, pair, update); },
+      [&](OutputFiles& files) { stage_learn_reports(o, in, models.after, "mechanistic model", peaks, next, files); });
+  if (written != 0) return written;
   print_mechanistic_learn(o, in, models, update, next);
   return 0;
 }
@@ -506,27 +523,15 @@ int run_learn_command(const LearnOptions& o) {
   if (in.report.settings.mechanistic) return run_mechanistic_learn(o, in, store, models, pair);
   const RemadePlan remade = remake_plan(in, models.before);
   const learning::ModelUpdate update = learn_from_logs(o, in, store, models.before, pair, remade);
-  for (const std::string& message : update.messages) std::cerr << "feedplan: " << message << "\n";
-  if (update.status != learning::ModelUpdateStatus::kOk) {
-    std::cerr << "feedplan: failed: nothing to learn from; the database is unchanged\n";
-    return 1;
-  }
+  if (!report_update(update.messages, update.status)) return 1;
   // Re-plan with the learned model before storing anything, so that a plan problem stores nothing.
   const Replanned next = replan(in, remade, update);
-  // The outputs are staged around the store write: one that cannot be written stops the run before
-  // anything is stored, and none is put in place unless the learned version was stored.
-  OutputFiles files;
-  if (!files.add(o.program_path, next.program_text)) {
-    std::cerr << "feedplan: failed: " << files.error() << "; the database is unchanged\n";
-    return 1;
-  }
-  models.after = store_learned_model(o, in, store, models.before, pair, update);
-  stage_learn_reports(o, in, models.after, update, next, files);
-  if (auto error = files.commit(); !error.empty()) {
-    std::cerr << "feedplan: failed: " << error << "; the learned version v" << models.after.version << " (id "
-              << models.after.id << ") is stored (feedplan db history)\n";
-    return 1;
-  }
+  const int written = store_and_write(
+      o, next, models, [&] { return store_learned_model(o, in, store, models.before, pair, update); },
+      [&](OutputFiles& files) {
+        stage_learn_reports(o, in, models.after, "model", measured_peaks(update.logs), next, files);
+      });
+  if (written != 0) return written;
   if (o.json) {
     print_learn_json(in, models, update, next);
   } else {
