@@ -423,6 +423,7 @@ mdb::ModelRecord fit_mechanistic_version(const DbOptions& o, const mdb::ToolReco
   options.identify_helix = !o.no_helix;
   options.identify_size_effect = !o.no_size_effect;
   options.identify_sensor = o.sensor;
+  options.match_peaks = !o.no_peak_matching;
   mdb::MechanisticFitResult fit = mdb::fit_mechanistic(tool, o.material, tests, options);
   for (const auto& note : fit.notes) notes.push_back("mechanistic: " + note);
   per_test = json::array();
@@ -755,6 +756,8 @@ void add_db_command(CLI::App& app, DbOptions& o) {
   fit->add_flag("--no-helix", o.no_helix, "Mechanistic: keep the tool record's helix instead of identifying it");
   fit->add_flag("--no-size-effect", o.no_size_effect,
                 "Mechanistic: no size effect (cutting coefficients independent of the chip thickness)");
+  fit->add_flag("--no-peak-matching", o.no_peak_matching,
+                "Mechanistic: fit the tests' force over a revolution alone, not also their mean per-revolution peaks");
   fit->add_flag("--sensor", o.sensor,
                 "Mechanistic: identify the dynamometer's modes too, for tests read by a sensor that rings at the tooth "
                 "pulses (no leave-one-out error then)");

@@ -34,6 +34,7 @@ struct DbOptions {
   std::string note;             //!< fit
   bool per_revolution = false;  //!< fit: every steady per-revolution peak is a sample (else one per test)
   std::string kind = "both";    //!< fit: mechanistic, response-surface or both
+  bool no_peak_matching = false;  //!< fit: the force over a revolution alone, not the tests' mean peaks too (mechanistic)
   bool no_runout = false;       //!< fit: do not identify the per-tooth runout (mechanistic)
   bool no_helix = false;        //!< fit: keep the tool record's helix (mechanistic)
   bool no_size_effect = false;  //!< fit: no size-effect exponent (mechanistic)

@@ -13,6 +13,7 @@
 #include "feedplan/core/problem_list.hpp"
 #include "feedplan/model/mechanistic_force.hpp"
 #include "bin_regressors.hpp"
+#include "peak_matching.hpp"
 #include "runout_refinement.hpp"
 #include "sensed_bin_rows.hpp"
 #include "sensor_refinement.hpp"
@@ -149,6 +150,13 @@ std::vector<InputProblem> validate(const std::vector<MechanisticCuttingTest>& te
     } else if (t.synchronous_fx_n.size() < static_cast<std::size_t>(kMinBins)) {
       problems.add(prefix + "synchronous_fx_n", "has " + std::to_string(t.synchronous_fx_n.size()) +
                                                     " bins: at least " + std::to_string(kMinBins) + " are needed");
+    }
+    for (std::size_t p = 0; p < t.revolution_peaks_n.size(); ++p) {
+      if (!(std::isfinite(t.revolution_peaks_n[p]) && t.revolution_peaks_n[p] > 0.0)) {
+        problems.add(prefix + "revolution_peaks_n[" + std::to_string(p) + "]",
+                     "= " + shortest_number_text(t.revolution_peaks_n[p]) + ": must be finite and > 0");
+        break;
+      }
     }
     for (std::size_t b = 0; b < std::min(t.synchronous_fx_n.size(), t.synchronous_fy_n.size()); ++b) {
       if (!std::isfinite(t.synchronous_fx_n[b]) || !std::isfinite(t.synchronous_fy_n[b])) {
@@ -330,10 +338,26 @@ bool search_size_effect(const std::vector<MechanisticCuttingTest>& tests, const 
   return search.at_upper_bound;
 }
 
+//! The last step of identify_mechanistic with peaks: the coefficients matched to the bins `a`, `y` and the
+//! tests' mean peaks from the bins' own fit `x` (peak_matching.hpp); `result` gets the covariance and the
+//! peaks' diagnostics.
+Eigen::VectorXd matched_coefficients(const std::vector<MechanisticCuttingTest>& tests, const Eigen::MatrixXd& a,
+                                     const Eigen::VectorXd& y, const Eigen::VectorXd& x,
+                                     MechanisticIdentification& result) {
+  const PeakMatching matched = match_peaks(tests, a, y, result.model, result.sensor, Eigen::Vector4d(x));
+  result.covariance = matched.covariance;
+  result.tests_peak_matched = matched.tests_matched;
+  result.peak_rms_residual_n = matched.peak_rms_residual_n;
+  result.peak_scatter_n = matched.peak_scatter_n;
+  result.matched_rms_residual_n = matched.bins_rms_residual_n;
+  return matched.coefficients;
+}
+
 }  // namespace
 
 MechanisticModel refit_coefficients(const std::vector<MechanisticCuttingTest>& tests,
-                                    const std::vector<double>& phase_rad, const MechanisticModel& fixed) {
+                                    const std::vector<double>& phase_rad, const MechanisticModel& fixed,
+                                    bool match_peaks) {
   const std::vector<InputProblem> problems = validate(tests, false);
   if (!problems.empty()) throw InputError(problems);
   if (phase_rad.size() != tests.size()) {
@@ -344,8 +368,11 @@ MechanisticModel refit_coefficients(const std::vector<MechanisticCuttingTest>& t
   Eigen::VectorXd y, weakest;
   stack_rows(tests, phase_rad, fixed, a, y);
   MechanisticIdentification scratch;
+  scratch.model = fixed;
+  Eigen::VectorXd x = fit_coefficients(tests, a, y, scratch, weakest);
+  if (match_peaks && has_peaks(tests)) x = matched_coefficients(tests, a, y, x, scratch);
   MechanisticModel model = fixed;
-  set_coefficients(model, fit_coefficients(tests, a, y, scratch, weakest));
+  set_coefficients(model, x);
   return model;
 }
 
@@ -409,6 +436,7 @@ MechanisticIdentification identify_mechanistic(const std::vector<MechanisticCutt
     result.unidentifiable.push_back("size effect: every test is at one feed per tooth, and the exponent shows only in "
                                     "how the force grows with the chip; it is left at 0");
   }
+  if (options.match_peaks && has_peaks(tests)) x = matched_coefficients(tests, a, y, x, result);
   set_coefficients(result.model, x);
 
   result.unidentifiable.push_back(

@@ -40,6 +40,7 @@ model::MechanisticCuttingTest identification_test(const ToolRecord& tool, const 
   t.synchronous_fx_n = test.synchronous_fx_n;
   t.synchronous_fy_n = test.synchronous_fy_n;
   t.spindle_rpm = test.conditions.spindle_rpm;
+  t.revolution_peaks_n = test.steady_peaks_n;
   char name[96];
   std::snprintf(name, sizeof name, "cutting_tests[%d] (a_e %.4g mm, f_z %.4g mm)", index,
                 test.conditions.radial_depth_mm, test.feed_per_tooth_mm);
@@ -54,6 +55,7 @@ model::MechanisticIdentificationOptions identification_options(const ToolRecord&
   o.identify_helix = o.identify_runout && options.identify_helix;
   o.identify_size_effect = options.identify_size_effect;
   o.identify_sensor = options.identify_sensor;
+  o.match_peaks = options.match_peaks;
   return o;
 }
 
@@ -127,7 +129,8 @@ double leave_one_out_rmse_n(const ToolRecord& tool, const std::vector<const Stor
       others.push_back(tests[i]);
       phases.push_back(identification.phase_rad[i]);
     }
-    const model::MechanisticModel refitted = model::refit_coefficients(others, phases, identification.model);
+    const model::MechanisticModel refitted =
+        model::refit_coefficients(others, phases, identification.model, identification.tests_peak_matched > 0);
     const double error = predicted_test_peak_n(refitted, tool, used[left_out]->test) - used[left_out]->test.peak_mean_n;
     sum += error * error;
   }
@@ -194,6 +197,16 @@ MechanisticFitResult fit_mechanistic(const ToolRecord& tool, const std::string& 
   peak_statistics(result.predicted_peaks_n, result.measured_peaks_n, record.fit);
   if (options.leave_one_out && !options.identify_sensor && used.size() >= 3) {
     record.fit.loo_rmse_n = leave_one_out_rmse_n(tool, used, identification_tests, identification);
+  }
+  if (identification.tests_peak_matched > 0) {
+    char note[320];
+    std::snprintf(note, sizeof note,
+                  "fitted to the force over a revolution and to the mean per-revolution peaks of %d tests: the peaks "
+                  "are met within %.3g N RMS (their scatter about the model beyond their standard errors %.3g N); "
+                  "the force over a revolution within %.3g N RMS (%.3g N fitted alone)",
+                  identification.tests_peak_matched, identification.peak_rms_residual_n, identification.peak_scatter_n,
+                  identification.matched_rms_residual_n, identification.rms_residual_n);
+    result.notes.push_back(note);
   }
   for (const std::string& what : identification.unidentifiable) result.notes.push_back(what);
   return result;

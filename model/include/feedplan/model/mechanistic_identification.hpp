@@ -63,6 +63,10 @@ struct MechanisticCuttingTest {
   //! Spindle speed of the test, rev/min: the harmonics of the revolution lie at multiples of rpm/60 Hz.
   //! Needed (> 0) only with identify_sensor, whose modes are in Hz; 0: not given.
   double spindle_rpm = 0.0;
+  //! The test's steady per-revolution peaks of |F_xy| as the sensor read them, N (each finite and > 0). With at
+  //! least 2 their mean is matched along with the bins (MechanisticIdentificationOptions::match_peaks); empty:
+  //! the bins alone.
+  std::vector<double> revolution_peaks_n;
 };
 
 //! How to identify.
@@ -98,6 +102,13 @@ struct MechanisticIdentificationOptions {
   //! synchronous averages hold no harmonic; the result says so.
   double sensor_min_frequency_hz = 300.0;
   double sensor_max_frequency_hz = 3000.0;  //!< upper end of that range, Hz
+  //! Match the tests' mean per-revolution peaks along with the bins, where tests have them (last step, with
+  //! the runout, helix, size effect, sensor and phases held): the mean of the peaks a sensor reads is not the
+  //! peak of the synchronous average — noise, the scatter of a real cut from one revolution to the next and
+  //! a dynamometer that rings all raise it — and that mean is what a plan holds. The bins then decide what
+  //! the peaks leave free. Weights: the bins by their residual variance, each peak by its standard error
+  //! and the scatter of the peaks about the model beyond it (estimated).
+  bool match_peaks = true;
 };
 
 //! Whether the tests could separate the coefficients.
@@ -123,12 +134,17 @@ struct MechanisticIdentification {
   std::string sensor_report;      //!< with identify_sensor: Ceres' one-line summary
   IdentificationStatus status = IdentificationStatus::kIdentified;
   //! Covariance of (K_tc, K_rc, K_te, K_re), σ²·(AᵀA)⁻¹ with A the regressors at the found phases and
-  //! σ² the residual variance (sum of squares over rows − 4); units N²/mm⁴, N²/mm³, N²/mm².
+  //! σ² the residual variance (sum of squares over rows − 4), or with peaks matched that of the weighted
+  //! fit to bins and peaks; units N²/mm⁴, N²/mm³, N²/mm².
   std::array<std::array<double, 4>, 4> covariance{};
   double rms_residual_n = 0.0;         //!< RMS of the bin residuals over all tests and both axes, N
   double condition_number = 0.0;       //!< of the regressor matrix with columns scaled to unit norm
   std::vector<double> phase_rad;       //!< per test, the spindle angle Ω₀ of the kernel at bin 0's start, rad
-  std::vector<double> test_rms_residual_n;  //!< per test, RMS bin residual, N
+  std::vector<double> test_rms_residual_n;  //!< per test, RMS bin residual, N (of the bins' own fit)
+  int tests_peak_matched = 0;          //!< tests whose mean peak was matched (0: the bins alone)
+  double peak_rms_residual_n = 0.0;    //!< with peaks matched: RMS of measured − predicted mean peak, N
+  double peak_scatter_n = 0.0;         //!< with peaks matched: their scatter about the model beyond their standard errors, N
+  double matched_rms_residual_n = 0.0;  //!< with peaks matched: RMS of the bin residuals at the final coefficients, N
   //! What the tests cannot identify, in words ("K_ac, K_ae: the tests hold only Fx, Fy …").
   std::vector<std::string> unidentifiable;
 };
@@ -136,7 +152,7 @@ struct MechanisticIdentification {
 //! Every problem with the tests: at least one; per test, a cutter that passes validate(), an arc with
 //! entry < exit, a_p and f_z finite and > 0, Fx and Fy of equal length, at least 8 bins, all finite; with
 //! `identify_runout`, every test with the first test's flute count, at least 2; with `identify_sensor`,
-//! every test's spindle_rpm finite and > 0.
+//! every test's spindle_rpm finite and > 0; every revolution peak finite and > 0.
 std::vector<InputProblem> validate(const std::vector<MechanisticCuttingTest>& tests, bool identify_runout = false,
                                    bool identify_sensor = false);
 
@@ -155,10 +171,11 @@ MechanisticIdentification identify_mechanistic(const std::vector<MechanisticCutt
 //! K_tc, K_rc, K_te, K_re refitted to `tests` by identify_mechanistic's last, linear step, with each test's
 //! spindle-angle phase (`phase_rad`, one per test, as MechanisticIdentification::phase_rad) and `fixed`'s
 //! runout and size effect held: a leave-one-out check refits this way, where searching the phases and the
-//! runout again for every left-out test would cost a whole identification each. Returns `fixed` with the
-//! four coefficients replaced. Throws InputError with validate()'s problems, or for a phase count that
+//! runout again for every left-out test would cost a whole identification each. The tests' peaks are matched
+//! as identification matches them (`match_peaks`). Returns `fixed` with the four coefficients replaced. Throws InputError with validate()'s problems, or for a phase count that
 //! is not the test count.
 MechanisticModel refit_coefficients(const std::vector<MechanisticCuttingTest>& tests,
-                                    const std::vector<double>& phase_rad, const MechanisticModel& fixed);
+                                    const std::vector<double>& phase_rad, const MechanisticModel& fixed,
+                                    bool match_peaks = true);
 
 }  // namespace feedplan::model

@@ -29,6 +29,9 @@ struct MechanisticFitOptions {
   //! coefficients of the force on the tool through them: for tests read by a sensor that rings at the tooth
   //! pulses. The leave-one-out error is then not computed (its refit does not model the sensor).
   bool identify_sensor = false;
+  //! Fit the coefficients to the tests' mean per-revolution peaks as well as to their force over a revolution
+  //! (model::MechanisticIdentificationOptions::match_peaks).
+  bool match_peaks = true;
   //! Compute the leave-one-out error (one identification per test); false leaves fit.loo_rmse_n at 0.
   bool leave_one_out = true;
 };
