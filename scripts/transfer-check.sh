@@ -21,6 +21,8 @@
 #   A cycle the model cannot plan at its target (the model predicts more than the target even at the
 #   lowest feed) gets a row saying so; the plan's message goes to stderr.
 #   Errors are signed: + the machine cut harder than the target, − softer.
+#   A line above the table gives each kind's leave-one-engagement-out error on the tests and the kind
+#   `feedplan plan` chooses by it when --model-kind is not given.
 #
 # The planner knows only the catalogue tool: the machine's helix offset, runout and size effect reach
 # the model only through what the cutting tests measured.
@@ -128,7 +130,16 @@ for spec in trochoid trochoid_r15 spiral corner; do
   done
 done
 
+# The figure `feedplan plan` chooses its default kind by: each kind's leave-one-engagement-out error on the tests.
+engagement_cv() {  # kind
+  "$feedplan" db show --db "$db" --tool "$tool" --material $material --kind "$1" --json |
+    awk -F: '/"engagement_cv_rmse_n"/ { gsub(/[ ,]/, "", $2); printf "%.1f", $2 }'
+}
+cv_rs=$(engagement_cv response-surface) cv_mech=$(engagement_cv mechanistic)
+default_kind=$(awk -v rs="$cv_rs" -v m="$cv_mech" 'BEGIN { print (rs > 0 && m > 0 && m < rs) ? "mechanistic" : "response surface" }')
+
 echo "machine $machine: both kinds of model fitted on 25 straight cutting tests, cycles planned with each and cut on the same machine"
+echo "leave-one-engagement-out error on the tests: response surface $cv_rs N, mechanistic $cv_mech N; plan's default kind: $default_kind"
 printf '%-22s %8s %7s %10s %11s %11s %6s %15s %14s\n' cycle target_n in_cut max_peak_n max_err_pct p50_err_pct \
     fronts worst_front_pct mean_front_pct
 printf '%s\n' "${rows[@]}"

@@ -23,6 +23,7 @@
 #include "feedplan/geometry/analytic_engagement.hpp"
 #include "feedplan/model_db/closest_model.hpp"
 #include "feedplan/model_db/cutting_test_import.hpp"
+#include "feedplan/model_db/engagement_groups.hpp"
 #include "feedplan/model_db/model_exchange.hpp"
 #include "feedplan/model/model_fit.hpp"
 #include "feedplan/model_db/mechanistic_fit.hpp"
@@ -103,7 +104,8 @@ json model_json(const mdb::ModelRecord& m) {
               {"n", m.fit.n},
               {"rmse_n", m.fit.rmse_n},
               {"r_squared", m.fit.r_squared},
-              {"loo_rmse_n", m.fit.loo_rmse_n}};
+              {"loo_rmse_n", m.fit.loo_rmse_n},
+              {"engagement_cv_rmse_n", m.fit.engagement_cv_rmse_n}};
   if (m.parent_version) out["parent_version"] = *m.parent_version;
   if (m.mechanistic) {
     // A mechanistic version's response-surface fields are only the tests' range: not a model to show.
@@ -137,6 +139,14 @@ void print_mechanistic(const mdb::MechanisticFit& fit) {
   for (const auto& what : fit.unidentifiable) std::printf("  not identified: %s\n", what.c_str());
 }
 
+// ", leave-one-engagement-out RMSE 12.3 N", or nothing when it was not computed.
+std::string engagement_cv_text(const mdb::ModelFitStatistics& fit) {
+  if (!(fit.engagement_cv_rmse_n > 0.0)) return {};
+  char text[64];
+  std::snprintf(text, sizeof text, ", leave-one-engagement-out RMSE %.2f N", fit.engagement_cv_rmse_n);
+  return text;
+}
+
 void print_model(const mdb::ModelRecord& m) {
   const auto& r = m.model;
   std::printf("model %s in %s, version %d, %s%s (%s, %s)%s%s\n", m.tool_name.c_str(), m.material_name.c_str(),
@@ -147,8 +157,8 @@ void print_model(const mdb::ModelRecord& m) {
     std::printf("  identified on t_m %.4g–%.4g mm, L %.4g–%.4g mm, a_p %.4g mm, %.0f rpm\n", r.range.chip_min_mm,
                 r.range.chip_max_mm, r.range.contact_length_min_mm, r.range.contact_length_max_mm, r.axial_depth_mm,
                 r.spindle_rpm);
-    std::printf("  tests' mean peaks: n %d, RMSE %.2f N, R² %.4f, leave-one-out RMSE %.2f N\n", m.fit.n, m.fit.rmse_n,
-                m.fit.r_squared, m.fit.loo_rmse_n);
+    std::printf("  tests' mean peaks: n %d, RMSE %.2f N, R² %.4f, leave-one-out RMSE %.2f N%s\n", m.fit.n, m.fit.rmse_n,
+                m.fit.r_squared, m.fit.loo_rmse_n, engagement_cv_text(m.fit).c_str());
     return;
   }
   static const char* names[6] = {"beta0", "beta1", "beta2", "beta11", "beta22", "beta12"};
@@ -160,8 +170,8 @@ void print_model(const mdb::ModelRecord& m) {
   std::printf("  fitted on t_m %.4g–%.4g mm, L %.4g–%.4g mm, a_p %.4g mm, %.0f rpm\n", r.range.chip_min_mm,
               r.range.chip_max_mm, r.range.contact_length_min_mm, r.range.contact_length_max_mm, r.axial_depth_mm,
               r.spindle_rpm);
-  std::printf("  n %d, RMSE %.2f N, R² %.4f, leave-one-out RMSE %.2f N\n", m.fit.n, m.fit.rmse_n, m.fit.r_squared,
-              m.fit.loo_rmse_n);
+  std::printf("  n %d, RMSE %.2f N, R² %.4f, leave-one-out RMSE %.2f N%s\n", m.fit.n, m.fit.rmse_n, m.fit.r_squared,
+              m.fit.loo_rmse_n, engagement_cv_text(m.fit).c_str());
 }
 
 // Straight-cut model inputs for radial depth a_e and feed per tooth f_z (docs/method.md §5.1).
@@ -380,13 +390,19 @@ std::optional<mdb::ModelRecord> fit_response_surface(const DbOptions& o, const s
                                                      std::vector<std::string>& notes, std::string& refusal) {
   const model::FitOptions options = fit_options(o);
   std::vector<model::FitSample> samples;
+  std::vector<int> engagement;  // per sample
+  std::vector<const mdb::CuttingTestRecord*> records;
+  for (const auto& stored : tests) records.push_back(&stored.test);
+  const mdb::EngagementGroups groups = mdb::engagement_groups(records);
   std::map<double, int> axial_depths, speeds;
-  for (const auto& stored : tests) {
-    const auto& t = stored.test;
+  for (std::size_t i = 0; i < tests.size(); ++i) {
+    const auto& t = tests[i].test;
     if (o.per_revolution) {
       for (const double peak : t.steady_peaks_n) samples.push_back({t.chip_mm, t.contact_length_mm, peak});
+      engagement.resize(samples.size(), groups.group[i]);
     } else {
       samples.push_back({t.chip_mm, t.contact_length_mm, t.peak_mean_n});
+      engagement.push_back(groups.group[i]);
     }
     ++axial_depths[t.conditions.axial_depth_mm];
     ++speeds[t.conditions.spindle_rpm];
@@ -408,6 +424,9 @@ std::optional<mdb::ModelRecord> fit_response_surface(const DbOptions& o, const s
   record.fit.covariance = fit.covariance;
   record.fit.standard_errors = fit.standard_error_n;
   record.fit.loo_rmse_n = fit.loo_rmse_n;
+  if (groups.count >= mdb::kMinCrossValidationEngagements) {
+    record.fit.engagement_cv_rmse_n = model::leave_group_out_rmse_n(samples, engagement, options);
+  }
   record.source = mdb::ModelSource::kCuttingTests;
   record.note = o.note.empty() ? fit.message : o.note + (fit.status == model::FitStatus::kOk ? "" : "; " + fit.message);
   if (fit.status != model::FitStatus::kOk) notes.push_back("response surface: " + fit.message);

@@ -28,6 +28,7 @@
 #include "feedplan/cycles/spec_reader.hpp"
 #include "feedplan/gcode/writer.hpp"
 #include "feedplan/model_db/closest_model.hpp"
+#include "feedplan/model_db/engagement_groups.hpp"
 #include "feedplan/model_db/store.hpp"
 #include "feedplan/planner/constant_feed.hpp"
 #include "feedplan/planner/feed_plan.hpp"
@@ -111,9 +112,10 @@ PlanInputs read_plan_inputs(const PlanCommandOptions& o) {
   return in;
 }
 
-// The kind that plans (--model-kind, else the response surface, with both kinds' leave-one-out errors on the
-// pair's own cutting tests in the reason): the mechanistic version of the chosen response surface's tool and
-// material when there is one that fits the spec's cutter (its runout has one value per flute).
+// The kind that plans: --model-kind, else the kind with the lower leave-one-engagement-out error on the pair's
+// own cutting tests (model_db/engagement_groups.hpp, computed when the versions were fitted), the reason giving
+// both; the response surface when there is no mechanistic version of the chosen response surface's tool and
+// material that fits the spec's cutter (its runout has one value per flute), or when a version lacks the error.
 void choose_model_kind(const PlanCommandOptions& o, const mdb::Store& store, const cycles::CycleSpec& spec,
                        PlanModel& model) {
   const mdb::ModelRecord& surface = model.chosen.record;
@@ -126,7 +128,6 @@ void choose_model_kind(const PlanCommandOptions& o, const mdb::Store& store, con
   if (!o.model_kind.empty() && o.model_kind != "mechanistic" && o.model_kind != "response-surface") {
     throw InputError("--model-kind", "= '" + o.model_kind + "': must be mechanistic or response-surface");
   }
-  const auto loo = [](const mdb::ModelRecord& m) { return shortest_number_text(std::round(m.fit.loo_rmse_n * 100) / 100); };
   if (o.model_kind == "response-surface") {
     model.kind_reason = "response surface, as asked (--model-kind)";
     return;
@@ -145,13 +146,26 @@ void choose_model_kind(const PlanCommandOptions& o, const mdb::Store& store, con
     model.kind_reason = "response surface: the pair has no mechanistic version";
     return;
   }
-  // The response surface stays the default until the kinds are compared by an error that does not favour
-  // it for fitting the sensor noise's share of a measured peak (docs/method.md §5.7); both figures are printed
-  // so the user can decide.
-  model.kind_reason = "response surface (the default; --model-kind mechanistic plans with the cutting mechanics, "
-                      "which carry to cycles better on the test machines); leave-one-out error on the cutting tests " +
-                      loo(surface) + " N (response surface v" + std::to_string(surface.version) + "), " +
-                      loo(*mechanistic) + " N (mechanistic v" + std::to_string(mechanistic->version) + ")";
+  const auto n = [](double v) { return shortest_number_text(std::round(v * 10) / 10); };
+  const double surface_n = surface.fit.engagement_cv_rmse_n, mechanistic_n = mechanistic->fit.engagement_cv_rmse_n;
+  const std::string versions = " (response surface v" + std::to_string(surface.version) + ", mechanistic v" +
+                               std::to_string(mechanistic->version) + ")";
+  if (!(surface_n > 0.0 && mechanistic_n > 0.0)) {
+    model.kind_reason = "response surface: the versions" + versions + " have no leave-one-engagement-out error to "
+                        "compare the kinds by (fitted on fewer than " +
+                        std::to_string(mdb::kMinCrossValidationEngagements) + " radial depths, or before feedplan "
+                        "computed it: refit with feedplan db fit); --model-kind mechanistic plans with the cutting "
+                        "mechanics";
+    return;
+  }
+  const std::string figures = "leave-one-engagement-out error on the cutting tests " + n(mechanistic_n) +
+                              " N mechanistic, " + n(surface_n) + " N response surface" + versions;
+  if (mechanistic_n < surface_n) {
+    model.kind_reason = "mechanistic, which predicts engagements it was not fitted on better: " + figures;
+    model.mechanistic = std::move(mechanistic);
+    return;
+  }
+  model.kind_reason = "response surface, which predicts engagements it was not fitted on better: " + figures;
 }
 
 // The model from the database: --model-id, else the closest; nothing (after saying why) when none qualifies.

@@ -489,4 +489,31 @@ FitResult fit_model(const std::vector<FitSample>& samples, const FitOptions& opt
   return result;
 }
 
+double leave_group_out_rmse_n(const std::vector<FitSample>& samples, const std::vector<int>& group,
+                                            const FitOptions& options) {
+  if (group.size() != samples.size()) {
+    throw InputError("group", "has " + std::to_string(group.size()) + " entries: must have one per sample (" +
+                                  std::to_string(samples.size()) + ")");
+  }
+  std::vector<int> groups(group);
+  std::sort(groups.begin(), groups.end());
+  groups.erase(std::unique(groups.begin(), groups.end()), groups.end());
+  double sum = 0.0;
+  for (const int left_out : groups) {
+    std::vector<FitSample> others;
+    for (std::size_t i = 0; i < samples.size(); ++i) {
+      if (group[i] != left_out) others.push_back(samples[i]);
+    }
+    const FitResult fit = fit_model(others, options);
+    const bool fitted = fit.status == FitStatus::kOk || fit.status == FitStatus::kReducedModel;
+    for (std::size_t i = 0; i < samples.size(); ++i) {
+      if (group[i] != left_out) continue;
+      const double predicted_n = fitted ? predict(fit.model, samples[i].chip_mm, samples[i].contact_length_mm).force_n : 0.0;
+      const double error_n = predicted_n - samples[i].force_n;
+      sum += error_n * error_n;
+    }
+  }
+  return std::sqrt(sum / static_cast<double>(samples.size()));
+}
+
 }  // namespace feedplan::model

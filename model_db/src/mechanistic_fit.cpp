@@ -7,6 +7,7 @@
 #include "feedplan/core/input_error.hpp"
 #include "feedplan/model/mechanistic_force.hpp"
 #include "feedplan/model/mechanistic_identification.hpp"
+#include "feedplan/model_db/engagement_groups.hpp"
 
 namespace feedplan::model_db {
 namespace {
@@ -28,24 +29,6 @@ model::ImmersionArc arc_of(const ToolRecord& tool, const CuttingTestConditions& 
   const double radius_mm = 0.5 * tool.diameter_mm;
   return model::straight_cut_arc(side_of(conditions.mode), std::min(conditions.radial_depth_mm, 2.0 * radius_mm),
                                  radius_mm);
-}
-
-model::MechanisticCuttingTest identification_test(const ToolRecord& tool, const StoredCuttingTest& stored, int index) {
-  const CuttingTestRecord& test = stored.test;
-  model::MechanisticCuttingTest t;
-  t.cutter = cutter_of(tool);
-  t.arc = arc_of(tool, test.conditions);
-  t.axial_depth_mm = test.conditions.axial_depth_mm;
-  t.feed_per_tooth_mm = test.feed_per_tooth_mm;
-  t.synchronous_fx_n = test.synchronous_fx_n;
-  t.synchronous_fy_n = test.synchronous_fy_n;
-  t.spindle_rpm = test.conditions.spindle_rpm;
-  t.revolution_peaks_n = test.steady_peaks_n;
-  char name[96];
-  std::snprintf(name, sizeof name, "cutting_tests[%d] (a_e %.4g mm, f_z %.4g mm)", index,
-                test.conditions.radial_depth_mm, test.feed_per_tooth_mm);
-  t.name = name;
-  return t;
 }
 
 model::MechanisticIdentificationOptions identification_options(const ToolRecord& tool,
@@ -115,29 +98,52 @@ void peak_statistics(const std::vector<double>& predicted, const std::vector<dou
   fit.r_squared = total > 0.0 ? 1.0 - residual / total : 0.0;
 }
 
-// The RMS error of each test's peak predicted by the coefficients refitted on the other tests, with the
-// phases and runout the identification found on all of them held (model::refit_coefficients).
-double leave_one_out_rmse_n(const ToolRecord& tool, const std::vector<const StoredCuttingTest*>& used,
-                            const std::vector<model::MechanisticCuttingTest>& tests,
-                            const model::MechanisticIdentification& identification) {
+// The RMS error of each test's peak predicted by the coefficients refitted without its group (`group[i]` is
+// test i's), with the phases and runout the identification found on all of them held
+// (model::refit_coefficients).
+double leave_group_out_rmse_n(const ToolRecord& tool, const std::vector<const StoredCuttingTest*>& used,
+                              const std::vector<model::MechanisticCuttingTest>& tests,
+                              const model::MechanisticIdentification& identification, const std::vector<int>& group) {
   double sum = 0.0;
-  for (std::size_t left_out = 0; left_out < tests.size(); ++left_out) {
+  const int groups = *std::max_element(group.begin(), group.end()) + 1;
+  for (int left_out = 0; left_out < groups; ++left_out) {
     std::vector<model::MechanisticCuttingTest> others;
     std::vector<double> phases;
     for (std::size_t i = 0; i < tests.size(); ++i) {
-      if (i == left_out) continue;
+      if (group[i] == left_out) continue;
       others.push_back(tests[i]);
       phases.push_back(identification.phase_rad[i]);
     }
     const model::MechanisticModel refitted =
         model::refit_coefficients(others, phases, identification.model, identification.tests_peak_matched > 0);
-    const double error = predicted_test_peak_n(refitted, tool, used[left_out]->test) - used[left_out]->test.peak_mean_n;
-    sum += error * error;
+    for (std::size_t i = 0; i < tests.size(); ++i) {
+      if (group[i] != left_out) continue;
+      const double error = predicted_test_peak_n(refitted, tool, used[i]->test) - used[i]->test.peak_mean_n;
+      sum += error * error;
+    }
   }
   return std::sqrt(sum / static_cast<double>(tests.size()));
 }
 
 }  // namespace
+
+model::MechanisticCuttingTest identification_test(const ToolRecord& tool, const StoredCuttingTest& stored, int index) {
+  const CuttingTestRecord& test = stored.test;
+  model::MechanisticCuttingTest t;
+  t.cutter = cutter_of(tool);
+  t.arc = arc_of(tool, test.conditions);
+  t.axial_depth_mm = test.conditions.axial_depth_mm;
+  t.feed_per_tooth_mm = test.feed_per_tooth_mm;
+  t.synchronous_fx_n = test.synchronous_fx_n;
+  t.synchronous_fy_n = test.synchronous_fy_n;
+  t.spindle_rpm = test.conditions.spindle_rpm;
+  t.revolution_peaks_n = test.steady_peaks_n;
+  char name[96];
+  std::snprintf(name, sizeof name, "cutting_tests[%d] (a_e %.4g mm, f_z %.4g mm)", index,
+                test.conditions.radial_depth_mm, test.feed_per_tooth_mm);
+  t.name = name;
+  return t;
+}
 
 double predicted_test_peak_n(const model::MechanisticModel& model, const ToolRecord& tool, const CuttingTestRecord& test) {
   const model::ImmersionArc arc = arc_of(tool, test.conditions);
@@ -196,7 +202,16 @@ MechanisticFitResult fit_mechanistic(const ToolRecord& tool, const std::string& 
   }
   peak_statistics(result.predicted_peaks_n, result.measured_peaks_n, record.fit);
   if (options.leave_one_out && !options.identify_sensor && used.size() >= 3) {
-    record.fit.loo_rmse_n = leave_one_out_rmse_n(tool, used, identification_tests, identification);
+    std::vector<int> each(used.size());
+    for (std::size_t i = 0; i < used.size(); ++i) each[i] = static_cast<int>(i);
+    record.fit.loo_rmse_n = leave_group_out_rmse_n(tool, used, identification_tests, identification, each);
+    std::vector<const CuttingTestRecord*> records;
+    for (const StoredCuttingTest* stored : used) records.push_back(&stored->test);
+    const EngagementGroups groups = engagement_groups(records);
+    if (groups.count >= kMinCrossValidationEngagements) {
+      record.fit.engagement_cv_rmse_n =
+          leave_group_out_rmse_n(tool, used, identification_tests, identification, groups.group);
+    }
   }
   if (identification.tests_peak_matched > 0) {
     char note[320];

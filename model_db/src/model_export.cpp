@@ -61,7 +61,8 @@ Json to_json(const ModelRecord& record, const std::optional<int>& parent_version
                      {"r_squared", record.fit.r_squared},
                      {"covariance", record.fit.covariance.entries()},
                      {"standard_errors", record.fit.standard_errors},
-                     {"loo_rmse_n", record.fit.loo_rmse_n}};
+                     {"loo_rmse_n", record.fit.loo_rmse_n},
+                     {"engagement_cv_rmse_n", record.fit.engagement_cv_rmse_n}};
   return json;
 }
 

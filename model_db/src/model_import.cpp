@@ -132,6 +132,7 @@ ModelFitStatistics read_fit(const Node& node) {
   fit.covariance = model::Covariance::from_entries(node.fixed_numbers<36>("covariance"));
   fit.standard_errors = node.fixed_numbers<6>("standard_errors");
   fit.loo_rmse_n = node.number("loo_rmse_n");
+  if (node.has("engagement_cv_rmse_n")) fit.engagement_cv_rmse_n = node.number("engagement_cv_rmse_n");
   return fit;
 }
 
@@ -414,9 +415,9 @@ bool same_content(const ModelRecord& a, const ModelRecord& b) {
                       y.range.contact_length_min_mm, y.range.contact_length_max_mm, y.axial_depth_mm, y.spindle_rpm,
                       y.quantity) &&
          std::tie(a.fit.n, a.fit.rmse_n, a.fit.r_squared, a.fit.covariance, a.fit.standard_errors, a.fit.loo_rmse_n,
-                  a.source, a.created_at, a.note) ==
+                  a.fit.engagement_cv_rmse_n, a.source, a.created_at, a.note) ==
              std::tie(b.fit.n, b.fit.rmse_n, b.fit.r_squared, b.fit.covariance, b.fit.standard_errors,
-                      b.fit.loo_rmse_n, b.source, b.created_at, b.note);
+                      b.fit.loo_rmse_n, b.fit.engagement_cv_rmse_n, b.source, b.created_at, b.note);
 }
 
 bool same_content(const StoredCuttingTest& a, const StoredCuttingTest& b) {

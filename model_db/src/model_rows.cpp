@@ -12,7 +12,7 @@ constexpr const char* kModelSelect =
     "m.chip_center_mm, m.chip_scale_mm, m.contact_length_center_mm, m.contact_length_scale_mm, "
     "m.chip_min_mm, m.chip_max_mm, m.contact_length_min_mm, m.contact_length_max_mm, "
     "m.axial_depth_mm, m.spindle_rpm, m.quantity, "
-    "m.fit_n, m.rmse_n, m.r_squared, m.covariance_json, m.standard_errors_json, m.loo_rmse_n, "
+    "m.fit_n, m.rmse_n, m.r_squared, m.covariance_json, m.standard_errors_json, m.loo_rmse_n, m.engagement_cv_rmse_n, "
     "m.source, m.created_at, m.note, m.active, m.kind, "
     "k.ktc_n_per_mm2, k.krc_n_per_mm2, k.kac_n_per_mm2, k.kte_n_per_mm, k.kre_n_per_mm, k.kae_n_per_mm, "
     "k.size_exponent, k.size_reference_chip_mm, k.size_min_chip_mm, k.runout_json, k.helix_deg, k.covariance_json, "
@@ -130,6 +130,7 @@ ModelRecord read_model(const Statement& row) {
   record.fit.covariance = model::Covariance::from_entries(numbers_from_json<36>(row.column_text(c++)));
   record.fit.standard_errors = numbers_from_json<6>(row.column_text(c++));
   record.fit.loo_rmse_n = row.column_double(c++);
+  record.fit.engagement_cv_rmse_n = row.column_double(c++);
   // The CHECK constraint admits only the three source names.
   record.source = parse_model_source(row.column_text(c++)).value_or(ModelSource::kImported);
   record.created_at = row.column_text(c++);
@@ -210,9 +211,9 @@ RowId insert_model_row(Connection& db, RowId tool_id, RowId material_id, const M
                       "chip_min_mm, chip_max_mm, contact_length_min_mm, contact_length_max_mm, "
                       "axial_depth_mm, spindle_rpm, quantity, "
                       "fit_n, rmse_n, r_squared, covariance_json, standard_errors_json, loo_rmse_n, "
-                      "source, created_at, note, active, kind) "
+                      "engagement_cv_rmse_n, source, created_at, note, active, kind) "
                       "VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, "
-                      "?, ?, 0, ?)");
+                      "?, ?, ?, 0, ?)");
   const model::ResponseSurfaceModel& model = record.model;
   statement.bind_all(tool_id, material_id, record.version, record.parent_id);
   for (double beta : model.beta) statement.bind(beta);
@@ -221,7 +222,7 @@ RowId insert_model_row(Connection& db, RowId tool_id, RowId material_id, const M
                      model.range.contact_length_min_mm, model.range.contact_length_max_mm, model.axial_depth_mm,
                      model.spindle_rpm, model.quantity);
   statement.bind_all(record.fit.n, record.fit.rmse_n, record.fit.r_squared, numbers_to_json(record.fit.covariance.entries()),
-                     numbers_to_json(record.fit.standard_errors), record.fit.loo_rmse_n);
+                     numbers_to_json(record.fit.standard_errors), record.fit.loo_rmse_n, record.fit.engagement_cv_rmse_n);
   statement.bind_all(to_string(record.source), record.created_at, record.note, to_string(record.kind));
   statement.run();
   const RowId id = db.last_insert_rowid();

@@ -156,6 +156,7 @@ std::vector<InputProblem> validate(const ModelRecord& record) {
   problems.non_negative("fit.rmse_n", fit.rmse_n);
   problems.finite("fit.r_squared", fit.r_squared);
   problems.non_negative("fit.loo_rmse_n", fit.loo_rmse_n);
+  problems.non_negative("fit.engagement_cv_rmse_n", fit.engagement_cv_rmse_n);
   for (std::size_t i = 0; i < fit.covariance.entries().size(); ++i) {
     problems.finite("fit.covariance[" + std::to_string(i) + "]", fit.covariance.entries()[i]);
   }

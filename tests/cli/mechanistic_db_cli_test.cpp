@@ -104,6 +104,26 @@ TEST_F(MechanisticDbCliTest, FitsBothKindsAndPredictsWithIntervals) {
     EXPECT_GT((*interval)["upper_n"].get<double>(), (*interval)["predicted_n"].get<double>());
   }
 
+  // Both kinds carry a leave-one-engagement-out error (three radial depths), and `plan` without --model-kind
+  // plans with the kind whose error is lower, saying so with both figures.
+  const double surface_cv_n = fitted["models"][0]["engagement_cv_rmse_n"].get<double>();
+  const double mechanistic_cv_n = mechanistic["engagement_cv_rmse_n"].get<double>();
+  std::printf("leave-one-engagement-out: response surface %.2f N, mechanistic %.2f N\n", surface_cv_n, mechanistic_cv_n);
+  EXPECT_GT(surface_cv_n, 0.0);
+  EXPECT_GT(mechanistic_cv_n, 0.0);
+  const std::string spec = std::string(FEEDPLAN_SAMPLES_DIR) + "/corner.yaml";
+  const fs::path report = dir_ / "default.json";
+  const RunResult planned = run_feedplan("plan " + spec + " --db " + db_ + " --report " + report.string() + " -o " +
+                                         (dir_ / "default.nc").string());
+  ASSERT_EQ(planned.exit_code, 0) << planned.output;
+  const bool mechanistic_lower = mechanistic_cv_n < surface_cv_n;
+  EXPECT_EQ(nlohmann::json::parse(std::ifstream(report))["model"]["kind"],
+            mechanistic_lower ? "mechanistic" : "response_surface");
+  EXPECT_NE(planned.output.find(std::string("model kind: ") + (mechanistic_lower ? "mechanistic" : "response surface") +
+                                ", which predicts engagements it was not fitted on better: leave-one-engagement-out error"),
+            std::string::npos)
+      << planned.output;
+
   // A kind that does not exist is bad input, and nothing is stored.
   const RunResult bad = run_feedplan("db fit --db " + db_ + " --tool " + kTool + " --material S50C --kind physics");
   EXPECT_EQ(bad.exit_code, 2) << bad.output;

@@ -41,10 +41,13 @@ sim::CuttingCoefficients al7075() {
   return k;
 }
 
+//! The dynamometer of the tests: a flat 3 kHz low pass with 2 N of noise.
+const sim::DynamometerOptions kTwoNewtonNoise{3000.0, 0.7071067811865476, 2.0};
+
 //! One down-milling test simulated with dynamometer noise and imported; as identification sees it.
 MechanisticCuttingTest simulated_test(double radial_depth_mm, double feed_per_tooth_mm, unsigned seed,
                                       const std::vector<double>& runout_mm = {}, double true_helix_deg = kTool.helix_deg,
-                                      double size_exponent = 0.0, sim::DynamometerOptions dynamometer = {2.0},
+                                      double size_exponent = 0.0, sim::DynamometerOptions dynamometer = kTwoNewtonNoise,
                                       double* measured_mean_peak_n = nullptr) {
   geometry::Tool machine_tool = kTool;  // the flutes the machine cuts with; identification knows kTool only
   machine_tool.helix_deg = true_helix_deg;

@@ -187,6 +187,29 @@ TEST(ModelFit, ExactOnNoiseFreeData) {
   }
 }
 
+// Cross-validation by groups (here the five contact lengths, as by engagement): on data the model holds exactly
+// every group is predicted exactly from the other four; on data of another shape (a power law in L) leaving a
+// whole contact length out costs more than leaving one point out; a group whose complement cannot be fitted
+// counts with its forces (no prediction); a group vector of the wrong size is bad input.
+TEST(ModelFit, LeaveGroupOut) {
+  std::mt19937_64 rng(1);
+  const std::vector<FitSample> exact = grid(0.0, rng);
+  std::vector<int> by_length;
+  for (const FitSample& s : exact) by_length.push_back(static_cast<int>(std::lround((s.contact_length_mm - 1.0) / 2.0)));
+  EXPECT_LT(leave_group_out_rmse_n(exact, by_length), 1e-6);
+
+  std::vector<FitSample> power_law = exact;
+  for (FitSample& s : power_law) s.force_n = 5000.0 * std::pow(s.chip_mm, 0.8) * std::sqrt(s.contact_length_mm);
+  const double by_group_n = leave_group_out_rmse_n(power_law, by_length);
+  const double loo_n = fit_model(power_law).loo_rmse_n;
+  std::printf("power law: leave-one-contact-length-out RMSE %.2f N, leave-one-out %.2f N\n", by_group_n, loo_n);
+  EXPECT_GT(by_group_n, 2.0 * loo_n);
+
+  const std::vector<FitSample> three = {{0.05, 1.0, 300.0}, {0.1, 3.0, 400.0}, {0.15, 5.0, 500.0}};
+  EXPECT_NEAR(leave_group_out_rmse_n(three, {0, 1, 2}), std::sqrt((300.0 * 300 + 400.0 * 400 + 500.0 * 500) / 3), 1e-9);
+  EXPECT_THROW(leave_group_out_rmse_n(three, {0, 1}), InputError);
+}
+
 TEST(ModelFit, LeaveOneOutMatchesBruteForceRefits) {
   const unsigned seed = env_or("FEEDPLAN_TEST_SEED", 77u);
   std::cout << "model fit leave-one-out: FEEDPLAN_TEST_SEED=" << seed << "\n";

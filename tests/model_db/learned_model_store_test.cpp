@@ -241,12 +241,13 @@ TEST(LearnedSamples, AVersionOneDatabaseIsMigrated) {
   const auto path = dir / "v1.db";
   Store::open(path, OpenMode::kCreate);
   // What a version-1 file is: no learning_samples, cutting_test_signals or mechanistic_models table, no
-  // model kind (one active version per pair), user_version 1.
+  // model kind (one active version per pair), no leave-one-engagement-out error, user_version 1.
   fixtures::raw_sql(path, "DROP TABLE learning_samples");
   fixtures::raw_sql(path, "DROP TABLE cutting_test_signals");
   fixtures::raw_sql(path, "DROP TABLE mechanistic_models");
   fixtures::raw_sql(path, "DROP INDEX models_one_active");
   fixtures::raw_sql(path, "ALTER TABLE models DROP COLUMN kind");
+  fixtures::raw_sql(path, "ALTER TABLE models DROP COLUMN engagement_cv_rmse_n");
   fixtures::raw_sql(path, "CREATE UNIQUE INDEX models_one_active ON models (tool_id, material_id) WHERE active = 1");
   fixtures::raw_sql(path, "PRAGMA user_version = 1");
   EXPECT_THROW(Store::open(path, OpenMode::kReadOnly), InputError);  // reading never migrates
@@ -255,6 +256,8 @@ TEST(LearnedSamples, AVersionOneDatabaseIsMigrated) {
   EXPECT_EQ(fixtures::raw_sql(path, "SELECT count(*) FROM sqlite_schema WHERE name = 'cutting_test_signals'"), "1");
   EXPECT_EQ(fixtures::raw_sql(path, "SELECT count(*) FROM sqlite_schema WHERE name = 'mechanistic_models'"), "1");
   EXPECT_EQ(fixtures::raw_sql(path, "SELECT count(*) FROM pragma_table_info('models') WHERE name = 'kind'"), "1");
+  EXPECT_EQ(fixtures::raw_sql(path, "SELECT count(*) FROM pragma_table_info('models') WHERE name = 'engagement_cv_rmse_n'"),
+            "1");
 }
 
 }  // namespace

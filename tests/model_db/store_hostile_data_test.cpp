@@ -30,7 +30,7 @@ TEST(StoreHostileData, NegativeSchemaVersionIsRefusedAndTheFileIsUntouched) {
   fixtures::raw_sql(path, "PRAGMA user_version = -1");
   const std::string before = fixtures::file_bytes(path);
   const std::string expected = path.string() +
-                               " has model database schema version -1, which feedplan never writes (it writes 1 to 4): "
+                               " has model database schema version -1, which feedplan never writes (it writes 1 to 5): "
                                "the file was changed outside feedplan; restore it from a backup or an export";
   EXPECT_EQ(input_error_of([&] { Store::open(path, OpenMode::kCreate); }), expected);
   EXPECT_EQ(input_error_of([&] { Store::open(path, OpenMode::kExisting); }), expected);

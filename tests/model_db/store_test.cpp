@@ -558,7 +558,7 @@ TEST(StoreOpen, NewerSchemaVersionAsksToUpgradeFeedplanAndChangesNothing) {
   fixtures::raw_sql(path, "PRAGMA user_version = 7");
   const std::string before = fixtures::file_bytes(path);
   const std::string expected =
-      path.string() + " has model database schema version 7, newer than this feedplan knows (4): upgrade feedplan";
+      path.string() + " has model database schema version 7, newer than this feedplan knows (5): upgrade feedplan";
   EXPECT_EQ(input_error_of([&] { Store::open(path, OpenMode::kExisting); }), expected);
   EXPECT_EQ(input_error_of([&] { Store::open(path, OpenMode::kReadOnly); }), expected);
   EXPECT_EQ(fixtures::file_bytes(path), before);

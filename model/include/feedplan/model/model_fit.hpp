@@ -118,4 +118,12 @@ std::vector<InputProblem> validate(const FitOptions& options);
 //! ("samples[3].force_n = nan: must be finite"), and every problem with the options.
 FitResult fit_model(const std::vector<FitSample>& samples, const FitOptions& options = {});
 
+//! The RMS error of each sample's force predicted by the model fitted (fit_model, `options`) without the
+//! samples of its group, `group[i]` being sample i's, N — cross-validation by groups, e.g. by engagement. A
+//! group whose complement cannot be fitted (kInsufficientData or kNotConverged) cannot be predicted at all: its
+//! samples count with the error of no prediction, their forces. Throws as fit_model, and InputError when `group`
+//! is not one per sample.
+double leave_group_out_rmse_n(const std::vector<FitSample>& samples, const std::vector<int>& group,
+                                            const FitOptions& options = {});
+
 }  // namespace feedplan::model

@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "feedplan/model/mechanistic_identification.hpp"
 #include "feedplan/model/prediction_interval.hpp"
 #include "feedplan/model_db/store_records.hpp"
 
@@ -55,6 +56,10 @@ struct MechanisticFitResult {
 MechanisticFitResult fit_mechanistic(const ToolRecord& tool, const std::string& material_name,
                                      const std::vector<StoredCuttingTest>& tests,
                                      const MechanisticFitOptions& options = {});
+
+//! Stored test number `index` of `tool` as identification takes it: the tool record's radius, flutes and
+//! catalogue helix, the straight cut's engaged arc, a_p, f_z, the synchronous force and the steady peaks.
+model::MechanisticCuttingTest identification_test(const ToolRecord& tool, const StoredCuttingTest& stored, int index);
 
 //! The straight cut of `test` as the mechanistic kernel sees it: the predicted mean steady peak of `model`
 //! for the test's conditions with `tool`'s cutter, N.

@@ -14,7 +14,7 @@
 //                    (null: the tool's),
 //                    covariance[16] of Ktc, Krc, Kte, Kre, signal_rms_residual_n, condition_number,
 //                    identified, unidentifiable[]},
-//                    fit {n, rmse_n, r_squared, covariance[36], standard_errors[6], loo_rmse_n}
+//                    fit {n, rmse_n, r_squared, covariance[36], standard_errors[6], loo_rmse_n, engagement_cv_rmse_n (optional, 0 when absent)}
 //   cutting_tests    by tool, material, created_at: conditions, derived values, peak statistics,
 //                    steady_peaks_n[], synchronous_fx_n[], synchronous_fy_n[] (optional: the force over a
 //                    revolution averaged over the steady ones, force_log/synchronous_average.hpp),

@@ -36,7 +36,7 @@
 namespace feedplan::model_db {
 
 //! The schema version this code writes and reads (PRAGMA user_version).
-inline constexpr int kStoreSchemaVersion = 4;
+inline constexpr int kStoreSchemaVersion = 5;
 
 //! How Store::open treats the file.
 enum class OpenMode {

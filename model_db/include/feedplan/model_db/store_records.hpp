@@ -81,6 +81,8 @@ struct ModelFitStatistics {
   model::Covariance covariance;              //!< covariance of β, N²
   std::array<double, 6> standard_errors{};   //!< standard error of each β, N
   double loo_rmse_n = 0.0;                   //!< leave-one-out RMS prediction error, N
+  //! Leave-one-engagement-out RMS prediction error (engagement_groups.hpp), N; 0: not computed.
+  double engagement_cv_rmse_n = 0.0;
 };
 
 //! Which force model a version holds.
