@@ -287,6 +287,7 @@ planner::PlanReportContext report_context(const PlanCommandOptions& o, const Pla
     context.model_differences.push_back(d.property + " " + d.used + " for " + d.wanted);
   }
   context.model_relative_uncertainty = model.relative_uncertainty;
+  context.model_kind_reason = model.kind_reason;
   context.database_path = model.db_path;
   context.program_path = program.any() ? o.program_path : "";
   context.dialect = gcode::to_string(writer.dialect);

@@ -80,6 +80,7 @@ Json model_json(const PlanSettings& settings, const PlanReportContext& context) 
             {"relative_uncertainty", json_number(context.model_relative_uncertainty)}};
   json.update(model::to_json(model));
   json["kind"] = settings.mechanistic ? "mechanistic" : "response_surface";
+  if (!context.model_kind_reason.empty()) json["kind_reason"] = context.model_kind_reason;
   if (settings.mechanistic) json["mechanistic"] = model::to_json(*settings.mechanistic);
   return json;
 }
@@ -252,6 +253,7 @@ void read_model_identity(const Node& model, PlanReportContext& context) {
   if (model.member("relative_uncertainty", JsonPresence::kOptional)) {
     context.model_relative_uncertainty = model.number("relative_uncertainty");
   }
+  context.model_kind_reason = model.text("kind_reason", JsonPresence::kOptional);
 }
 
 // The model, target, spindle speed, machine limits, options and force correction.

@@ -117,8 +117,10 @@ TEST_F(MechanisticDbCliTest, FitsBothKindsAndPredictsWithIntervals) {
                                          (dir_ / "default.nc").string());
   ASSERT_EQ(planned.exit_code, 0) << planned.output;
   const bool mechanistic_lower = mechanistic_cv_n < surface_cv_n;
-  EXPECT_EQ(nlohmann::json::parse(std::ifstream(report))["model"]["kind"],
-            mechanistic_lower ? "mechanistic" : "response_surface");
+  const auto default_report = nlohmann::json::parse(std::ifstream(report));
+  EXPECT_EQ(default_report["model"]["kind"], mechanistic_lower ? "mechanistic" : "response_surface");
+  EXPECT_NE(default_report["model"]["kind_reason"].get<std::string>().find("leave-one-engagement-out error"),
+            std::string::npos);
   EXPECT_NE(planned.output.find(std::string("model kind: ") + (mechanistic_lower ? "mechanistic" : "response surface") +
                                 ", which predicts engagements it was not fitted on better: leave-one-engagement-out error"),
             std::string::npos)

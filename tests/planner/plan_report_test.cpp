@@ -69,6 +69,7 @@ const CornerPlan& corner_plan() {
     p.context.model_tool = "SC EM D10 Z4";
     p.context.model_material = "S50C";
     p.context.model_match = "exact tool and material \"S50C\" (version 3, active)";
+    p.context.model_kind_reason = "response surface, as asked (--model-kind)";
     p.context.database_path = "/tmp/models.sqlite";
     p.context.program_path = "corner.ngc";
     p.context.dialect = "linuxcnc";
@@ -123,6 +124,7 @@ TEST(PlanReportJson, HoldsEveryDocumentedFieldWithThePlansValues) {
   EXPECT_EQ(model["tool"], "SC EM D10 Z4");
   EXPECT_EQ(model["material"], "S50C");
   EXPECT_EQ(model["match"], p.context.model_match);
+  EXPECT_EQ(model["kind_reason"], p.context.model_kind_reason);
   EXPECT_EQ(model["beta"], (nlohmann::json{300.0, 180.0, 40.0, -8.0, -4.0, 12.0}));
   EXPECT_EQ(model["chip_center_mm"], 0.05);
   EXPECT_EQ(model["chip_scale_mm"], 0.04);
@@ -232,6 +234,7 @@ TEST(PlanReportRoundTrip, WriteThenReadGivesTheSameSettingsContextAndBlocks) {
   EXPECT_EQ(c.model_tool, p.context.model_tool);
   EXPECT_EQ(c.model_material, p.context.model_material);
   EXPECT_EQ(c.model_match, p.context.model_match);
+  EXPECT_EQ(c.model_kind_reason, p.context.model_kind_reason);
   EXPECT_EQ(c.database_path, "/tmp/models.sqlite");
   EXPECT_EQ(c.program_path, "corner.ngc");
   EXPECT_EQ(c.dialect, "linuxcnc");

@@ -13,7 +13,7 @@
 //          contact_length_center_mm, contact_length_scale_mm,
 //          range {chip_min_mm, chip_max_mm, contact_length_min_mm, contact_length_max_mm},
 //          axial_depth_mm, spindle_rpm, quantity, kind ("response_surface" or "mechanistic"; optional on
-//          reading: the response surface), mechanistic {model/mechanistic_json.hpp's members} (only with
+//          reading: the response surface), kind_reason (which kind planned and why; optional on reading), mechanistic {model/mechanistic_json.hpp's members} (only with
 //          the mechanistic kind, which plans with it: the response surface's members then give only its
 //          tests' range)},
 //   target_force_n, spindle_rpm,
@@ -73,6 +73,7 @@ struct PlanReportContext {
   std::string model_match_status; //!< "exact" or "borrowed" ("" when not recorded)
   std::vector<std::string> model_differences;  //!< what the borrowed model differs in, e.g. "diameter 10 mm for 8 mm"
   double model_relative_uncertainty = 0.0;     //!< r of the cautious bound the plan held (0: the model alone)
+  std::string model_kind_reason;  //!< which kind of model planned and why, for people ("" when not recorded)
   std::string database_path;      //!< the model database ("" when none; the CLI stores it absolute and canonical)
   std::string program_path;       //!< the G-code file written ("" when none)
   std::string dialect;            //!< G-code dialect of that file, e.g. "linuxcnc"
