@@ -95,6 +95,53 @@ TEST(MachineFile, ShippedMachinesReadAndDifferFromEachOther) {
   }
 }
 
+// The seeded family (data/machines/family, scripts/generate-machine-family.sh): at least 12 machines, each
+// read by the machine-file reader, applicable to the samples' four-flute 30° tool, and within the generator's
+// ranges — the shape differences the learning is to meet: size effect 0.1–0.3, edge coefficients half to twice
+// the library's, 2–8 µm eccentric runout (±1 µm per tooth), helix within ±5°, a 500–3000 Hz dynamometer with
+// 2–10 N noise. Between them they cover most of each range.
+TEST(MachineFile, TheFamilySpansTheRangesItWasDrawnFrom) {
+  std::vector<MachineFile> family;
+  for (const auto& entry : std::filesystem::directory_iterator(kSourceDir + "/data/machines/family")) {
+    if (entry.path().extension() == ".yaml") family.push_back(load_machine_file(entry.path().string(), library()));
+  }
+  ASSERT_GE(family.size(), 12u);
+  double m_lo = 1, m_hi = 0, edge_lo = 1e9, edge_hi = 0, bw_lo = 1e9, bw_hi = 0;
+  for (const MachineFile& m : family) {
+    SCOPED_TRACE(m.name);
+    EXPECT_GE(m.coefficients.size_exponent, 0.1);
+    EXPECT_LE(m.coefficients.size_exponent, 0.3);
+    for (double edge : {m.coefficients.kte_n_per_mm, m.coefficients.kre_n_per_mm}) {
+      EXPECT_GE(edge, 0.5 * 20 - 0.05);
+      EXPECT_LE(edge, 2.0 * 20 + 0.05);
+      edge_lo = std::min(edge_lo, edge);
+      edge_hi = std::max(edge_hi, edge);
+    }
+    ASSERT_EQ(m.runout_mm.size(), 4u);
+    double largest = 0;
+    for (double r : m.runout_mm) largest = std::max(largest, std::abs(r));
+    EXPECT_LE(largest, 0.009 + 1e-9);
+    EXPECT_LE(std::abs(m.helix_offset_deg), 5.0);
+    EXPECT_GE(m.dynamometer.bandwidth_hz, 500.0 - 0.5);
+    EXPECT_LE(m.dynamometer.bandwidth_hz, 3000.0 + 0.5);
+    EXPECT_GE(m.dynamometer.noise_n, 2.0);
+    EXPECT_LE(m.dynamometer.noise_n, 10.0);
+    SimulationRequest request;
+    request.tool = geometry::Tool{"SC EM D10 Z4", 10.0, 4, 30.0};
+    EXPECT_TRUE(apply_machine(m, request).empty());
+    m_lo = std::min(m_lo, m.coefficients.size_exponent);
+    m_hi = std::max(m_hi, m.coefficients.size_exponent);
+    bw_lo = std::min(bw_lo, m.dynamometer.bandwidth_hz);
+    bw_hi = std::max(bw_hi, m.dynamometer.bandwidth_hz);
+  }
+  EXPECT_LT(m_lo, 0.13);
+  EXPECT_GT(m_hi, 0.27);
+  EXPECT_LT(edge_lo, 12.0);
+  EXPECT_GT(edge_hi, 33.0);
+  EXPECT_LT(bw_lo, 700.0);
+  EXPECT_GT(bw_hi, 2000.0);
+}
+
 TEST(MachineFile, RefusesEachBadFieldWithItsMessage) {
   EXPECT_TRUE(has_problem(problems_of(with_line(2, "material: S55C")), "m.yaml: material (line 2)",
                           "= \"S55C\": unknown material; known"));
