@@ -20,6 +20,7 @@
 #include "plan_outcome.hpp"
 #include "plan_summary.hpp"
 #include "progress_bar.hpp"
+#include "target_sweep_summary.hpp"
 #include "feedplan/trial/plan_check.hpp"
 #include "feedplan/core/atomic_file.hpp"
 #include "feedplan/core/input_error.hpp"
@@ -34,6 +35,8 @@
 #include "feedplan/planner/feed_plan.hpp"
 #include "feedplan/planner/plan_plot.hpp"
 #include "feedplan/planner/plan_report.hpp"
+#include "feedplan/planner/target_sweep.hpp"
+#include "feedplan/planner/target_sweep_plot.hpp"
 
 namespace feedplan::cli {
 namespace {
@@ -95,6 +98,21 @@ PlanInputs read_plan_inputs(const PlanCommandOptions& o) {
   const auto dialect = gcode::dialect_from_string(o.dialect);
   if (!dialect) problems.push_back({"--dialect", "= '" + o.dialect + "': expected linuxcnc, fanuc or haas"});
   in.mode = plan_mode(o.mode, problems);
+  if (!o.target_sweep.empty()) {
+    in.sweep = planner::parse_target_range(o.target_sweep, "--target-sweep");
+    for (const auto& [flag, given] : {std::pair<const char*, bool>{"-o", !o.program_path.empty()},
+                                      {"--report", !o.report_path.empty()},
+                                      {"--csv", !o.csv_path.empty()},
+                                      {"--simulate", o.simulate},
+                                      {"--constant-feed", o.constant_feed_mm_per_min.has_value()},
+                                      {"--target-force", o.target_force_n.has_value()}}) {
+      if (given) problems.push_back({flag, "is not used with --target-sweep, which plans at many targets and writes no "
+                                           "program (only --plot, the curve): leave one of them out"});
+    }
+  } else if (o.program_path.empty()) {
+    problems.push_back({"-o", "is required: the G-code program to write (or --target-sweep FROM:TO:STEP for the "
+                              "time-versus-target curve)"});
+  }
   in.target_force_n = o.target_force_n.value_or(spec.target_force_n);
   if (!o.target_force_n && !(spec.target_force_n > 0.0)) {
     problems.push_back({"target_force_n", "is not in the spec: a target force > 0 N is required (in the spec or "
@@ -166,6 +184,24 @@ void choose_model_kind(const PlanCommandOptions& o, const mdb::Store& store, con
     return;
   }
   model.kind_reason = "response surface, which predicts engagements it was not fitted on better: " + figures;
+}
+
+// --target-sweep: the plan at every target of `range`, printed (and drawn with --plot). Returns 0, or 1 when
+// the plot cannot be written.
+int run_target_sweep(const PlanCommandOptions& o, const PlanInputs& in, const PlanModel& model,
+                     const PlannedCycle& planned, const planner::TargetRange& range) {
+  const std::vector<planner::TargetSweepRow> rows = planner::sweep_targets(planned.geometry, planned.settings, range);
+  print_target_sweep(o.json, in.spec.cycle, model, rows);
+  if (!o.plot_path.empty()) {
+    const std::string title = in.spec.cycle + ": cycle time and largest predicted peak against the target";
+    if (const std::string error = write_file_atomically(o.plot_path, planner::target_sweep_svg(rows, title));
+        !error.empty()) {
+      std::cerr << "feedplan: failed: " << error << "\n";
+      return kExitFailed;
+    }
+    if (!o.json) std::printf("plot: %s\n", o.plot_path.c_str());
+  }
+  return 0;
 }
 
 // The model from the database: --model-id, else the closest; nothing (after saying why) when none qualifies.
@@ -371,7 +407,7 @@ void add_plan_command(CLI::App& app, PlanCommandOptions& options) {
       "Plan the feeds of a canned cycle: engagement along the path, the closest force model from the database,\n"
       "feeds that hold the predicted force at the target under the machine's limits; writes G-code with F words");
   cmd->add_option("spec", options.spec_path, "Cycle spec (YAML), e.g. samples/trochoid.yaml")->required();
-  cmd->add_option("-o,--output", options.program_path, "G-code program to write")->required();
+  cmd->add_option("-o,--output", options.program_path, "G-code program to write (required unless --target-sweep)");
   cmd->add_option("--db", options.db_path, "Model database (default: $FEEDPLAN_DB, else the bundled sample database)");
   add_number_flag(cmd, "--target-force", options.target_force_n, "Per-revolution peak force to hold, N (default: the spec's)");
   cmd->add_option("--dialect", options.dialect, "G-code dialect: linuxcnc, fanuc or haas (default linuxcnc)");
@@ -387,7 +423,7 @@ void add_plan_command(CLI::App& app, PlanCommandOptions& options) {
   add_integer_flag(cmd, "--model-id", options.model_id, "Plan with this model (id from feedplan db list) instead of the closest");
   cmd->add_option("--model-kind", options.model_kind,
                   "mechanistic (cutting coefficients on the exact engaged arcs) or response-surface (seed 003 Eq. 1)\n"
-                  "(default: response-surface; the summary compares both kinds' leave-one-out errors)")
+                  "(default: the kind with the lower leave-one-engagement-out error on the pair's cutting tests)")
 ;
   add_number_flag(cmd, "--model-uncertainty", options.model_uncertainty,
                   "Relative uncertainty r of the model's force: plan on F̂ + 2σ (default: from how far the model is\n"
@@ -405,6 +441,9 @@ void add_plan_command(CLI::App& app, PlanCommandOptions& options) {
   add_number_flag(cmd, "--constant-feed", options.constant_feed_mm_per_min,
                   "Write the constant-feed program instead: this F (mm/min) on every feed move (a baseline to compare)");
   cmd->add_option("--materials", options.materials_path, "Materials file of the virtual machine (default: the bundled one)");
+  cmd->add_option("--target-sweep", options.target_sweep,
+                  "FROM:TO:STEP in N, e.g. 250:500:25: plan at each target and print the cycle time and largest\n"
+                  "predicted peak of each (--plot draws the curve); writes no program");
 }
 
 int run_plan_command(const PlanCommandOptions& o) {
@@ -412,6 +451,7 @@ int run_plan_command(const PlanCommandOptions& o) {
   const std::optional<PlanModel> model = choose_plan_model(o, in.spec);
   if (!model) return kExitFailed;
   const PlannedCycle planned = plan_cycle(o, in, *model);
+  if (in.sweep) return run_target_sweep(o, in, *model, planned, *in.sweep);
   PlanOutputs out;
   if (auto error = write_plan_outputs(o, in, *model, planned, out); !error.empty()) {
     std::cerr << "feedplan: failed: " << error << "\n";

@@ -38,13 +38,15 @@ struct PlanCommandOptions {
   bool simulate = false;              //!< --simulate: run the program on the virtual machine and compare
   std::optional<double> constant_feed_mm_per_min;  //!< --constant-feed: write this one F on every feed move instead
   std::string materials_path;         //!< --materials: the virtual machine's materials file
+  std::string target_sweep;           //!< --target-sweep FROM:TO:STEP: plan at each target, print the curve, write no program
 };
 
 //! Registers the subcommand.
 void add_plan_command(CLI::App& app, PlanCommandOptions& options);
 
 //! Runs the command. Returns 0 (planned), 1 (failed: no model for the material, or the target cannot be
-//! met — the program is then not written); throws InputError on bad input before anything is written.
+//! met — the program is then not written); throws InputError on bad input before anything is written. With
+//! --target-sweep: plans at every target, prints the curve (and --plot draws it), writes no program; 0.
 int run_plan_command(const PlanCommandOptions& options);
 
 }  // namespace feedplan::cli

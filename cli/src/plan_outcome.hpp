@@ -13,6 +13,7 @@
 #include "feedplan/gcode/writer.hpp"
 #include "feedplan/planner/constant_feed.hpp"
 #include "feedplan/planner/feed_plan.hpp"
+#include "feedplan/planner/target_sweep.hpp"
 #include "feedplan/planner/target_advice.hpp"
 #include "feedplan/trial/constant_feed_trial.hpp"
 #include "feedplan/trial/plan_check.hpp"
@@ -25,6 +26,7 @@ struct PlanInputs {
   planner::PlanMode mode = planner::PlanMode::kSafe;  //!< --mode
   double target_force_n = 0.0;                        //!< --target-force, else the spec's, N
   gcode::WriterOptions writer;                        //!< --dialect and the format flags (no header yet)
+  std::optional<planner::TargetRange> sweep;          //!< --target-sweep, when given
 };
 
 //! The model to plan with, the database it came from, and the caution it is planned with.

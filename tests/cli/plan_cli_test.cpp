@@ -5,6 +5,8 @@
 
 #include <gtest/gtest.h>
 
+#include <nlohmann/json.hpp>
+
 #include <fstream>
 #include <string>
 
@@ -60,6 +62,34 @@ TEST_F(PlanCliTest, TrochoidProgramReportCsvAndPlot) {
                                  0),
             0u);
   EXPECT_NE(read_text(plot).find("<svg"), std::string::npos);
+}
+
+// --target-sweep: one plan per target, printed as JSON, the curve drawn; no program. The cycle times fall as
+// the target rises, and each matches a plan made at that target alone. Bad ranges, and flags that write a
+// plan, are bad input.
+TEST_F(PlanCliTest, TargetSweepPrintsTheCurveAndWritesNoProgram) {
+  const fs::path plot = dir_ / "sweep.svg";
+  const RunResult r = run_feedplan("plan " + kSamples + "/corner.yaml --db " + db_ + " --target-sweep 300:400:50 --json --plot " +
+                                   plot.string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const auto out = nlohmann::json::parse(r.output);
+  ASSERT_EQ(out["targets"].size(), 3u);
+  EXPECT_GT(out["targets"][0]["cycle_time_s"].get<double>(), out["targets"][2]["cycle_time_s"].get<double>());
+  EXPECT_TRUE(fs::exists(plot));
+  const fs::path program = dir_ / "at350.nc";
+  const RunResult single = run_feedplan(plan_args("corner.yaml", program) + " --target-force 350 --json");
+  ASSERT_EQ(single.exit_code, 0) << single.output;
+  const auto one = nlohmann::json::parse(single.output.substr(single.output.find('{')));
+  EXPECT_NEAR(out["targets"][1]["cycle_time_s"].get<double>(), one["cycle_time_s"].get<double>(), 1e-9);
+
+  const RunResult bad = run_feedplan("plan " + kSamples + "/corner.yaml --db " + db_ + " --target-sweep 400:300:50");
+  EXPECT_EQ(bad.exit_code, 2) << bad.output;
+  EXPECT_NE(bad.output.find("--target-sweep = '400:300:50': TO must be ≥ FROM"), std::string::npos) << bad.output;
+  const fs::path not_written = dir_ / "never.nc";
+  const RunResult both = run_feedplan(plan_args("corner.yaml", not_written) + " --target-sweep 300:400:50");
+  EXPECT_EQ(both.exit_code, 2) << both.output;
+  EXPECT_NE(both.output.find("-o is not used with --target-sweep"), std::string::npos) << both.output;
+  EXPECT_FALSE(fs::exists(not_written));
 }
 
 TEST_F(PlanCliTest, EveryDialect) {
