@@ -92,7 +92,9 @@ PathLearning learn_along_path(const planner::PlanResult& plan, const model::Resp
       for (; k < periods.size() && (k == first || periods[k].window == periods[k - 1].window + 1); ++k) {
         const ToothPeriodPeak& p = periods[k];
         s_end_mm = std::max(s_end_mm, p.s_end_mm);
-        if (!(p.sample.force_n > 0.0)) continue;
+        // A tooth short of its turn's largest by more than kMaxRunoutFactor says more about the runout
+        // than about the cut, and its factor comes from steady turns elsewhere, at other chips.
+        if (!(p.sample.force_n > 0.0) || p.runout_factor > kMaxRunoutFactor) continue;
         // The measured peak itself (untransferred): it is carried to each plan sample's own transfer below.
         run.push_back({p.s_peak_mm, {p.sample.chip_mm, p.sample.contact_length_mm,
                                      p.runout_factor * p.sample.force_n * p.sample.transfer_factor,

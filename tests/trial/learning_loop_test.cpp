@@ -13,6 +13,7 @@
 #include "feedplan/trial/learning_loop.hpp"
 #include "feedplan/model_db/model_exchange.hpp"
 #include "feedplan/model_db/store.hpp"
+#include "feedplan/sim/machine_file.hpp"
 #include "feedplan/sim/material.hpp"
 
 namespace feedplan::trial {
@@ -54,9 +55,50 @@ class LearningLoop : public ::testing::Test {
     return request;
   }
 
+  //! The sample on a machine file of data/machines (its physics on the spec's catalogue tool), as `loop --machine`.
+  LoopRequest request_on_machine(const std::string& sample, const std::string& machine_file, double target_force_n) {
+    LoopRequest request = request_for(sample, 1.0, target_force_n);
+    const sim::MaterialLibrary materials = sim::load_materials(std::string(FEEDPLAN_SAMPLES_DIR) + "/../data/materials.yaml");
+    const sim::MachineFile file =
+        sim::load_machine_file(std::string(FEEDPLAN_SAMPLES_DIR) + "/../data/machines/" + machine_file, materials);
+    sim::SimulationRequest physics;
+    physics.tool = request.machine.tool;
+    EXPECT_TRUE(sim::apply_machine(file, physics).empty());
+    request.machine.tool = physics.tool;
+    request.machine.coefficients = physics.coefficients;
+    request.machine.runout_mm = physics.options.runout_mm;
+    request.machine.sensors.dynamometer = physics.sensors.dynamometer;
+    return request;
+  }
+
   fs::path dir_;
   model_db::ModelRecord record_;
 };
+
+// Two machines of the family whose physics differ from the sample model in shape (family-02: 4 µm of runout,
+// size effect 0.29, a 1743 Hz dynamometer; family-09: 5–6 µm of runout, helix 5° off, edge force K_re 37 N/mm,
+// 558 Hz), the trochoid at 400 N for four cycles. The first overshoots by 17–29 % (mostly the runout, which the
+// model does not have; without it family-04 is within +0.2 % in cycle 1); by the fourth the held revolutions
+// are within 3.5 % RMS of the target and the cycle has not grown beyond 1.5 × the second's. Measured: RMS 2.2
+// and 2.5 %, 25.5 and 36.0 s (the second 20.9 and 26.9 s). Learning from every tooth period, whatever its runout
+// factor, left 5.3 and 17.7 % RMS at 35.5 and 91.4 s (`feedplan loop --machine` with the sample database).
+// Not yet the ±3 % largest error the product aims at: single revolutions at loop entries still miss by more.
+TEST_F(LearningLoop, TrochoidOnTwoMachinesOfTheFamilyConvergesWithoutDraggingTheCycle) {
+  for (const std::string machine : {"family/family-02.yaml", "family/family-09.yaml"}) {
+    SCOPED_TRACE(machine);
+    LoopRequest request = request_on_machine("trochoid.yaml", machine, 400.0);
+    request.cycles = 4;
+    const LoopResult result = run_learning_loop(request);
+    ASSERT_EQ(result.cycles.size(), 4u);
+    for (const LoopCycle& c : result.cycles) {
+      std::printf("%s cycle %d: %.2f s, held RMS %.2f %%, largest over %+.2f %%\n", machine.c_str(), c.cycle,
+                  c.simulated_cycle_time_s, c.comparison.rms_error_percent, c.comparison.max_overshoot_percent);
+    }
+    EXPECT_GT(result.cycles[0].comparison.max_overshoot_percent, 15.0);
+    EXPECT_LE(result.cycles[3].comparison.rms_error_percent, 3.5);
+    EXPECT_LE(result.cycles[3].simulated_cycle_time_s, 1.5 * result.cycles[1].simulated_cycle_time_s);
+  }
+}
 
 TEST_F(LearningLoop, ThirdCycleHoldsTheTargetWithinFivePercentOnSteadyCuts) {
   LoopRequest request = corner_request(1.5, 600.0);
