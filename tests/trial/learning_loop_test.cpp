@@ -10,6 +10,7 @@
 
 #include "feedplan/cycles/cycle.hpp"
 #include "feedplan/cycles/spec_reader.hpp"
+#include "feedplan/trial/best_achievable_plan.hpp"
 #include "feedplan/trial/learning_loop.hpp"
 #include "feedplan/model_db/model_exchange.hpp"
 #include "feedplan/model_db/store.hpp"
@@ -167,6 +168,36 @@ TEST_F(LearningLoop, CautiousFirstCutStaysWithinFivePercentWhenTheModelIsFortyPe
   request.first_cut_uncertainty = 0.0;
   const LoopResult bold = run_learning_loop(request);
   EXPECT_GT(bold.cycles[0].comparison.steady_max_abs_error_percent, 40.0);
+}
+
+// The best achievable plan (trial/best_achievable_plan.hpp) on family-02, the trochoid at 400 N: the feeds
+// searched against the simulator's own true peaks. Its shortest plan that holds the target within 2 % is T*; no
+// cycle of the learning loop within the same 2 % may be more than 2 % faster than it (or T* would not be the
+// shortest), and learning's cycles are printed against it.
+TEST_F(LearningLoop, BestAchievablePlanIsTheFloorOfWhatLearningReaches) {
+  LoopRequest loop = request_on_machine("trochoid.yaml", "family/family-02.yaml", 400.0);
+  BestPlanRequest request;
+  request.geometry = loop.geometry;
+  request.settings = loop.settings;
+  request.machine = loop.machine;
+  const BestPlan best = best_achievable_plan(request);
+  for (std::size_t i = 0; i < best.iterations.size(); ++i) {
+    const BestPlanIteration& it = best.iterations[i];
+    std::printf("search %zu: %.2f s, largest over %+.2f %%, held max |error| %.2f %%, RMS %.2f %%\n", i + 1,
+                it.cycle_time_s, it.max_overshoot_percent, it.held_max_abs_error_percent, it.held_rms_error_percent);
+  }
+  std::printf("T* %.2f s (search %d), converged %s, %d samples infeasible\n", best.best_cycle_time_s,
+              best.best_iteration + 1, best.converged ? "yes" : "no", best.infeasible_samples);
+  ASSERT_GE(best.best_iteration, 0);
+  loop.cycles = 4;
+  const LoopResult learned = run_learning_loop(loop);
+  for (const LoopCycle& c : learned.cycles) {
+    std::printf("learning cycle %d: %.2f s (%.3f × T*), largest over %+.2f %%\n", c.cycle, c.simulated_cycle_time_s,
+                c.simulated_cycle_time_s / best.best_cycle_time_s, c.comparison.max_overshoot_percent);
+    if (c.comparison.max_overshoot_percent <= 100 * request.tolerance) {
+      EXPECT_GE(c.simulated_cycle_time_s, best.best_cycle_time_s * 0.98) << "cycle " << c.cycle;
+    }
+  }
 }
 
 }  // namespace

@@ -1,0 +1,60 @@
+#pragma once
+// The best achievable plan of one cycle on one virtual machine: a test oracle and a benchmark figure for
+// learning, not a product feature. The feeds are searched against the simulator itself — its true
+// per-revolution peaks, place by place — until every revolution the plan holds at the force limit meets the
+// target: the shortest cycle time T* that a planner knowing the machine perfectly could reach with this
+// path, these limits and this planner's scheduling. Learning from logs is judged by how close it comes.
+//
+// Search: the plan's force correction c per sample (PlanSettings::force_correction: the planner holds
+// c · F̂ at the target) is the unknown. A plan is cut, and every in-cut revolution's true peak over the
+// target, r, is given to each engaged sample of its span (the largest where spans meet). Per sample, a
+// bracket on c: a revolution over the target by more than the tolerance puts c's lower end at the c it ran
+// with (c must grow: the plan must slow down there), one held under it by more than the tolerance puts the
+// upper end there (it may speed up). The next c is c · r — the force taken as proportional to c's effect —
+// kept strictly inside the bracket (its geometric middle when c · r leaves it). Samples planned at the
+// machine's minimum feed and still over the target are where the target is not feasible: they are counted
+// and left out of the verdict. Revolutions not held at the force limit (maximum feed, an arc's centripetal
+// limit, entries the plan does not hold) only ever raise c.
+
+#include <vector>
+
+#include "feedplan/planner/feed_plan.hpp"
+#include "feedplan/planner/peak_comparison.hpp"
+#include "feedplan/trial/virtual_machine_run.hpp"
+
+namespace feedplan::trial {
+
+//! What to search.
+struct BestPlanRequest {
+  planner::PlanGeometry geometry;  //!< path, tool and engagement (analysed once)
+  planner::PlanSettings settings;  //!< model, target, spindle, machine limits, options (force_correction: the start)
+  VirtualMachine machine;          //!< the machine whose true peaks decide
+  int max_iterations = 12;         //!< plans cut at most (≥ 1)
+  double tolerance = 0.02;         //!< relative band around the target that counts as met (> 0)
+};
+
+//! One plan cut during the search.
+struct BestPlanIteration {
+  double cycle_time_s = 0.0;           //!< on the virtual machine, s
+  double max_overshoot_percent = 0.0;  //!< largest true peak over the target among feasible in-cut revolutions, %
+  double held_max_abs_error_percent = 0.0;  //!< largest |error| over held revolutions, %
+  double held_rms_error_percent = 0.0;      //!< RMS error over held revolutions, %
+};
+
+//! The outcome.
+struct BestPlan {
+  std::vector<BestPlanIteration> iterations;  //!< in order
+  //! T*: the shortest cycle time of a plan whose feasible in-cut revolutions all stay within the tolerance
+  //! over the target, s; 0 when no plan did.
+  double best_cycle_time_s = 0.0;
+  int best_iteration = -1;              //!< its index in `iterations` (−1: none)
+  bool converged = false;               //!< the last plan met the target within the tolerance on every held revolution
+  int infeasible_samples = 0;           //!< samples at the minimum feed still over the target (last plan)
+  std::vector<double> force_correction;  //!< c per sample of the best plan (the last one when none is best)
+};
+
+//! The search above. Throws InputError for max_iterations < 1 or a tolerance not in (0, 0.5), and as
+//! run_on_virtual_machine for an invalid machine.
+BestPlan best_achievable_plan(const BestPlanRequest& request);
+
+}  // namespace feedplan::trial
