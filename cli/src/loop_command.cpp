@@ -13,6 +13,7 @@
 #include "number_flag.hpp"
 #include "output_path.hpp"
 #include "progress_bar.hpp"
+#include "feedplan/learning/infeasible_places.hpp"
 #include "feedplan/core/atomic_file.hpp"
 #include "feedplan/core/input_error.hpp"
 #include "feedplan/core/number_text.hpp"
@@ -185,6 +186,8 @@ void print_loop_json(const LoopOptions& o, const LoopInputs& in, const ChosenMod
                              {"model_rms_error_before_percent", c.model_errors_before.rms_percent},
                              {"model_rms_error_after_percent", c.model_errors_after.rms_percent},
                              {"learned", learning::to_string(c.update_status)},
+                             {"infeasible_revolutions", c.infeasible.revolutions},
+                             {"infeasible_largest_peak_n", c.infeasible.largest_peak_n},
                              {"messages", c.messages}});
   }
   std::cout << out.dump(2) << "\n";
@@ -209,6 +212,10 @@ void print_loop_text(const LoopOptions& o, const LoopInputs& in, const ChosenMod
                 c.comparison.steady_max_abs_error_percent, c.comparison.steady_rms_error_percent, c.comparison.held,
                 c.comparison.max_abs_error_percent, c.comparison.rms_error_percent, c.comparison.max_overshoot_percent,
                 c.model_errors_before.p95_abs_percent, c.model_errors_after.p95_abs_percent);
+  }
+  const trial::LoopCycle& last = result.cycles.back();
+  if (const std::string text = learning::describe(last.infeasible, in.target_force_n); !text.empty()) {
+    std::printf("cycle %d: %s\n", last.cycle, text.c_str());
   }
 }
 

@@ -129,6 +129,7 @@ void collect_samples(const planner::PlanResult& plan, const planner::PlanSetting
   revolutions.transfer_to_model = false;  // the kernel predicts the peak itself, at the depth cut
   update.logs = log_evidence(plan, settings.model, flutes, settings.spindle_rpm, logs, options.alignment, revolutions,
                              update.messages);
+  add_infeasible_message(plan, update.logs, settings.target_force_n, update.messages);
   for (const LogEvidence& evidence : update.logs) {
     for (const LearningSample& sample : evidence.revolutions.samples) {
       if (!(sample.feed_mm_per_min > 0.0)) continue;

@@ -1,5 +1,7 @@
 #include "feedplan/learning/model_update.hpp"
 
+#include "feedplan/learning/infeasible_places.hpp"
+
 #include <algorithm>
 #include <cstdio>
 
@@ -30,6 +32,14 @@ double median_force_ratio(const model::ResponseSurfaceModel& model, const std::v
 
 }  // namespace
 
+void add_infeasible_message(const planner::PlanResult& plan, const std::vector<LogEvidence>& logs,
+                            double target_force_n, std::vector<std::string>& messages) {
+  std::vector<MeasuredRevolutions> measured;
+  for (const LogEvidence& log : logs) measured.push_back(log.revolutions);
+  const std::string text = describe(infeasible_places(plan, measured, target_force_n), target_force_n);
+  if (!text.empty()) messages.push_back(text);
+}
+
 std::vector<LogEvidence> log_evidence(const planner::PlanResult& plan, const model::ResponseSurfaceModel& model, int flutes,
                                       double spindle_rpm, const std::vector<NamedLog>& logs,
                                       const AlignmentOptions& alignment, const MeasuredRevolutionOptions& revolutions,
@@ -59,6 +69,7 @@ ModelUpdate update_model(const planner::PlanResult& plan, const planner::PlanSet
   update.model = settings.model;
   update.logs = log_evidence(plan, settings.model, flutes, settings.spindle_rpm, logs, options.alignment,
                              options.revolutions, update.messages);
+  add_infeasible_message(plan, update.logs, settings.target_force_n, update.messages);
   for (const LogEvidence& evidence : update.logs) {
     update.samples.insert(update.samples.end(), evidence.revolutions.samples.begin(), evidence.revolutions.samples.end());
   }

@@ -113,6 +113,27 @@ TEST_F(LearningLoop, ThirdCycleHoldsTheTargetWithinFivePercentOnSteadyCuts) {
   EXPECT_GT(third.steady, 100);
   EXPECT_LE(third.steady_max_abs_error_percent, 5.0);
   EXPECT_LE(third.steady_rms_error_percent, 2.5);
+  for (const LoopCycle& c : result.cycles) EXPECT_EQ(c.infeasible.revolutions, 0) << "cycle " << c.cycle;
+}
+
+// A target below what the machine cuts at its minimum feed (120 N on the corner, the machine 1.4 × the model):
+// the log shows revolutions at the minimum feed above the target, learning says so, and the force it names as
+// the floor is one the virtual machine's true peaks reach (within the sensor's noise), not an artefact.
+TEST_F(LearningLoop, ATargetBelowTheForceAtTheMinimumFeedIsNamedWithItsFloor) {
+  LoopRequest request = corner_request(1.4, 120.0);
+  request.cycles = 2;
+  const LoopResult result = run_learning_loop(request);
+  const LoopCycle& second = result.cycles[1];
+  double largest_true_n = 0.0;
+  for (const auto& r : second.comparison.revolutions) largest_true_n = std::max(largest_true_n, r.revolution.peak_n);
+  std::printf("%d revolutions at the minimum feed above 120 N, largest measured %.1f N; largest true peak %.1f N\n",
+              second.infeasible.revolutions, second.infeasible.largest_peak_n, largest_true_n);
+  EXPECT_GT(second.infeasible.revolutions, 10);
+  EXPECT_GT(second.infeasible.largest_peak_n, 120.0 * 1.02);
+  EXPECT_GE(largest_true_n, 0.95 * second.infeasible.largest_peak_n);
+  bool said = false;
+  for (const std::string& m : second.messages) said = said || m.find("at the machine's minimum feed still above") != std::string::npos;
+  EXPECT_TRUE(said);
 }
 
 TEST_F(LearningLoop, LearningAlongThePathHoldsTheWallEntryWithinFivePercentByTheThirdCycle) {

@@ -54,6 +54,9 @@ LoopResult run_learning_loop(const LoopRequest& request) {
     const learning::ModelUpdate update = learning::update_model(plan, settings, request.geometry.tool.flutes,
                                                                 std::move(logs), earlier, covariance, request.update);
     out.update_status = update.status;
+    std::vector<learning::MeasuredRevolutions> measured_revolutions;
+    for (const learning::LogEvidence& log : update.logs) measured_revolutions.push_back(log.revolutions);
+    out.infeasible = learning::infeasible_places(plan, measured_revolutions, settings.target_force_n);
     out.model_errors_before = update.before;
     out.model_errors_after = update.after_batch;
     out.messages.insert(out.messages.end(), update.messages.begin(), update.messages.end());

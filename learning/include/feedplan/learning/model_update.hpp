@@ -86,6 +86,10 @@ std::vector<LogEvidence> log_evidence(const planner::PlanResult& plan, const mod
                                       const AlignmentOptions& alignment, const MeasuredRevolutionOptions& revolutions,
                                       std::vector<std::string>& messages);
 
+//! Appends to `messages` what infeasible_places (infeasible_places.hpp) finds in `logs`' revolutions, if anything.
+void add_infeasible_message(const planner::PlanResult& plan, const std::vector<LogEvidence>& logs,
+                            double target_force_n, std::vector<std::string>& messages);
+
 //! Learns from `logs` of cycles cut with `plan` (planned with `settings`, tool with `flutes`). The batch
 //! refit spans `earlier` samples (of earlier cycles of the same tool, material and machine) and this
 //! step's, its prior is settings.model with `prior_covariance` when given. Throws InputError on invalid

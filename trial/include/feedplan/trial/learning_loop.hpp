@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "feedplan/model/covariance.hpp"
+#include "feedplan/learning/infeasible_places.hpp"
 #include "feedplan/learning/model_update.hpp"
 #include "feedplan/trial/virtual_machine_run.hpp"
 #include "feedplan/planner/feed_plan.hpp"
@@ -47,6 +48,7 @@ struct LoopCycle {
   learning::PredictionErrors model_errors_before;   //!< the model it was planned with, on this cycle's samples
   learning::PredictionErrors model_errors_after;    //!< the learned model, on the same samples
   learning::ModelUpdateStatus update_status = learning::ModelUpdateStatus::kNoEvidence;  //!< whether learning gave a model
+  learning::InfeasiblePlaces infeasible;  //!< revolutions the log shows above the target at the minimum feed
   std::vector<std::string> messages;      //!< plan and learning messages
   model::ResponseSurfaceModel model_used;  //!< the model the cycle was planned with
 };
