@@ -40,27 +40,7 @@ using svg::Axis;
 using svg::nice_axis;
 using svg::px;
 
-// Text content and attribute values in XML: the five characters with a meaning there, as entities.
-std::string xml_text(std::string_view text) {
-  std::string out;
-  out.reserve(text.size());
-  for (const char c : text) {
-    if (c == '<') {
-      out += "&lt;";
-    } else if (c == '>') {
-      out += "&gt;";
-    } else if (c == '&') {
-      out += "&amp;";
-    } else if (c == '"') {
-      out += "&quot;";
-    } else if (c == '\'') {
-      out += "&#39;";
-    } else {
-      out += c;
-    }
-  }
-  return out;
-}
+using svg::xml_text;
 
 // One panel: its rectangle on the page and the data ranges mapped onto it.
 using Panel = svg::PlotArea;

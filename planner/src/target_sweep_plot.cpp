@@ -14,20 +14,6 @@ constexpr double kLeftPx = 80.0, kRightPx = 30.0, kTopPx = 60.0, kBottomPx = 60.
 
 using svg::px;
 
-std::string escape(const std::string& text) {
-  std::string out;
-  for (const char c : text) {
-    switch (c) {
-      case '&': out += "&amp;"; break;
-      case '<': out += "&lt;"; break;
-      case '>': out += "&gt;"; break;
-      case '"': out += "&quot;"; break;
-      default: out += c;
-    }
-  }
-  return out;
-}
-
 //! The smallest target met everywhere that the not-met plans report, or 0.
 double floor_target_n(const std::vector<TargetSweepRow>& rows) {
   double floor = 0.0;
@@ -90,9 +76,9 @@ std::string target_sweep_svg(const std::vector<TargetSweepRow>& rows, const std:
   svg += "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n";
   svg += "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" + width + "\" height=\"" + height + "\" viewBox=\"0 0 " +
          width + " " + height + "\" font-family=\"sans-serif\" font-size=\"12\">\n";
-  svg += "<title>" + escape(title) + "</title>\n";
+  svg += "<title>" + svg::xml_text(title) + "</title>\n";
   svg += "<rect x=\"0\" y=\"0\" width=\"" + width + "\" height=\"" + height + "\" fill=\"white\"/>\n";
-  svg += "<text x=\"" + px(kWidthPx / 2) + "\" y=\"28\" text-anchor=\"middle\" font-size=\"16\">" + escape(title) +
+  svg += "<text x=\"" + px(kWidthPx / 2) + "\" y=\"28\" text-anchor=\"middle\" font-size=\"16\">" + svg::xml_text(title) +
          "</text>\n";
   const double panel_px = (kHeightPx - kTopPx - kBottomPx - kGapPx) / 2;
   append_panel(svg, rows, [](const TargetSweepRow& r) { return r.cycle_time_s; }, "panel-time", "cycle-time",

@@ -1,7 +1,7 @@
 #pragma once
-// Axes of the SVG plots (sim/force_plot.hpp, planner/plan_plot.hpp), as text: an axis' range and its
-// 1-2-5 ticks, the plot area that maps data onto pixels, and the grid, tick labels, axis titles and
-// frame drawn around it. Header-only, standard library only.
+// Axes of the SVG plots (sim/force_plot.hpp, planner/plan_plot.hpp, planner/target_sweep_plot.hpp), as
+// text: an axis' range and its 1-2-5 ticks, the plot area that maps data onto pixels, the grid, tick labels,
+// axis titles and frame drawn around it, and text made safe for XML. Header-only, standard library only.
 //
 // Coordinates are written with one decimal (0.1 px is below what any screen shows), tick labels with
 // the decimals that show the step exactly, and a negative zero without its sign ("-0.0" is "0.0").
@@ -14,6 +14,7 @@
 #include <cmath>
 #include <cstddef>
 #include <string>
+#include <string_view>
 
 namespace feedplan::svg {
 
@@ -30,6 +31,29 @@ inline std::string fixed_text(double value, int decimals) {
 
 //! A pixel coordinate: one decimal.
 inline std::string px(double value) { return fixed_text(value, 1); }
+
+//! Text content and attribute values in XML (titles, labels): the five characters with a meaning there, as
+//! entities.
+inline std::string xml_text(std::string_view text) {
+  std::string out;
+  out.reserve(text.size());
+  for (const char c : text) {
+    if (c == '<') {
+      out += "&lt;";
+    } else if (c == '>') {
+      out += "&gt;";
+    } else if (c == '&') {
+      out += "&amp;";
+    } else if (c == '"') {
+      out += "&quot;";
+    } else if (c == '\'') {
+      out += "&#39;";
+    } else {
+      out += c;
+    }
+  }
+  return out;
+}
 
 //! An axis: the range drawn and ticks at whole multiples of a 1-2-5 step (1, 2 or 5 × 10^k) inside it.
 struct Axis {
