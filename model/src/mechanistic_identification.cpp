@@ -13,6 +13,7 @@
 #include "feedplan/core/problem_list.hpp"
 #include "feedplan/model/mechanistic_force.hpp"
 #include "bin_regressors.hpp"
+#include "identified_coefficients.hpp"
 #include "peak_matching.hpp"
 #include "runout_refinement.hpp"
 #include "sensed_bin_rows.hpp"
@@ -250,13 +251,6 @@ Eigen::VectorXd fit_coefficients(const std::vector<MechanisticCuttingTest>& test
   return x;
 }
 
-void set_coefficients(MechanisticModel& model, const Eigen::VectorXd& x) {
-  model.ktc_n_per_mm2 = x(0);
-  model.krc_n_per_mm2 = x(1);
-  model.kte_n_per_mm = x(2);
-  model.kre_n_per_mm = x(3);
-}
-
 //! Runout with the smallest at 0 (a common offset of all teeth changes no chip).
 std::vector<double> lowest_at_zero(std::vector<double> runout_mm) {
   const double lowest = *std::min_element(runout_mm.begin(), runout_mm.end());
@@ -372,7 +366,7 @@ MechanisticModel refit_coefficients(const std::vector<MechanisticCuttingTest>& t
   Eigen::VectorXd x = fit_coefficients(tests, a, y, scratch, weakest);
   if (match_peaks && has_peaks(tests)) x = matched_coefficients(tests, a, y, x, scratch);
   MechanisticModel model = fixed;
-  set_coefficients(model, x);
+  set_identified_coefficients(model, x);
   return model;
 }
 
@@ -437,7 +431,7 @@ MechanisticIdentification identify_mechanistic(const std::vector<MechanisticCutt
                                     "how the force grows with the chip; it is left at 0");
   }
   if (options.match_peaks && has_peaks(tests)) x = matched_coefficients(tests, a, y, x, result);
-  set_coefficients(result.model, x);
+  set_identified_coefficients(result.model, x);
 
   result.unidentifiable.push_back(
       "K_ac, K_ae: the synchronous averages hold only Fx and Fy, and the axial coefficients act only on Fz; "

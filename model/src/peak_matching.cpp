@@ -7,11 +7,11 @@
 #include "feedplan/model/mechanistic_force.hpp"
 #include "feedplan/model/sensed_peak.hpp"
 #include "bin_regressors.hpp"
+#include "identified_coefficients.hpp"
 
 namespace feedplan::model::detail {
 namespace {
 
-constexpr int kColumns[kIdentifiedCoefficients] = {kKtc, kKrc, kKte, kKre};
 //! A test's peak counts as known to no better than this fraction of it (noise-free synthetic tests have
 //! identical peaks and a zero standard error).
 constexpr double kPeakResolutionRel = 1e-3;
@@ -39,16 +39,9 @@ std::vector<MeasuredPeak> measured_peaks(const std::vector<MechanisticCuttingTes
   return peaks;
 }
 
-void set_coefficients(MechanisticModel& model, const Eigen::Vector4d& k) {
-  model.ktc_n_per_mm2 = k(0);
-  model.krc_n_per_mm2 = k(1);
-  model.kte_n_per_mm = k(2);
-  model.kre_n_per_mm = k(3);
-}
-
 //! g = ∂peak/∂K of one test at `model`'s coefficients (the peak is then g·K).
-Eigen::Vector4d peak_gradient(const MechanisticCuttingTest& test, const MechanisticModel& model,
-                              const std::optional<SensorResponse>& sensor) {
+Eigen::Vector4d test_peak_gradient(const MechanisticCuttingTest& test, const MechanisticModel& model,
+                                   const std::optional<SensorResponse>& sensor) {
   const EngagedSection section{0.0, test.axial_depth_mm, std::span<const ImmersionArc>(&test.arc, 1)};
   const std::span<const EngagedSection> sections(&section, 1);
   std::array<double, 6> row_x{}, row_y{};
@@ -63,19 +56,8 @@ Eigen::Vector4d peak_gradient(const MechanisticCuttingTest& test, const Mechanis
     row_x = r.rows[0];
     row_y = r.rows[1];
   }
-  const std::array<double, 6> k = coefficients(model);
-  double fx_n = 0.0, fy_n = 0.0;
-  for (int c = 0; c < 6; ++c) {
-    fx_n += row_x[c] * k[c];
-    fy_n += row_y[c] * k[c];
-  }
-  const double magnitude_n = std::hypot(fx_n, fy_n);
-  Eigen::Vector4d g = Eigen::Vector4d::Zero();
-  if (!(magnitude_n > 0.0)) return g;
-  for (int i = 0; i < kIdentifiedCoefficients; ++i) {
-    g(i) = (fx_n * row_x[kColumns[i]] + fy_n * row_y[kColumns[i]]) / magnitude_n;
-  }
-  return g;
+  const std::array<double, 4> g = detail::peak_gradient(row_x, row_y, model);
+  return Eigen::Vector4d(g[0], g[1], g[2], g[3]);
 }
 
 //! The weighted least-squares solution of m x ≈ r with m's columns scaled to unit norm, and (mᵀm)⁻¹.
@@ -123,8 +105,8 @@ PeakMatching match_peaks(const std::vector<MechanisticCuttingTest>& tests, const
   r.head(bins) = bins_weight * y;
   Eigen::MatrixXd g(n, 4);
   for (int step = 0; step < kPeakMatchingSteps; ++step) {
-    set_coefficients(current, k);
-    for (Eigen::Index i = 0; i < n; ++i) g.row(i) = peak_gradient(tests[peaks[i].test], current, sensor).transpose();
+    set_identified_coefficients(current, k);
+    for (Eigen::Index i = 0; i < n; ++i) g.row(i) = test_peak_gradient(tests[peaks[i].test], current, sensor).transpose();
     // τ² by moments from the residuals of the previous step (0 before the first: the peaks are trusted
     // first): what the peaks scatter about the model beyond their standard errors, over the degrees of freedom
     // the coefficients leave. With no more peaks than coefficients they can all be met: 0.
@@ -143,10 +125,10 @@ PeakMatching match_peaks(const std::vector<MechanisticCuttingTest>& tests, const
     }
     k = solve_scaled(m, r, inverse_normal);
   }
-  set_coefficients(current, k);
+  set_identified_coefficients(current, k);
   double ss = 0.0;
   for (Eigen::Index i = 0; i < n; ++i) {
-    const double residual_n = peaks[i].mean_n - peak_gradient(tests[peaks[i].test], current, sensor).dot(k);
+    const double residual_n = peaks[i].mean_n - test_peak_gradient(tests[peaks[i].test], current, sensor).dot(k);
     ss += residual_n * residual_n;
   }
   result.coefficients = k;

@@ -9,12 +9,11 @@
 #include "feedplan/model/mechanistic_force.hpp"
 #include "feedplan/model/model_prediction.hpp"
 #include "feedplan/model/sensed_peak.hpp"
+#include "identified_coefficients.hpp"
 
 namespace feedplan::model {
 namespace {
 
-// The columns of ForceRegressors::rows that identification's covariance is of: K_tc, K_rc, K_te, K_re.
-constexpr int kIdentifiedColumns[4] = {kKtc, kKrc, kKte, kKre};
 
 void check_spread_and_z(ProblemList& problems, double revolution_spread_rel, double z) {
   problems.non_negative("revolution_spread_rel", revolution_spread_rel);
@@ -102,18 +101,7 @@ void check_mechanistic(ProblemList& problems, const MechanisticModel& model,
 //! the unit XY force there (∂|F_xy|/∂K_c = u · (row_x[c], row_y[c])).
 double peak_variance_n2(const std::array<double, 6>& row_x, const std::array<double, 6>& row_y,
                         const MechanisticModel& model, const std::array<std::array<double, 4>, 4>& covariance) {
-  const std::array<double, 6> k = coefficients(model);
-  double fx_n = 0.0, fy_n = 0.0;
-  for (int c = 0; c < 6; ++c) {
-    fx_n += row_x[c] * k[c];
-    fy_n += row_y[c] * k[c];
-  }
-  const double magnitude_n = std::hypot(fx_n, fy_n);
-  double g[4];
-  for (int i = 0; i < 4; ++i) {
-    const int c = kIdentifiedColumns[i];
-    g[i] = (fx_n * row_x[c] + fy_n * row_y[c]) / magnitude_n;
-  }
+  const std::array<double, 4> g = detail::peak_gradient(row_x, row_y, model);
   double variance_n2 = 0.0;
   for (int i = 0; i < 4; ++i) {
     for (int j = 0; j < 4; ++j) variance_n2 += g[i] * covariance[i][j] * g[j];
