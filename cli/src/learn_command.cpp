@@ -55,10 +55,11 @@ struct LearnInputs {
   std::string db_path;                   // --db, else the report's (found from here), else $FEEDPLAN_DB, else the sample
 };
 
-// The model version planned with, and the one learned from it.
+// The model version planned with, the version learning builds on, and the one learned.
 struct ModelVersions {
-  model_db::ModelRecord before;  // the plan's model
-  model_db::ModelRecord after;   // the learned version, as stored
+  model_db::ModelRecord before;   // the plan's model
+  model_db::ModelRecord lineage;  // the newest version learned from this program (the plan's model the first time)
+  model_db::ModelRecord after;    // the learned version, as stored
 };
 
 // The plan again, as it was cut.
@@ -68,9 +69,10 @@ struct RemadePlan {
   planner::PlanResult plan;        // the plan
 };
 
-// The plan with the learned model.
+// The plan again: the same model with the correction learned along the path (the response surface), or the
+// learned model (the mechanistic kind).
 struct Replanned {
-  planner::PlanSettings settings;      // the report's, with the learned model and path correction
+  planner::PlanSettings settings;      // the report's, with the path correction (or the learned model)
   learning::PathLearning along_path;   // the learning along this path, for the next part
   planner::PlanResult plan;            // the new plan
   std::string program_text;            // its G-code
@@ -165,6 +167,23 @@ model_db::ModelRecord planned_model(const model_db::Store& store, const LearnOpt
                                    there + " — " + advice);
 }
 
+// The version learning builds on: the newest one learned from this program's logs, as the report of a
+// re-planned program names it, else the plan's model. It must be in the database with that version,
+// tool and material.
+model_db::ModelRecord lineage_model(const model_db::Store& store, const LearnInputs& in, const model_db::ModelRecord& before) {
+  const planner::PlanReportContext& c = in.report.context;
+  if (c.path_learned_model_id <= 0) return before;
+  const auto learned = store.model_by_id(c.path_learned_model_id);
+  if (learned && learned->version == c.path_learned_model_version && learned->kind == before.kind) return *learned;
+  throw InputError("path_learning.learned_model.id",
+                   "= " + std::to_string(c.path_learned_model_id) + " (v" + std::to_string(c.path_learned_model_version) +
+                       "): the version learned from this program's earlier parts is not in " + in.db_path +
+                       (learned ? " (id " + std::to_string(c.path_learned_model_id) + " there is " + learned->tool_name +
+                                      " in " + learned->material_name + " v" + std::to_string(learned->version) + ")"
+                                : "") +
+                       " — give the database the earlier learning steps were stored in, with --db");
+}
+
 // The plan's model must still be the active version of the pair learned into, since the learned version
 // is filed as its child; a borrowed plan's pair must have no model yet (one made since would be the
 // plan's model now): said before learning, and checked again when storing (Store::add_learned_model).
@@ -204,8 +223,9 @@ RemadePlan remake_plan(const LearnInputs& in, const model_db::ModelRecord& befor
   return remade;
 }
 
-// Learn: RLS and the batch refit over every earlier step of this tool and material and these logs.
-// Throws InputError naming the logs that are not of this program or whose units look wrong.
+// Learn: RLS and the batch refit over every earlier step of this tool and material and these logs, from
+// `before` (the version learning builds on). Throws InputError naming the logs that are not of this program
+// or whose units look wrong.
 learning::ModelUpdate learn_from_logs(const LearnOptions& o, const LearnInputs& in, const model_db::Store& store,
                                       const model_db::ModelRecord& before, const LearningPair& pair,
                                       const RemadePlan& remade) {
@@ -216,8 +236,11 @@ learning::ModelUpdate learn_from_logs(const LearnOptions& o, const LearnInputs& 
   for (const model_db::LearnedSample& stored : store.learned_samples(pair.tool_name, pair.material_name)) {
     earlier.push_back({stored.chip_mm, stored.contact_length_mm, stored.force_n, stored.weight, stored.s_mm});
   }
+  // The refit goes on from the version learned so far; the plan as cut is the one the logs are aligned with.
+  planner::PlanSettings learn_settings = remade.settings;
+  learn_settings.model = before.model;
   const learning::ModelUpdate update =
-      learning::update_model(remade.plan, remade.settings, in.spec.tool.flutes, in.logs, earlier, prior_covariance);
+      learning::update_model(remade.plan, learn_settings, in.spec.tool.flutes, in.logs, earlier, prior_covariance);
   throw_if_not_these_parts(update.logs, o.log_paths);
   return update;
 }
@@ -232,6 +255,7 @@ std::string program_text(const LearnInputs& in, const planner::PlanResult& plan)
 
 // Learning along this path too (learning/path_correction.hpp), carried in the report to the next part.
 learning::PathLearning learn_along_this_path(const planner::PlanReport& report, const planner::PlanResult& plan,
+                                             const model::ResponseSurfaceModel& planned_model,
                                              const learning::ModelUpdate& update) {
   std::vector<learning::MeasuredRevolutions> measured;
   for (const auto& log : update.logs) measured.push_back(log.revolutions);
@@ -239,17 +263,18 @@ learning::PathLearning learn_along_this_path(const planner::PlanReport& report, 
   previous.correction = report.settings.force_correction;
   previous.place_correction = report.context.path_place_correction;
   for (const auto& m : report.context.path_measurements) previous.measurement.push_back({m[0], m[1], m[2], m[3]});
-  return learning::learn_along_path(plan, update.model, measured, report.settings.target_force_n, previous);
+  for (const auto& b : report.context.path_brackets) previous.bracket.push_back({b[0], b[1], b[2], b[3]});
+  return learning::learn_along_path(plan, planned_model, measured, report.settings.target_force_n, previous);
 }
 
-// Re-plan with the learned model and the correction along the path; the program's G-code.
+// Re-plan the same program: the same model, with the correction learned along its path — a fixed knob per
+// place from part to part (learning/path_correction.hpp); the refitted version is for other programs.
+// The program's G-code.
 Replanned replan(const LearnInputs& in, const RemadePlan& remade, const learning::ModelUpdate& update) {
   const planner::PlanReport& report = in.report;
   Replanned next;
   next.settings = remade.settings;
-  next.settings.model = update.model;
-  if (next.settings.uncertainty) next.settings.uncertainty->covariance = update.covariance;
-  next.along_path = learn_along_this_path(report, remade.plan, update);
+  next.along_path = learn_along_this_path(report, remade.plan, remade.settings.model, update);
   next.settings.force_correction = next.along_path.correction;
   next.plan = planner::plan(remade.geometry, next.settings);
   next.program_text = program_text(in, next.plan);
@@ -270,7 +295,7 @@ model_db::ModelRecord store_learned_model(const LearnOptions& o, const LearnInpu
   learned.fit.standard_errors = update.batch.standard_error_n;
   learned.source = model_db::ModelSource::kLearned;
   learned.note = o.note.empty() ? "learned from " + std::to_string(in.logs.size()) + " log(s) of " + in.spec.cycle : o.note;
-  if (pair.borrowed && o.note.empty()) {
+  if (pair.borrowed && o.note.empty() && before.tool_name != pair.tool_name) {
     learned.note += ", starting from the borrowed model of " + before.tool_name + " in " + before.material_name + " v" +
                     std::to_string(before.version);
   }
@@ -292,10 +317,17 @@ model_db::ModelRecord store_learned_model(const LearnOptions& o, const LearnInpu
 planner::PlanReportContext next_context(const LearnOptions& o, const LearnInputs& in, const model_db::ModelRecord& stored,
                                         const learning::PathLearning& along_path) {
   planner::PlanReportContext context = in.report.context;
-  context.model_id = stored.id;
-  context.model_version = stored.version;
-  context.model_tool = stored.tool_name;  // the spec's own pair after learning from a borrowed model
-  context.model_material = stored.material_name;
+  if (along_path.correction.empty()) {
+    // Re-planned with the learned version itself (the mechanistic kind).
+    context.model_id = stored.id;
+    context.model_version = stored.version;
+    context.model_tool = stored.tool_name;  // the spec's own pair after learning from a borrowed model
+    context.model_material = stored.material_name;
+  } else {
+    // Re-planned with the same model and the correction: the report names the learned version beside it.
+    context.path_learned_model_id = stored.id;
+    context.path_learned_model_version = stored.version;
+  }
   context.program_path = o.program_path;
   context.spec_path = stored_path(in.spec_path);  // absolute: the next learn finds both from any folder
   context.database_path = stored_path(in.db_path);
@@ -303,6 +335,10 @@ planner::PlanReportContext next_context(const LearnOptions& o, const LearnInputs
   context.path_measurements.clear();
   for (const auto& m : along_path.measurement) {
     context.path_measurements.push_back({m.chip_mm, m.contact_length_mm, m.force_n, m.window_mm});
+  }
+  context.path_brackets.clear();
+  for (const auto& b : along_path.bracket) {
+    context.path_brackets.push_back({b.below_chip_mm, b.below_force_n, b.above_chip_mm, b.above_force_n});
   }
   return context;
 }
@@ -315,8 +351,10 @@ void stage_learn_reports(const LearnOptions& o, const LearnInputs& in, const mod
   if (!o.report_path.empty()) files.add(o.report_path, planner::plan_report_json(next.plan, next.settings, context));
   if (!o.plot_path.empty()) {
     planner::PlanPlotOptions plot;
-    plot.title = in.spec.cycle + " re-planned with " + model_label + " v" + std::to_string(stored.version) +
-                 " (markers: measured peaks)";
+    plot.title = next.along_path.correction.empty()
+                     ? in.spec.cycle + " re-planned with " + model_label + " v" + std::to_string(stored.version) +
+                           " (markers: measured peaks)"
+                     : in.spec.cycle + " re-planned with the correction learned along its path (markers: measured peaks)";
     plot.measured_peaks = peaks;
     files.add(o.plot_path, planner::plan_plot_svg(next.plan, next.settings.target_force_n, plot));
   }
@@ -365,7 +403,7 @@ void print_errors_and_replan(const LearnOptions& o, const LearnInputs& in, const
                              const learning::PredictionErrors& after_rls, const learning::PredictionErrors& after_batch,
                              const Replanned& next) {
   std::printf("per-revolution measured vs predicted:\n");
-  print_errors("model planned with", before);
+  print_errors("model learned so far", before);
   print_errors("after RLS (seed 003 Eq. 5)", after_rls);
   print_errors("after robust batch refit", after_batch);
   std::printf("re-planned: cycle time %.2f s (was %.2f s), %zu blocks; wrote %s\n", next.plan.summary.cycle_time_s,
@@ -375,8 +413,9 @@ void print_errors_and_replan(const LearnOptions& o, const LearnInputs& in, const
 void print_learn_json(const LearnInputs& in, const ModelVersions& models, const learning::ModelUpdate& update,
                       const Replanned& next) {
   nlohmann::json out;
-  out["model_before"] = {{"id", models.before.id}, {"version", models.before.version}};
+  out["model_before"] = {{"id", models.lineage.id}, {"version", models.lineage.version}};
   out["model_after"] = {{"id", models.after.id}, {"version", models.after.version}};
+  out["planned_with"] = {{"id", models.before.id}, {"version", models.before.version}};
   out["samples"] = update.samples.size();
   out["gain"] = update.gain;
   out["before"] = errors_json(update.before);
@@ -390,9 +429,12 @@ void print_learn_text(const LearnOptions& o, const LearnInputs& in, const ModelV
                       const learning::ModelUpdate& update, const Replanned& next) {
   const model_db::ModelRecord& stored = models.after;
   std::printf("learned from %zu log(s): %zu per-revolution samples; model %s in %s v%d → v%d (id %lld)\n", in.logs.size(),
-              update.samples.size(), stored.tool_name.c_str(), stored.material_name.c_str(), models.before.version,
+              update.samples.size(), stored.tool_name.c_str(), stored.material_name.c_str(), models.lineage.version,
               stored.version, static_cast<long long>(stored.id));
   print_errors_and_replan(o, in, update.before, update.after_rls, update.after_batch, next);
+  std::printf("this program is re-planned with %s in %s v%d and the correction learned along its path; v%d is for "
+              "other programs\n",
+              models.before.tool_name.c_str(), models.before.material_name.c_str(), models.before.version, stored.version);
 }
 
 // The report's kind must be the stored version's: a report edited by hand would otherwise learn one kind
@@ -499,7 +541,8 @@ void add_learn_command(CLI::App& app, LearnOptions& options) {
   auto* cmd = app.add_subcommand(
       "learn",
       "Refit the plan's force model from the force logs of parts cut with it (RLS and a robust batch refit with a\n"
-      "prior), store it as a new model version, and re-plan the cycle with it");
+      "prior), store it as a new model version for other programs, and re-plan this program with the correction\n"
+      "learned along its path");
   cmd->add_option("plan", options.plan_path, "Plan report (JSON) the parts were cut with")->required();
   cmd->add_option("logs", options.log_paths, "Force logs (feedplan CSV or Kistler DynoWare export)")->required();
   cmd->add_option("-o,--output", options.program_path, "Re-planned G-code program to write")->required();
@@ -518,16 +561,17 @@ int run_learn_command(const LearnOptions& o) {
   ModelVersions models;
   models.before = planned_model(store, o, in);
   require_same_kind(in.report, models.before);
+  models.lineage = lineage_model(store, in, models.before);
   const LearningPair pair = learning_pair(store, in.db_path, in.spec, models.before, in.report.context.model_match_status);
-  require_learnable(store, models.before, pair);
+  require_learnable(store, models.lineage, pair);
   if (in.report.settings.mechanistic) return run_mechanistic_learn(o, in, store, models, pair);
   const RemadePlan remade = remake_plan(in, models.before);
-  const learning::ModelUpdate update = learn_from_logs(o, in, store, models.before, pair, remade);
+  const learning::ModelUpdate update = learn_from_logs(o, in, store, models.lineage, pair, remade);
   if (!report_update(update.messages, update.status)) return 1;
-  // Re-plan with the learned model before storing anything, so that a plan problem stores nothing.
+  // Re-plan before storing anything, so that a plan problem stores nothing.
   const Replanned next = replan(in, remade, update);
   const int written = store_and_write(
-      o, next, models, [&] { return store_learned_model(o, in, store, models.before, pair, update); },
+      o, next, models, [&] { return store_learned_model(o, in, store, models.lineage, pair, update); },
       [&](OutputFiles& files) {
         stage_learn_reports(o, in, models.after, "model", measured_peaks(update.logs), next, files);
       });

@@ -3,61 +3,53 @@
 #include <algorithm>
 #include <cmath>
 
-#include "feedplan/model/model_prediction.hpp"
+#include "feedplan/planner/feed_limit.hpp"
+#include "place_search.hpp"
 
 namespace feedplan::learning {
 
 namespace {
 
-// A measurement at a place.
+// A measurement at a place, with the feed run there.
 struct Placed {
   double s_mm = 0.0;
   PathMeasurement m;
+  double feed_mm_per_min = 0.0;
 };
 
-PathMeasurement lerp(const PathMeasurement& a, const PathMeasurement& b, double w) {
-  return {a.chip_mm + w * (b.chip_mm - a.chip_mm), a.contact_length_mm + w * (b.contact_length_mm - a.contact_length_mm),
-          a.force_n + w * (b.force_n - a.force_n), std::max(a.window_mm, b.window_mm)};
+Placed lerp(const Placed& a, const Placed& b, double w) {
+  const auto mix = [w](double x, double y) { return x + w * (y - x); };
+  return {mix(a.s_mm, b.s_mm),
+          {mix(a.m.chip_mm, b.m.chip_mm), mix(a.m.contact_length_mm, b.m.contact_length_mm), mix(a.m.force_n, b.m.force_n),
+           std::max(a.m.window_mm, b.m.window_mm)},
+          mix(a.feed_mm_per_min, b.feed_mm_per_min)};
 }
 
 // The measurement at s inside a run of consecutive tooth periods: linear between the peak places
 // around s, the end values beyond the first and last peak.
-PathMeasurement measurement_at(const std::vector<Placed>& run, double s_mm) {
-  if (s_mm <= run.front().s_mm) return run.front().m;
-  if (s_mm >= run.back().s_mm) return run.back().m;
+Placed measurement_at(const std::vector<Placed>& run, double s_mm) {
+  if (s_mm <= run.front().s_mm) return run.front();
+  if (s_mm >= run.back().s_mm) return run.back();
   const auto after = std::upper_bound(run.begin(), run.end(), s_mm, [](double s, const Placed& p) { return s < p.s_mm; });
   const Placed& b = *after;
   const Placed& a = *(after - 1);
   const double ds = b.s_mm - a.s_mm;
-  return ds > 1e-12 ? lerp(a.m, b.m, (s_mm - a.s_mm) / ds) : (a.m.force_n >= b.m.force_n ? a.m : b.m);
+  return ds > 1e-12 ? lerp(a, b, (s_mm - a.s_mm) / ds) : (a.m.force_n >= b.m.force_n ? a : b);
 }
 
-double model_force_n(const model::ResponseSurfaceModel& model, double chip_mm, double contact_length_mm) {
-  return model::predict(model, chip_mm, contact_length_mm).force_n;
-}
-
-// The correction at one place from its latest measurement `now` and the one before (force 0: none).
-double place_correction(const model::ResponseSurfaceModel& model, double target_force_n, const PathMeasurement& now,
-                        const PathMeasurement& before, double previous, bool first) {
-  const double predicted = model_force_n(model, now.chip_mm, now.contact_length_mm);
-  if (!(predicted > 0.0)) return previous;
-  const double ratio = now.force_n / predicted;
-  double c = first ? ratio : std::sqrt(previous * ratio);
-  if (before.force_n > 0.0) {
-    const double spread = std::abs(now.chip_mm - before.chip_mm);
-    if (spread >= kMinSecantSpread * std::max(now.chip_mm, before.chip_mm)) {
-      const double slope = (now.force_n - before.force_n) / (now.chip_mm - before.chip_mm);
-      if (slope > 0.0) {
-        const double lo = std::min(now.chip_mm, before.chip_mm) / kSecantReach;
-        const double hi = std::max(now.chip_mm, before.chip_mm) * kSecantReach;
-        const double chip_at_target = std::clamp(now.chip_mm + (target_force_n - now.force_n) / slope, lo, hi);
-        const double predicted_there = model_force_n(model, chip_at_target, now.contact_length_mm);
-        const double measured_there = now.force_n + slope * (chip_at_target - now.chip_mm);
-        if (predicted_there > 0.0 && measured_there > 0.0) c = measured_there / predicted_there;
-      }
-    }
+// The measurement at plan sample `planned` from the one interpolated between peak places (`at`): the force
+// as interpolated, but t_m and L the sample's own — t_m for the feed run where the tool passed the sample
+// (t_m is proportional to the feed), L as the planner evaluates the model there — so that the chip a
+// correction makes the planner run at the sample is the chip measured there, also where the feed changes
+// between peak places (an entry, the slow-down before one).
+PathMeasurement measurement_at_sample(const Placed& at, const planner::PlannedSample& planned,
+                                      const model::ResponseSurfaceModel& model) {
+  PathMeasurement m = at.m;
+  if (planned.feed_mm_per_min > 0.0 && planned.chip_thickness_mm > 0.0 && at.feed_mm_per_min > 0.0) {
+    m.chip_mm = planned.chip_thickness_mm * at.feed_mm_per_min / planned.feed_mm_per_min;
   }
-  return std::clamp(c, kMinPathCorrection, kMaxPathCorrection);
+  if (planned.contact_length_mm > 0.0) m.contact_length_mm = planner::model_contact_length_mm(model, planned.contact_length_mm);
+  return m;
 }
 
 }  // namespace
@@ -95,16 +87,17 @@ PathLearning learn_along_path(const planner::PlanResult& plan, const model::Resp
         // A tooth short of its turn's largest by more than kMaxRunoutFactor says more about the runout
         // than about the cut, and its factor comes from steady turns elsewhere, at other chips.
         if (!(p.sample.force_n > 0.0) || p.runout_factor > kMaxRunoutFactor) continue;
-        // The measured peak itself (untransferred): it is carried to each plan sample's own transfer below.
+        // The measured peak itself: compared with the planner's F̂ at each plan sample, its transfer included.
         run.push_back({p.s_peak_mm, {p.sample.chip_mm, p.sample.contact_length_mm,
                                      p.runout_factor * p.sample.force_n * p.sample.transfer_factor,
-                                     p.s_end_mm - p.s_start_mm}});
+                                     p.s_end_mm - p.s_start_mm},
+                       p.sample.feed_mm_per_min});
       }
       if (run.empty()) continue;
       std::stable_sort(run.begin(), run.end(), [](const Placed& a, const Placed& b) { return a.s_mm < b.s_mm; });
       for (std::size_t i = first_at_or_after(s_start_mm); i < n && samples[i].s_mm <= s_end_mm; ++i) {
         if (!samples[i].engaged) continue;
-        const PathMeasurement m = measurement_at(run, samples[i].s_mm);
+        const PathMeasurement m = measurement_at_sample(measurement_at(run, samples[i].s_mm), samples[i], model);
         sum[i].chip_mm += m.chip_mm;
         sum[i].contact_length_mm += m.contact_length_mm;
         sum[i].force_n += m.force_n;
@@ -117,19 +110,22 @@ PathLearning learn_along_path(const planner::PlanResult& plan, const model::Resp
   PathLearning out;
   out.place_correction = had_correction ? previous_correction : std::vector<double>(n, 1.0);
   out.measurement = had_measurement ? previous.measurement : std::vector<PathMeasurement>(n);
+  out.bracket = previous.bracket.size() == n ? previous.bracket : std::vector<PlaceBracket>(n);
+  std::vector<detail::PlaceModel> places(n);
   for (std::size_t i = 0; i < n; ++i) {
+    places[i].model = &model;
+    places[i].contact_length_mm = out.measurement[i].contact_length_mm;
+    places[i].transfer_factor = samples[i].transfer_factor > 0.0 ? samples[i].transfer_factor : 1.0;
     if (count[i] == 0) continue;
     const double w = 1.0 / count[i];
     const PathMeasurement& before = out.measurement[i];
     // The window: the longest seen here (the next plan may run as fast as any earlier one did).
-    // On the straight-cut model's terms at this sample: the measured force and the target both over the
-    // factor the planner puts on the model here (the chip-load or depth transfer), so that c · F̂ · factor
-    // meets the target where the measurement says it will.
-    const double factor = samples[i].transfer_factor > 0.0 ? samples[i].transfer_factor : 1.0;
-    const PathMeasurement now{w * sum[i].chip_mm, w * sum[i].contact_length_mm, w * sum[i].force_n / factor,
+    const PathMeasurement now{w * sum[i].chip_mm, w * sum[i].contact_length_mm, w * sum[i].force_n,
                               std::max(sum[i].window_mm, before.window_mm)};
+    places[i].contact_length_mm = now.contact_length_mm;
+    out.bracket[i] = detail::bracket_with(out.bracket[i], now, target_force_n);
     out.place_correction[i] =
-        place_correction(model, target_force_n / factor, now, before, out.place_correction[i], !had_correction);
+        detail::next_place_correction(places[i], target_force_n, now, before, out.bracket[i], out.place_correction[i]);
     out.measurement[i] = now;
   }
   // Look ahead one tooth period: where the force rises along the path (an entry), the next plan slows
@@ -140,6 +136,9 @@ PathLearning learn_along_path(const planner::PlanResult& plan, const model::Resp
     for (std::size_t j = i + 1; j < n && samples[j].s_mm <= reach_mm; ++j) {
       out.correction[i] = std::max(out.correction[i], out.place_correction[j]);
     }
+    // … but not slower than the place itself was measured to bear.
+    const double not_slower = detail::largest_correction_not_slower(places[i], target_force_n, out.bracket[i]);
+    out.correction[i] = std::max(out.place_correction[i], std::min(out.correction[i], not_slower));
   }
   return out;
 }

@@ -301,6 +301,11 @@ void check_path_learning_lengths(const Node& learning, const PlanReportContext& 
                                                       " rows: must have " + std::to_string(samples) +
                                                       ", one per plan sample as force_correction");
   }
+  if (!context.path_brackets.empty() && context.path_brackets.size() != samples) {
+    learning.report("path_learning.brackets", "has " + std::to_string(context.path_brackets.size()) +
+                                                  " rows: must have " + std::to_string(samples) +
+                                                  ", one per plan sample as force_correction");
+  }
 }
 
 // Corrections within the learning's bounds, measurements not negative.
@@ -321,6 +326,14 @@ void check_path_learning_values(const Node& learning, const PlanReportContext& c
       }
     }
   }
+  for (std::size_t i = 0; i < context.path_brackets.size(); ++i) {
+    for (std::size_t j = 0; j < 4; ++j) {
+      if (context.path_brackets[i][j] < 0.0) {
+        learning.report("path_learning.brackets[" + std::to_string(i) + "][" + std::to_string(j) + "]",
+                        "= " + shortest_number_text(context.path_brackets[i][j]) + ": must be ≥ 0");
+      }
+    }
+  }
 }
 
 // Learning along the path, when the report has it (`samples`: the force_correction entries).
@@ -329,6 +342,21 @@ void read_path_learning(const Node& root, std::size_t samples, PlanReportContext
   const Node learning = root.object("path_learning");
   context.path_place_correction = learning.numbers("place_correction", JsonPresence::kOptional);
   context.path_measurements = learning.number_rows<4>("measurements");
+  if (learning.has("brackets")) context.path_brackets = learning.number_rows<4>("brackets");
+  if (learning.has("learned_model")) {
+    const Node learned = learning.object("learned_model");
+    const double id = learned.number("id");
+    const double version = learned.number("version");
+    const auto whole = [](double v) { return v >= 1.0 && v <= 2e9 && v == std::floor(v); };
+    if (!whole(id)) learned.report("path_learning.learned_model.id", "= " + shortest_number_text(id) + ": must be a whole number ≥ 1");
+    if (!whole(version)) {
+      learned.report("path_learning.learned_model.version", "= " + shortest_number_text(version) + ": must be a whole number ≥ 1");
+    }
+    if (whole(id) && whole(version)) {
+      context.path_learned_model_id = static_cast<long long>(id);
+      context.path_learned_model_version = static_cast<int>(version);
+    }
+  }
   check_path_learning_lengths(learning, context, samples);
   check_path_learning_values(learning, context);
 }
@@ -409,6 +437,17 @@ std::string plan_report_json(const PlanResult& result, const PlanSettings& setti
       measurements.push_back(Json{json_number(m[0]), json_number(m[1]), json_number(m[2]), json_number(m[3])});
     }
     root["path_learning"] = Json{{"place_correction", std::move(place)}, {"measurements", std::move(measurements)}};
+    if (!context.path_brackets.empty()) {
+      Json brackets = Json::array();
+      for (const auto& b : context.path_brackets) {
+        brackets.push_back(Json{json_number(b[0]), json_number(b[1]), json_number(b[2]), json_number(b[3])});
+      }
+      root["path_learning"]["brackets"] = std::move(brackets);
+    }
+    if (context.path_learned_model_id > 0) {
+      root["path_learning"]["learned_model"] = Json{{"id", context.path_learned_model_id},
+                                                    {"version", context.path_learned_model_version}};
+    }
   }
   root["summary"] = summary_json(result.summary);
   root["program"] = Json{{"path", context.program_path},

@@ -231,7 +231,8 @@ TEST_F(LearnCliTest, StoresVersionTwoWithItsLearningEntryAndReplans) {
   EXPECT_EQ(entry["model_after"]["material"], "S50C");
   EXPECT_GT(entry["n_samples"].get<int>(), 100);
 
-  // The program reads back; the report is a plan report naming the learned version.
+  // The program reads back; the report is a plan report of the same model with the correction learned
+  // along the path, naming the learned version beside it (what the next part's learning builds on).
   const feedplan::geometry::Program program = feedplan::gcode::load_program(next_);
   int feeds = 0;
   for (const auto& block : program.blocks) {
@@ -241,8 +242,11 @@ TEST_F(LearnCliTest, StoresVersionTwoWithItsLearningEntryAndReplans) {
   const std::string report_text = read_text(next_report);
   EXPECT_NE(report_text.find("feedplan-plan"), std::string::npos);
   const json report = json::parse(report_text);
-  EXPECT_EQ(report["model"]["version"], 2);
-  EXPECT_EQ(report["model"]["id"], out["model_after"]["id"]);
+  EXPECT_EQ(report["model"]["version"], 1);
+  EXPECT_EQ(report["model"]["id"], out["model_before"]["id"]);
+  EXPECT_EQ(out["planned_with"]["id"], out["model_before"]["id"]);
+  EXPECT_EQ(report["path_learning"]["learned_model"]["version"], 2);
+  EXPECT_EQ(report["path_learning"]["learned_model"]["id"], out["model_after"]["id"]);
   // Learning along the path goes with it to the next part: per plan sample, the correction and what
   // was measured there (t_m, L, force, tooth-period window).
   ASSERT_TRUE(report.contains("force_correction"));
@@ -276,7 +280,9 @@ TEST_F(LearnCliTest, TheNextPartLearnsOnFromThePathLearningOfTheFirst) {
   const RunResult second = run_feedplan("learn " + report_2.string() + " " + log_2.string() + " -o " + program_3.string() +
                                         " --report " + report_3.string() + " --db " + db_ + " --json");
   ASSERT_EQ(second.exit_code, 0) << second.output;
+  EXPECT_EQ(json_of(second.output)["model_before"]["version"], 2);  // built on part 1's learned version
   EXPECT_EQ(json_of(second.output)["model_after"]["version"], 3);
+  EXPECT_EQ(json_of(second.output)["planned_with"]["version"], 1);   // the program keeps its model
   const json part_2 = json::parse(read_text(report_2));
   const json part_3 = json::parse(read_text(report_3));
   ASSERT_EQ(part_3["path_learning"]["measurements"].size(), part_2["path_learning"]["measurements"].size());

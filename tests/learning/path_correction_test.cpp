@@ -92,13 +92,24 @@ TEST(LearnAlongPath, FirstStepInterpolatesTheRatioBetweenPeakPlaces) {
 
 TEST(LearnAlongPath, RunoutFactorScalesEachToothPeriodToTheRevolutionPeak) {
   MeasuredRevolutions log = four_periods();
-  log.tooth_periods[1].runout_factor = 1.25;  // two flutes: windows 1 and 3 are the flute that cuts less
-  log.tooth_periods[3].runout_factor = 1.25;
+  log.tooth_periods[1].runout_factor = 1.02;  // two flutes: windows 1 and 3 are the flute that cuts less
+  log.tooth_periods[3].runout_factor = 1.02;
   const PathLearning step = learn_along_path(plan_on_a_line(), flat_model(), {log}, 300.0, {});
   EXPECT_NEAR(step.place_correction[3], 1.2, 1e-12);         // window 0
-  EXPECT_NEAR(step.place_correction[5], 1.6 * 1.25, 1e-12);  // window 1
-  EXPECT_NEAR(step.place_correction[9], 1.0 * 1.25, 1e-12);  // window 3
-  EXPECT_NEAR(step.measurement[5].force_n, 200.0, 1e-9);
+  EXPECT_NEAR(step.place_correction[5], 1.6 * 1.02, 1e-12);  // window 1
+  EXPECT_NEAR(step.place_correction[9], 1.0 * 1.02, 1e-12);  // window 3
+  EXPECT_NEAR(step.measurement[5].force_n, 160.0 * 1.02, 1e-9);
+}
+
+TEST(LearnAlongPath, ToothPeriodsOfAFluteThatCutsMuchLessThanTheLargestAreNotLearnedFrom) {
+  MeasuredRevolutions log = four_periods();
+  log.tooth_periods[1].runout_factor = 1.25;  // beyond kMaxRunoutFactor: windows 1 and 3 are left out
+  log.tooth_periods[3].runout_factor = 1.25;
+  const PathLearning step = learn_along_path(plan_on_a_line(), flat_model(), {log}, 300.0, {});
+  EXPECT_NEAR(step.place_correction[3], 1.2, 1e-12);  // window 0
+  EXPECT_NEAR(step.place_correction[5], 1.4, 1e-12);  // between the kept peaks at 3 and 7 (windows 0 and 2)
+  EXPECT_NEAR(step.place_correction[7], 1.6, 1e-12);
+  EXPECT_NEAR(step.place_correction[9], 1.6, 1e-12);  // past the last kept peak: its value
 }
 
 TEST(LearnAlongPath, SkippedToothPeriodsAreNotBridgedAndUncoveredSamplesKeepThePreviousCorrection) {
@@ -108,10 +119,10 @@ TEST(LearnAlongPath, SkippedToothPeriodsAreNotBridgedAndUncoveredSamplesKeepTheP
   PathLearning previous;
   previous.correction.assign(11, 1.1);  // as read back from a plan report: a correction, no measurements
   const PathLearning step = learn_along_path(plan_on_a_line(), flat_model(), {log}, 300.0, previous);
-  EXPECT_NEAR(step.place_correction[2], std::sqrt(1.1 * 1.5), 1e-12);  // damped: c was measured before
+  EXPECT_NEAR(step.place_correction[2], 1.5, 1e-12);  // the model's shape scaled to the measurement
   EXPECT_NEAR(step.place_correction[4], 1.1, 1e-12);  // windows 2 and 3 were skipped: nothing measured here
   EXPECT_NEAR(step.place_correction[5], 1.1, 1e-12);
-  EXPECT_NEAR(step.place_correction[7], std::sqrt(1.1 * 0.5), 1e-12);
+  EXPECT_NEAR(step.place_correction[7], 0.5, 1e-12);
   EXPECT_NEAR(step.place_correction[10], 1.1, 1e-12);
 }
 
@@ -125,43 +136,45 @@ MeasuredRevolutions at_sample_5(double chip_mm, double force_n) {
 // The true force at sample 5: F = 50 + 6000 t_m; the model says 100 + 2000 t_m.
 double true_force_n(double chip_mm) { return 50.0 + 6000.0 * chip_mm; }
 
-TEST(LearnAlongPath, SecantThroughTwoFeedsMakesTheModelRightAtTheTarget) {
+TEST(LearnAlongPath, SecantInTheLogOfTheChipBetweenAFeedUnderAndOneOverTheTargetLandsJustUnderIt) {
   const auto model = linear_model();
   const auto plan = plan_on_a_line();
   const PathLearning first = learn_along_path(plan, model, {at_sample_5(0.04, true_force_n(0.04))}, 400.0, {});
   EXPECT_NEAR(first.place_correction[5], 290.0 / 180.0, 1e-12);  // the ratio at the feed run
   const PathLearning second = learn_along_path(plan, model, {at_sample_5(0.07, true_force_n(0.07))}, 400.0, first);
-  // The force reaches 400 N at t* = (400 − 50) / 6000; there c · F̂(t*) must be the true force.
-  const double chip_at_target = 350.0 / 6000.0;
-  const double c = second.place_correction[5];
-  EXPECT_NEAR(c * (100.0 + 2000.0 * chip_at_target), 400.0, 1e-9);
-  // The ratio measured at either feed would be wrong there.
-  EXPECT_GT(std::abs(c - 470.0 / 240.0), 0.1);
-  EXPECT_GT(std::abs(c - 290.0 / 180.0), 0.2);
+  // 290 N at 0.04 mm, 470 N at 0.07 mm: F = 290 + β ln(t / 0.04) meets 400 N at t* = 0.04 · 1.75^(110/180).
+  const double chip_mm = 0.04 * std::pow(1.75, 110.0 / 180.0);
+  EXPECT_NEAR(second.place_correction[5] * (100.0 + 2000.0 * chip_mm), 400.0, 1e-9);
+  // The true force there (linear in t_m, so convex in ln t_m): under the target, by less than 4 %.
+  EXPECT_LT(true_force_n(chip_mm), 400.0);
+  EXPECT_GT(true_force_n(chip_mm), 0.96 * 400.0);
 }
 
 TEST(LearnAlongPath, SecantTargetIsKeptNearTheMeasuredFeeds) {
-  // F = 50 + 3000 t_m measured at 0.04 and 0.07 mm; 800 N would need t_m = 0.25 mm — beyond
-  // kSecantReach × 0.07, so c is taken at t_m = 0.14 mm.
+  // F = 50 + 3000 t_m measured at 0.04 and 0.07 mm, both under the target; 700 N would need t_m = 0.217 mm —
+  // beyond kSecantReach × 0.07, so the next plan is steered to t_m = 0.14 mm: c · F̂(0.14) = 700.
   const auto model = linear_model();
   const auto plan = plan_on_a_line();
-  const PathLearning first = learn_along_path(plan, model, {at_sample_5(0.04, 170.0)}, 800.0, {});
-  const PathLearning second = learn_along_path(plan, model, {at_sample_5(0.07, 260.0)}, 800.0, first);
+  const PathLearning first = learn_along_path(plan, model, {at_sample_5(0.04, 170.0)}, 700.0, {});
+  const PathLearning second = learn_along_path(plan, model, {at_sample_5(0.07, 260.0)}, 700.0, first);
   const double reach_mm = 0.07 * kSecantReach;
-  EXPECT_NEAR(second.place_correction[5], (50.0 + 3000.0 * reach_mm) / (100.0 + 2000.0 * reach_mm), 1e-12);
+  EXPECT_NEAR(second.place_correction[5] * (100.0 + 2000.0 * reach_mm), 700.0, 1e-9);
 }
 
-TEST(LearnAlongPath, CloseFeedsOrAForceFallingWithTheFeedAreDampedInstead) {
+TEST(LearnAlongPath, CloseFeedsOrAForceFallingWithTheFeedScaleTheModelInstead) {
   const auto model = linear_model();
   const auto plan = plan_on_a_line();
   const PathLearning first = learn_along_path(plan, model, {at_sample_5(0.04, 290.0)}, 400.0, {});
   const double c1 = 290.0 / 180.0;
   // t_m 9 % apart (< kMinSecantSpread): a slope from these would be mostly noise.
   const PathLearning close = learn_along_path(plan, model, {at_sample_5(0.044, true_force_n(0.044))}, 400.0, first);
-  EXPECT_NEAR(close.place_correction[5], std::sqrt(c1 * true_force_n(0.044) / (100.0 + 2000.0 * 0.044)), 1e-12);
-  // A faster feed measuring less force: no slope to trust.
+  EXPECT_GT(first.place_correction[5], 0.0);
+  EXPECT_NEAR(c1, first.place_correction[5], 1e-12);
+  EXPECT_NEAR(close.place_correction[5], true_force_n(0.044) / (100.0 + 2000.0 * 0.044), 1e-12);
+  // A faster feed measuring less force: no slope to trust. The ratio 250 / 240 would run t_m = 0.142 mm, past
+  // kSecantReach × 0.07 mm: the step stops there, c · F̂(0.14) = 400 — faster, as the place is under the target.
   const PathLearning falling = learn_along_path(plan, model, {at_sample_5(0.07, 250.0)}, 400.0, first);
-  EXPECT_NEAR(falling.place_correction[5], std::sqrt(c1 * 250.0 / 240.0), 1e-12);
+  EXPECT_NEAR(falling.place_correction[5] * (100.0 + 2000.0 * 0.07 * kSecantReach), 400.0, 1e-9);
 }
 
 TEST(LearnAlongPath, ClampedAndAveragedOverLogs) {
@@ -173,6 +186,81 @@ TEST(LearnAlongPath, ClampedAndAveragedOverLogs) {
                    kMinPathCorrection);
   const PathLearning two = learn_along_path(plan, model, {at_sample_5(0.05, 120.0), at_sample_5(0.05, 140.0)}, 300.0, {});
   EXPECT_NEAR(two.place_correction[5], 1.3, 1e-12);
+}
+
+// The t_m the planner runs at sample 5 with correction c under linear_model: c · (100 + 2000 t_m) = target.
+double chip_run_mm(double c, double target_force_n) { return (target_force_n / c - 100.0) / 2000.0; }
+
+// A place whose true force has another shape than the model: a size effect and an edge force,
+// F = 40 + 3950 t_m^0.8 (N, t_m in mm). Each step cuts at the t_m the previous c makes the planner run.
+double concave_force_n(double chip_mm) { return 40.0 + 3950.0 * std::pow(chip_mm, 0.8); }
+
+TEST(LearnAlongPath, ConvergesOnAForceOfAnotherShapeAndNeverSlowsAPlaceMeasuredUnderTheTarget) {
+  const auto model = linear_model();
+  const auto plan = plan_on_a_line();
+  const double target_n = 400.0;
+  const double chip_at_target_mm = std::pow((target_n - 40.0) / 3950.0, 1.0 / 0.8);  // the root, closed form
+  double chip_mm = 0.08;  // cycle 1: the model's own plan runs thicker than the root (about +40 % force)
+  PathLearning state;
+  std::vector<double> errors;
+  for (int cycle = 1; cycle <= 4; ++cycle) {
+    const double force_n = concave_force_n(chip_mm);
+    errors.push_back(std::abs(force_n - target_n) / target_n);
+    state = learn_along_path(plan, model, {at_sample_5(chip_mm, force_n)}, target_n, state);
+    const double next_mm = chip_run_mm(state.place_correction[5], target_n);
+    if (force_n <= target_n) EXPECT_GE(next_mm, chip_mm - 1e-12) << "cycle " << cycle;  // never slowed
+    if (force_n > target_n) EXPECT_LT(next_mm, chip_mm) << "cycle " << cycle;
+    chip_mm = next_mm;
+  }
+  EXPECT_GT(errors[0], 0.3);
+  EXPECT_LT(errors[2], 0.03);  // cycle 3
+  EXPECT_LT(errors[3], 0.01);  // cycle 4
+  EXPECT_NEAR(chip_mm, chip_at_target_mm, 0.02 * chip_at_target_mm);
+}
+
+TEST(LearnAlongPath, AimsAtAChipSoAGlobalRefitBetweenPartsDoesNotMoveTheNextFeed) {
+  const auto plan = plan_on_a_line();
+  const PathLearning first = learn_along_path(plan, linear_model(), {at_sample_5(0.04, true_force_n(0.04))}, 400.0, {});
+  const PathLearning second = learn_along_path(plan, linear_model(), {at_sample_5(0.07, true_force_n(0.07))}, 400.0, first);
+  model::ResponseSurfaceModel refitted = linear_model();  // the same step against a model refitted 30 % higher
+  for (double& b : refitted.beta) b *= 1.3;
+  const PathLearning moved = learn_along_path(plan, refitted, {at_sample_5(0.07, true_force_n(0.07))}, 400.0, first);
+  EXPECT_NEAR(moved.place_correction[5] * 1.3, second.place_correction[5], 1e-12);  // the same t_m is run
+}
+
+TEST(LearnAlongPath, WithinTheHoldBandThePlaceKeepsItsChip) {
+  const auto model = linear_model();
+  const auto plan = plan_on_a_line();
+  const double force_n = 400.0 * (1.0 + 0.5 * kHoldBand);
+  const PathLearning step = learn_along_path(plan, model, {at_sample_5(0.05, force_n)}, 400.0, {});
+  EXPECT_NEAR(chip_run_mm(step.place_correction[5], 400.0), 0.05, 1e-12);
+}
+
+TEST(LearnAlongPath, BracketKeepsTheNearestEndsAndDropsOneTheLatestMeasurementContradicts) {
+  const auto model = linear_model();
+  const auto plan = plan_on_a_line();
+  PathLearning state = learn_along_path(plan, model, {at_sample_5(0.04, 250.0)}, 300.0, {});
+  state = learn_along_path(plan, model, {at_sample_5(0.08, 350.0)}, 300.0, state);
+  EXPECT_DOUBLE_EQ(state.bracket[5].below_chip_mm, 0.04);
+  EXPECT_DOUBLE_EQ(state.bracket[5].above_chip_mm, 0.08);
+  EXPECT_FALSE(state.bracket[4].has_below());  // sample 4 is outside the period
+  // The secant in ln t_m between the ends: t* = 0.04 · 2^(1/2) mm.
+  EXPECT_NEAR(chip_run_mm(state.place_correction[5], 300.0), 0.04 * std::sqrt(2.0), 1e-12);
+  // Over the target at 0.035 mm, thinner than the lower end: that end is contradicted and dropped.
+  state = learn_along_path(plan, model, {at_sample_5(0.035, 320.0)}, 300.0, state);
+  EXPECT_FALSE(state.bracket[5].has_below());
+  EXPECT_DOUBLE_EQ(state.bracket[5].above_chip_mm, 0.035);
+  EXPECT_LT(chip_run_mm(state.place_correction[5], 300.0), 0.035);
+}
+
+TEST(LearnAlongPath, LookAheadDoesNotSlowAPlaceBelowTheChipItWasMeasuredUnderTheTargetAt) {
+  // Sample 4 under the target at t_m 0.05 (300 N), sample 5 over it: the look-ahead would give 4 the c of 5.
+  MeasuredRevolutions log;
+  log.tooth_periods = {period(0, 3.5, 4.5, 4.0, 300.0, 0.05), period(1, 4.5, 5.5, 5.0, 600.0, 0.05)};
+  const PathLearning step = learn_along_path(plan_on_a_line(), linear_model(), {log}, 400.0, {});
+  EXPECT_GT(step.place_correction[5], step.place_correction[4]);
+  EXPECT_GE(chip_run_mm(step.correction[4], 400.0), 0.05 - 1e-12);
+  EXPECT_NEAR(step.correction[5], step.place_correction[5], 1e-12);
 }
 
 }  // namespace

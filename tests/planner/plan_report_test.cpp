@@ -311,13 +311,19 @@ TEST(PlanReportRoundTrip, LearningAlongThePathIsCarriedToTheNextPart) {
     settings.force_correction.push_back(1.0 + 0.5 * static_cast<double>(i % 7) / 7.0);
     context.path_place_correction.push_back(0.7 + 0.1 * static_cast<double>(i % 5));
     context.path_measurements.push_back({0.01 * static_cast<double>(i % 9), 2.5, 100.0 + 1.0 / 3.0 * i, 0.125});
+    context.path_brackets.push_back({0.01 * static_cast<double>(i % 3), 290.0 + i, 0.02 * static_cast<double>(i % 4), 410.5});
   }
+  context.path_learned_model_id = 7;
+  context.path_learned_model_version = 3;
   const fs::path path = temporary_path("path_learning.json");
   ASSERT_EQ(write_plan_report(path, p.result, settings, context), "");
   const PlanReport report = read_plan_report(path);
   EXPECT_EQ(report.settings.force_correction, settings.force_correction);
   EXPECT_EQ(report.context.path_place_correction, context.path_place_correction);
   EXPECT_EQ(report.context.path_measurements, context.path_measurements);
+  EXPECT_EQ(report.context.path_brackets, context.path_brackets);
+  EXPECT_EQ(report.context.path_learned_model_id, 7);
+  EXPECT_EQ(report.context.path_learned_model_version, 3);
   // A plan that has not learned along its path writes none of it.
   const std::string plain = plan_report_json(p.result, p.settings, p.context);
   EXPECT_EQ(plain.find("path_learning"), std::string::npos);
@@ -489,6 +495,21 @@ TEST(PlanReportRead, LearningAlongThePathMustMatchThePlanSamples) {
                 j["path_learning"] = {{"place_correction", {1.0}}, {"measurements", {{0.05, -2.0, 300.0, 0.1}}}};
               }),
               Contains(problem("path_learning.measurements[0][1]", "= -2: must be ≥ 0")));
+  const auto with_learning = [](const nlohmann::json& extra) {
+    return [extra](auto& j) {
+      j["force_correction"] = {1.0};
+      j["path_learning"] = {{"place_correction", {1.0}}, {"measurements", {{0.05, 2.0, 300.0, 0.1}}}};
+      for (const auto& [key, value] : extra.items()) j["path_learning"][key] = value;
+    };
+  };
+  EXPECT_THAT(problems_after(with_learning({{"brackets", {{0.05, 300.0}}}})),
+              Contains(problem("path_learning.brackets[0]", "must be an array of 4 numbers")));
+  EXPECT_THAT(problems_after(with_learning({{"brackets", {{0.05, -300.0, 0.0, 0.0}}}})),
+              Contains(problem("path_learning.brackets[0][1]", "= -300: must be ≥ 0")));
+  EXPECT_THAT(problems_after(with_learning({{"learned_model", {{"id", 2.5}, {"version", 2}}}})),
+              Contains(problem("path_learning.learned_model.id", "= 2.5: must be a whole number ≥ 1")));
+  EXPECT_THAT(problems_after(with_learning({{"learned_model", {{"id", 2}, {"version", 0}}}})),
+              Contains(problem("path_learning.learned_model.version", "= 0: must be a whole number ≥ 1")));
 }
 
 // A report's tool of diameter 0 was accepted, and learning refitted a model for a tool that cannot exist.

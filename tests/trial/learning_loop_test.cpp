@@ -76,28 +76,38 @@ class LearningLoop : public ::testing::Test {
   model_db::ModelRecord record_;
 };
 
-// Two machines of the family whose physics differ from the sample model in shape (family-02: 4 µm of runout,
-// size effect 0.29, a 1743 Hz dynamometer; family-09: 5–6 µm of runout, helix 5° off, edge force K_re 37 N/mm,
-// 558 Hz), the trochoid at 400 N for four cycles. The first overshoots by 17–29 % (mostly the runout, which the
-// model does not have; without it family-04 is within +0.2 % in cycle 1); by the fourth the held revolutions
-// are within 3.5 % RMS of the target and the cycle has not grown beyond 1.5 × the second's. Measured: RMS 2.2
-// and 2.5 %, 25.5 and 36.0 s (the second 20.9 and 26.9 s). Learning from every tooth period, whatever its runout
-// factor, left 5.3 and 17.7 % RMS at 35.5 and 91.4 s (`feedplan loop --machine` with the sample database).
-// Not yet the ±3 % largest error the product aims at: single revolutions at loop entries still miss by more.
-TEST_F(LearningLoop, TrochoidOnTwoMachinesOfTheFamilyConvergesWithoutDraggingTheCycle) {
-  for (const std::string machine : {"family/family-02.yaml", "family/family-09.yaml"}) {
-    SCOPED_TRACE(machine);
-    LoopRequest request = request_on_machine("trochoid.yaml", machine, 400.0);
-    request.cycles = 4;
+// Three machines of the family whose physics differ from the sample model in shape (family-02: 4 µm of
+// runout, size effect 0.29, a 1743 Hz dynamometer; family-04: 7 µm of runout, a 605 Hz dynamometer with
+// little damping; family-09: 5–6 µm of runout, helix 5° off, edge force K_re 37 N/mm, 558 Hz), the trochoid at
+// 400 N for three cycles. The first overshoots by 17–30 % (mostly the runout, which the model does not have).
+// Learning along the path searches the feed per place (learning/path_correction.hpp); the program keeps its
+// model. Measured (true peaks): cycle 3 held RMS 0.9, 3.7 and 1.8 %, cycle time 24.6, 36.7 and 35.6 s against
+// T* 23.4, 32.0 and 33.3 s (bench/learning_convergence_bench). family-04's dynamometer rings at the third
+// tooth harmonic and reads 4–6 % over the true peak, so learning that holds the reading holds the true force
+// under the target. Not yet the ±3 % largest error and 5 % of T* the product aims at: single revolutions at
+// loop entries still miss by more.
+TEST_F(LearningLoop, TrochoidOnThreeMachinesOfTheFamilyConvergesWithoutDraggingTheCycle) {
+  struct Case {
+    std::string machine;
+    double third_rms_percent;  // bound on cycle 3's held RMS error
+  };
+  for (const Case& m : {Case{"family/family-02.yaml", 1.5}, Case{"family/family-04.yaml", 4.5},
+                        Case{"family/family-09.yaml", 2.5}}) {
+    SCOPED_TRACE(m.machine);
+    LoopRequest request = request_on_machine("trochoid.yaml", m.machine, 400.0);
+    request.cycles = 3;
     const LoopResult result = run_learning_loop(request);
-    ASSERT_EQ(result.cycles.size(), 4u);
+    ASSERT_EQ(result.cycles.size(), 3u);
     for (const LoopCycle& c : result.cycles) {
-      std::printf("%s cycle %d: %.2f s, held RMS %.2f %%, largest over %+.2f %%\n", machine.c_str(), c.cycle,
-                  c.simulated_cycle_time_s, c.comparison.rms_error_percent, c.comparison.max_overshoot_percent);
+      std::printf("%s cycle %d: %.2f s, held RMS %.2f %%, max %.2f %%, largest over %+.2f %%\n", m.machine.c_str(),
+                  c.cycle, c.simulated_cycle_time_s, c.comparison.rms_error_percent, c.comparison.max_abs_error_percent,
+                  c.comparison.max_overshoot_percent);
     }
     EXPECT_GT(result.cycles[0].comparison.max_overshoot_percent, 15.0);
-    EXPECT_LE(result.cycles[3].comparison.rms_error_percent, 3.5);
-    EXPECT_LE(result.cycles[3].simulated_cycle_time_s, 1.5 * result.cycles[1].simulated_cycle_time_s);
+    EXPECT_LE(result.cycles[2].comparison.rms_error_percent, m.third_rms_percent);
+    // Cycle 2 still overshot here, so cycle 3 may be slower; by how much is bounded.
+    EXPECT_LE(result.cycles[2].simulated_cycle_time_s, 1.45 * result.cycles[1].simulated_cycle_time_s);
+    EXPECT_LE(result.cycles[2].comparison.max_overshoot_percent, 8.0);
   }
 }
 

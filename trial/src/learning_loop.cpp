@@ -17,18 +17,21 @@ LoopResult run_learning_loop(const LoopRequest& request) {
   LoopResult result;
   planner::PlanSettings settings = request.settings;
   // The first cycle: the starting model's fit covariance and the relative uncertainty of a model not yet
-  // checked on this machine; later cycles: the refit's covariance alone.
-  std::optional<model::Covariance> covariance;
+  // checked on this machine; later cycles: the covariance of the model planned with alone (the starting
+  // model's while learning along the path, else the refit's).
+  std::optional<model::Covariance> covariance;  // of the model learned so far
   double relative = request.first_cut_uncertainty;
   if (request.first_cut_uncertainty > 0.0) covariance = request.start_fit_covariance;
+  std::optional<model::Covariance> plan_covariance = covariance;
   std::vector<learning::LearningSample> earlier;
   learning::PathLearning along_path;
+  model::ResponseSurfaceModel learned_model = settings.model;
   for (int cycle = 1; cycle <= request.cycles; ++cycle) {
     settings.uncertainty.reset();
-    if (covariance && request.first_cut_uncertainty > 0.0) {
+    if (plan_covariance && request.first_cut_uncertainty > 0.0) {
       // Entries off the straight cuts at their worst (force_bound.hpp) until learning along the path has
       // measured a larger factor there (PlanSettings::force_correction).
-      settings.uncertainty = planner::ForceUncertainty{*covariance, request.sigmas, relative, true};
+      settings.uncertainty = planner::ForceUncertainty{*plan_covariance, request.sigmas, relative, true};
     }
     const planner::PlanResult plan = planner::plan(request.geometry, settings);
     VirtualMachine machine = request.machine;
@@ -51,32 +54,38 @@ LoopResult run_learning_loop(const LoopRequest& request) {
     // The log moves to learning (a copy would double the loop's memory: 0.5 GB for a 9 min cycle).
     std::vector<learning::NamedLog> logs;
     logs.push_back({"cycle " + std::to_string(cycle), std::move(run.simulation.log)});
-    const learning::ModelUpdate update = learning::update_model(plan, settings, request.geometry.tool.flutes,
+    // The refit goes on from the model learned so far, whichever model the plan was made with.
+    planner::PlanSettings learn_settings = settings;
+    learn_settings.model = learned_model;
+    const learning::ModelUpdate update = learning::update_model(plan, learn_settings, request.geometry.tool.flutes,
                                                                 std::move(logs), earlier, covariance, request.update);
     out.update_status = update.status;
-    std::vector<learning::MeasuredRevolutions> measured_revolutions;
-    for (const learning::LogEvidence& log : update.logs) measured_revolutions.push_back(log.revolutions);
-    out.infeasible = learning::infeasible_places(plan, measured_revolutions, settings.target_force_n);
+    std::vector<learning::MeasuredRevolutions> measured;
+    for (const learning::LogEvidence& log : update.logs) measured.push_back(log.revolutions);
+    out.infeasible = learning::infeasible_places(plan, measured, settings.target_force_n);
     out.model_errors_before = update.before;
     out.model_errors_after = update.after_batch;
     out.messages.insert(out.messages.end(), update.messages.begin(), update.messages.end());
     if (update.status == learning::ModelUpdateStatus::kOk) {
       earlier.insert(earlier.end(), update.samples.begin(), update.samples.end());
-      settings.model = update.model;
+      learned_model = update.model;
       covariance = update.covariance;
       relative = 0.0;
       if (request.path_correction) {
-        std::vector<learning::MeasuredRevolutions> measured;
-        for (const learning::LogEvidence& log : update.logs) measured.push_back(log.revolutions);
-        along_path = learning::learn_along_path(plan, update.model, measured, settings.target_force_n, along_path);
+        // The same program again: its plan keeps its model and learns a correction per place
+        // (path_correction.hpp), a fixed knob per place from part to part; the refit is for other programs.
+        along_path = learning::learn_along_path(plan, settings.model, measured, settings.target_force_n, along_path);
         settings.force_correction = along_path.correction;
+      } else {
+        settings.model = learned_model;
+        plan_covariance = covariance;
       }
     }
     result.cycles.push_back(std::move(out));
     if (request.on_cycle_done) request.on_cycle_done(cycle);
     if (request.progress) request.progress(static_cast<double>(cycle) / request.cycles);
   }
-  result.final_model = settings.model;
+  result.final_model = learned_model;
   if (covariance) result.final_covariance = *covariance;
   return result;
 }

@@ -18,18 +18,33 @@ inline constexpr double kMinPathCorrection = 0.5;
 inline constexpr double kMaxPathCorrection = 2.0;  //!< see kMinPathCorrection
 //! Two measurements at a place whose t_m differ by less than this share of the larger give no slope.
 inline constexpr double kMinSecantSpread = 0.15;
-//! The secant's t_m at the target is kept within the measured t_m range widened by this factor either way.
+//! A secant's t_m at the target outside the bracket is kept within the measured t_m widened by this
+//! factor either way.
 inline constexpr double kSecantReach = 2.0;
+//! A place measured within this share of the target keeps the chip it ran (the search has converged
+//! there: a smaller step would chase the sensor's noise).
+inline constexpr double kHoldBand = 0.01;
 //! Tooth periods whose runout factor exceeds this (their tooth cuts less than 1/1.25 of its turn's largest)
 //! are not learned from; see learn_along_path.
-inline constexpr double kMaxRunoutFactor = 1.25;
+inline constexpr double kMaxRunoutFactor = 1.03;
 
 //! What was last measured at one plan sample.
 struct PathMeasurement {
   double chip_mm = 0.0;            //!< t_m at the feed run, mm
   double contact_length_mm = 0.0;  //!< L as the model is evaluated, mm
-  double force_n = 0.0;            //!< peak force (standing for a revolution's, on the model's axial depth), N; 0: none
+  double force_n = 0.0;            //!< the revolution's peak force as measured there, N; 0: none
   double window_mm = 0.0;          //!< longest tooth period measured here, as path length, mm
+};
+
+//! What is known at one plan sample about where its force meets the target: the thickest chip measured
+//! at or under the target and the thinnest measured over it (chip 0: no such measurement yet).
+struct PlaceBracket {
+  double below_chip_mm = 0.0;   //!< t_m, mm
+  double below_force_n = 0.0;   //!< measured peak there, N
+  double above_chip_mm = 0.0;   //!< t_m, mm
+  double above_force_n = 0.0;   //!< measured peak there, N
+  bool has_below() const { return below_chip_mm > 0.0; }
+  bool has_above() const { return above_chip_mm > 0.0; }
 };
 
 //! The state of learning along a path, one entry per plan sample (every plan of the path has the same samples).
@@ -37,12 +52,13 @@ struct PathLearning {
   std::vector<double> correction;            //!< c per plan sample, for PlanSettings::force_correction
   std::vector<double> place_correction;      //!< c per plan sample before the look-ahead (what the next step updates)
   std::vector<PathMeasurement> measurement;  //!< the latest measurement per plan sample
+  std::vector<PlaceBracket> bracket;         //!< the bracket per plan sample (empty: none yet)
 };
 
 //! One learning step along `plan`'s path from the tooth periods of `measured` (one or more logs cut
 //! with `plan`; MeasuredRevolutions::tooth_periods, each peak × its runout factor), with
 //! `model` the refitted model the next plan uses and `previous` the state after the step before (empty
-//! the first time; with only `correction` set, as read back from a plan report, that is the previous c).
+//! the first time; with only `correction` set, as read back from an older plan report, that is the previous c).
 //!
 //! Place: inside a run of consecutive tooth periods, the force, t_m and L at a plan sample are
 //! interpolated linearly between the peak places around it (the end values beyond the first and the
@@ -55,24 +71,35 @@ struct PathLearning {
 //! machines of the family (data/machines/family): family-09 (5–6 µm runout) cycle 4 at 91.4 s and 17.8 % RMS
 //! with those periods, 35.9 s and 2.8 % without; family-02 (4 µm) 35.5 s, 5.3 % → 25.5 s, 2.4 %.
 //!
-//! Correction at a measured place, with r = F / F̂(t_m, L):
-//!  - the first measurement: c = r;
-//!  - a second one at a t_m at least kMinSecantSpread apart, the force rising with t_m: the secant
-//!    through both (F = α + β t_m at this place) gives the t* at which the force reaches
-//!    `target_force_n` and c = (α + β t*) / F̂(t*, L) — the factor where the next plan will run (t* kept
-//!    within the measured t_m range widened by kSecantReach);
-//!  - otherwise: c = √(c_previous · r), damped.
-//! Clamped to [kMinPathCorrection, kMaxPathCorrection]. Why the secant: at an entry the ratio to a
-//! straight-cut model depends on the feed (trochoid entry, place s = 19.9 mm: 1.48 at t_m 0.076 mm,
-//! 1.01 at 0.010 mm), so a ratio measured at one feed is wrong at the next plan's; taken whole it
-//! oscillated (cycles 3–4: +24 %, +12 %), damped it converged too slowly (+14 %, +9 %). Why the
-//! spread: closer measurements give a slope made of noise (spiral at 5 %: +8 %, +11 %).
+//! Search at a measured place. The force there rises with t_m, so the t_m where it meets the target is a
+//! root of a monotone function, bracketed by the measurements (PlaceBracket); the next plan is steered to
+//! a t_m and c is the factor that makes the planner run it: c · F̂(t_m, L) = target (with the plan
+//! sample's transfer factor on F̂). Aiming at a t_m rather than carrying a ratio keeps the step right when
+//! the global refit moves F̂ between parts. The next t_m:
+//!  - within kHoldBand of the target: the t_m run (converged);
+//!  - bracketed on both sides: the secant through the two ends (F = α + β t_m there; edge forces make α > 0,
+//!    which no ratio to a straight-cut model represents);
+//!  - one side only: the secant through this and the previous measurement when they are at least
+//!    kMinSecantSpread apart in t_m and the force rises (kept within kSecantReach of them); otherwise
+//!    the model's shape scaled to the measurement, c = F / F̂(t_m, L), kept within kSecantReach of t_m (the
+//!    corner cut cautiously with a model 40 % soft: +8 % in cycle 2 with the whole ratio, within 5 % with
+//!    the reach);
+//! and never past an end of the bracket: a place measured at or under the target is not slowed below
+//! the t_m it ran, one measured over it does not run faster than the t_m that was too much. Clamped to
+//! [kMinPathCorrection, kMaxPathCorrection]. Why not the ratio alone: at an entry the ratio to a
+//! straight-cut model depends on the feed (trochoid entry, place s = 19.9 mm: 1.48 at t_m 0.076 mm, 1.01
+//! at 0.010 mm), so a ratio measured at one feed is wrong at the next plan's; taken whole it oscillated,
+//! damped it converged slowly and slowed places that were under the target.
 //!
 //! Look-ahead: the c handed to the planner (`correction`) is the largest c over the next window_mm of
 //! path — a peak is placed only to within its tooth period, and where the force rises along the path
 //! the plan must have slowed down before the place the rise was seen at (the trochoid's first entry:
 //! +38 % in cycle 3 without; the window is the longest seen at the place, as the next plan may run as
-//! fast as any earlier one).
+//! fast as any earlier one) — but not beyond the c that runs the place at the thickest chip measured
+//! under the target there.
+//!
+//! `model` is the model the plan was made with and the next plan of this program is made with: c is a factor
+//! on it, a fixed knob per place from part to part.
 PathLearning learn_along_path(const planner::PlanResult& plan, const model::ResponseSurfaceModel& model,
                               const std::vector<MeasuredRevolutions>& measured, double target_force_n,
                               const PathLearning& previous);

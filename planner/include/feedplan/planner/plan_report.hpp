@@ -22,8 +22,10 @@
 //   options {mode, air_feed_mm_per_min, merge_tolerance, feed_resolution_mm_per_min,
 //            jerk_limit_mm_per_s3, ds_mm, coordinate_resolution_mm (optional on reading: 0.001)},
 //   force_correction[] (only when set: one c per plan sample),
-//   path_learning {place_correction[], measurements[[t_m, L, F, window] per sample]} (only after learning
-//            along the path; as many entries as force_correction),
+//   path_learning {place_correction[], measurements[[t_m, L, F, window] per sample],
+//            brackets[[t_m below, F below, t_m above, F above] per sample] (optional on reading),
+//            learned_model {id, version} (optional on reading)} (only after learning along the path; as many
+//            entries as force_correction),
 //   summary {every PlanSummary field by its name; baseline {feed_mm_per_min, peak_force_n,
 //            cycle_time_s, cutting_time_s}},
 //   program {path, dialect, blocks (count of program blocks)},
@@ -82,6 +84,13 @@ struct PlanReportContext {
   //! sample as {t_m mm, L mm, force N, tooth-period window mm} (force 0: nothing measured there).
   std::vector<double> path_place_correction;
   std::vector<std::array<double, 4>> path_measurements;  //!< see path_place_correction
+  //! Per plan sample, the thickest chip measured at or under the target and the thinnest over it with their
+  //! forces, {t_m mm, F N, t_m mm, F N} (t_m 0: none); empty when the report has none.
+  std::vector<std::array<double, 4>> path_brackets;
+  //! The newest model version learned from this program's logs (0: none recorded): the next learning step
+  //! builds on it, while the program itself keeps being planned with `model_id` and the corrections.
+  long long path_learned_model_id = 0;
+  int path_learned_model_version = 0;  //!< see path_learned_model_id
 };
 
 //! The plan report as JSON text (the format at the top of this file), indented by 2, ending in a

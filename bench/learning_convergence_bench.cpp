@@ -1,0 +1,138 @@
+// How learning converges on machines whose physics differ from the model in shape: for each machine of
+// the seeded family (data/machines/family) and each sample cycle, the best achievable plan T* (the
+// feeds searched against the virtual machine's true peaks, trial/best_achievable_plan.hpp) and three
+// learning cycles from the sample model, reported as counters — cycle time over T*, and the largest and
+// RMS error of the true per-revolution peaks over the revolutions the plan holds at the target.
+//
+// The figures are quoted, never asserted (the learning tests assert the bounds on three machines).
+// Slow: a T* search is up to 12 runs of the virtual machine. Choose with the environment:
+//   FEEDPLAN_FAMILY_MACHINES  machine numbers, e.g. "02,04,09" (default: all 12)
+//   FEEDPLAN_FAMILY_SAMPLES   sample specs, e.g. "trochoid,spiral,corner" (default: trochoid)
+//   FEEDPLAN_FAMILY_TARGETS   target force per sample, N, e.g. "400,400,350" (default: the spec's own)
+// Run: build/bench/learning_convergence_bench --benchmark_counters_tabular=true
+
+#include <benchmark/benchmark.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <sstream>
+#include <string>
+#include <unistd.h>
+#include <vector>
+
+#include "feedplan/cycles/cycle.hpp"
+#include "feedplan/cycles/spec_reader.hpp"
+#include "feedplan/model_db/model_exchange.hpp"
+#include "feedplan/model_db/store.hpp"
+#include "feedplan/sim/machine_file.hpp"
+#include "feedplan/sim/material.hpp"
+#include "feedplan/trial/best_achievable_plan.hpp"
+#include "feedplan/trial/learning_loop.hpp"
+
+namespace {
+
+using namespace feedplan;
+namespace fs = std::filesystem;
+
+std::vector<std::string> split(const char* text, const std::string& fallback) {
+  std::vector<std::string> out;
+  std::stringstream in(text && *text ? text : fallback);
+  for (std::string item; std::getline(in, item, ',');) {
+    if (!item.empty()) out.push_back(item);
+  }
+  return out;
+}
+
+// The sample model (the sample database's S50C, D10 Z4), read once into a throwaway database.
+const model_db::ModelRecord& sample_model() {
+  static const model_db::ModelRecord record = [] {
+    const fs::path dir = fs::temp_directory_path() / ("feedplan_convergence_bench_" + std::to_string(::getpid()));
+    fs::create_directories(dir);
+    model_db::ModelRecord out;
+    {
+      auto store = model_db::Store::open(dir / "m.db", model_db::OpenMode::kCreate);
+      model_db::import_from_file(store, fs::path(FEEDPLAN_TEST_DATA_DIR) / "cli" / "s50c_d10_model.json");
+      out = *store.active_model("SC EM D10 Z4", "S50C");
+    }
+    fs::remove_all(dir);
+    return out;
+  }();
+  return record;
+}
+
+// The loop request for one sample on one machine file, as `feedplan loop SPEC --machine FILE`.
+trial::LoopRequest request_for(const std::string& sample, const std::string& machine_path, double target_force_n) {
+  const cycles::CycleSpec spec = cycles::load_cycle_spec(std::string(FEEDPLAN_SAMPLES_DIR) + "/" + sample + ".yaml");
+  const cycles::Cycle cycle = cycles::generate(spec);
+  trial::LoopRequest request;
+  request.geometry = planner::analyse(cycle.path, cycle.stock, spec.tool);
+  request.settings.model = sample_model().model;
+  request.settings.target_force_n = target_force_n > 0.0 ? target_force_n : spec.target_force_n;
+  request.settings.spindle_rpm = spec.spindle_rpm;
+  request.settings.machine = spec.machine;
+  request.start_fit_covariance = sample_model().fit.covariance;
+  const sim::MaterialLibrary materials = sim::load_materials(std::string(FEEDPLAN_DATA_DIR) + "/materials.yaml");
+  const sim::MachineFile file = sim::load_machine_file(machine_path, materials);
+  sim::SimulationRequest physics;
+  physics.tool = spec.tool;
+  sim::apply_machine(file, physics);
+  request.machine.tool = physics.tool;
+  request.machine.coefficients = physics.coefficients;
+  request.machine.runout_mm = physics.options.runout_mm;
+  request.machine.sensors.dynamometer = physics.sensors.dynamometer;
+  request.machine.stock = cycle.stock;
+  request.machine.machine = spec.machine;
+  request.machine.spindle_rpm = spec.spindle_rpm;
+  return request;
+}
+
+void BM_LearningAgainstBestAchievable(benchmark::State& state, const std::string& sample, const std::string& machine,
+                                      double target_force_n) {
+  const std::string path = std::string(FEEDPLAN_DATA_DIR) + "/machines/family/family-" + machine + ".yaml";
+  trial::LoopRequest loop = request_for(sample, path, target_force_n);
+  trial::BestPlan best;
+  trial::LoopResult learned;
+  for (auto _ : state) {
+    trial::BestPlanRequest request;
+    request.geometry = loop.geometry;
+    request.settings = loop.settings;
+    request.machine = loop.machine;
+    best = trial::best_achievable_plan(request);
+    loop.cycles = 3;
+    learned = trial::run_learning_loop(loop);
+  }
+  const double t_star_s = best.best_cycle_time_s;
+  state.counters["target_N"] = loop.settings.target_force_n;
+  state.counters["T*_s"] = t_star_s;
+  state.counters["infeasible"] = best.infeasible_samples;
+  for (const trial::LoopCycle& c : learned.cycles) {
+    const std::string k = "c" + std::to_string(c.cycle);
+    state.counters[k + "_time/T*"] = t_star_s > 0.0 ? c.simulated_cycle_time_s / t_star_s : 0.0;
+    state.counters[k + "_max%"] = c.comparison.max_abs_error_percent;
+    state.counters[k + "_rms%"] = c.comparison.rms_error_percent;
+    state.counters[k + "_over%"] = c.comparison.max_overshoot_percent;
+  }
+}
+
+int register_all() {
+  const std::vector<std::string> machines =
+      split(std::getenv("FEEDPLAN_FAMILY_MACHINES"), "01,02,03,04,05,06,07,08,09,10,11,12");
+  const std::vector<std::string> samples = split(std::getenv("FEEDPLAN_FAMILY_SAMPLES"), "trochoid");
+  const std::vector<std::string> targets = split(std::getenv("FEEDPLAN_FAMILY_TARGETS"), "");
+  for (std::size_t k = 0; k < samples.size(); ++k) {
+    const double target_force_n = k < targets.size() ? std::atof(targets[k].c_str()) : 0.0;
+    for (const std::string& machine : machines) {
+      benchmark::RegisterBenchmark(("learning/" + samples[k] + "/family-" + machine).c_str(),
+                                   BM_LearningAgainstBestAchievable, samples[k], machine, target_force_n)
+          ->Iterations(1)
+          ->Unit(benchmark::kSecond);
+    }
+  }
+  return 0;
+}
+
+const int registered = register_all();
+
+}  // namespace
+
+BENCHMARK_MAIN();

@@ -1,0 +1,110 @@
+#include "place_search.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "feedplan/model/model_prediction.hpp"
+
+namespace feedplan::learning::detail {
+
+double PlaceModel::force_n(double chip_mm) const {
+  return transfer_factor * model::predict(*model, chip_mm, contact_length_mm).force_n;
+}
+
+double PlaceModel::correction_at(double chip_mm, double target_force_n) const {
+  const double predicted = force_n(chip_mm);
+  return predicted > 0.0 ? target_force_n / predicted : 0.0;
+}
+
+PlaceBracket bracket_with(const PlaceBracket& bracket, const PathMeasurement& now, double target_force_n) {
+  PlaceBracket out = bracket;
+  if (!(now.force_n > 0.0) || !(now.chip_mm > 0.0)) return out;
+  if (now.force_n <= target_force_n) {
+    if (!out.has_below() || now.chip_mm >= out.below_chip_mm) {
+      out.below_chip_mm = now.chip_mm;
+      out.below_force_n = now.force_n;
+    }
+    if (out.has_above() && out.above_chip_mm <= now.chip_mm) out.above_chip_mm = out.above_force_n = 0.0;
+  } else {
+    if (!out.has_above() || now.chip_mm <= out.above_chip_mm) {
+      out.above_chip_mm = now.chip_mm;
+      out.above_force_n = now.force_n;
+    }
+    if (out.has_below() && out.below_chip_mm >= now.chip_mm) out.below_chip_mm = out.below_force_n = 0.0;
+  }
+  return out;
+}
+
+namespace {
+
+// The secant in ln t_m through two measurements (t_a, F_a) and (t_b, F_b): the t_m at which F = α + β ln t_m
+// meets the target; 0 when the force does not rise with the chip. Why ln t_m: a force F = α + β t_m^p
+// (an edge force α, a size effect 1 − p) is convex in ln t_m for every p > 0, so between a measurement
+// under the target and one over it this secant lands at or under the target — close to it for the
+// thin-chip, edge-dominated places where the force is flat (family-09's trochoid fronts: 529, 445 and 365 N
+// at t_m 0.022, 0.011 and 0.006 mm, on a line in ln t_m), where a secant in t_m overshoots the root.
+double secant_chip_mm(double chip_a_mm, double force_a_n, double chip_b_mm, double force_b_n, double target_force_n) {
+  if (!(chip_a_mm > 0.0) || !(chip_b_mm > 0.0) || chip_a_mm == chip_b_mm) return 0.0;
+  const double slope = (force_b_n - force_a_n) / std::log(chip_b_mm / chip_a_mm);
+  if (!(slope > 0.0)) return 0.0;
+  return chip_a_mm * std::exp((target_force_n - force_a_n) / slope);
+}
+
+// `c` kept within kSecantReach of the measured chip `now_mm` in the t_m it runs (c falls as t_m grows): a
+// step from one measurement far under the target (a cautious first cut) extrapolates the model's shape no
+// further than a secant may.
+double within_reach(const PlaceModel& place, double target_force_n, double c, double now_mm) {
+  const double at_thickest = place.correction_at(now_mm * kSecantReach, target_force_n);
+  const double at_thinnest = place.correction_at(now_mm / kSecantReach, target_force_n);
+  if (!(at_thickest > 0.0 && at_thickest < at_thinnest)) return c;  // a model not rising there: no reach in t_m
+  return std::clamp(c, at_thickest, at_thinnest);
+}
+
+// The next c with the bracket open on one side: a secant through two spread measurements, or the model's
+// shape scaled to this one (c = F / F̂(t_m)), within kSecantReach of the measured chip.
+double one_sided_correction(const PlaceModel& place, double target_force_n, const PathMeasurement& now,
+                            const PathMeasurement& before) {
+  const double ratio = within_reach(place, target_force_n, now.force_n / place.force_n(now.chip_mm), now.chip_mm);
+  if (!(before.force_n > 0.0) || !(before.chip_mm > 0.0)) return ratio;
+  const double spread = std::abs(now.chip_mm - before.chip_mm);
+  if (spread < kMinSecantSpread * std::max(now.chip_mm, before.chip_mm)) return ratio;
+  const double chip_mm = secant_chip_mm(before.chip_mm, before.force_n, now.chip_mm, now.force_n, target_force_n);
+  if (!(chip_mm > 0.0)) return ratio;
+  const double lo = std::min(now.chip_mm, before.chip_mm) / kSecantReach;
+  const double hi = std::max(now.chip_mm, before.chip_mm) * kSecantReach;
+  const double c = place.correction_at(std::clamp(chip_mm, lo, hi), target_force_n);
+  return c > 0.0 ? c : ratio;
+}
+
+}  // namespace
+
+double largest_correction_not_slower(const PlaceModel& place, double target_force_n, const PlaceBracket& bracket) {
+  if (!bracket.has_below()) return kMaxPathCorrection;
+  const double c = place.correction_at(bracket.below_chip_mm, target_force_n);
+  return c > 0.0 ? c : kMaxPathCorrection;
+}
+
+double next_place_correction(const PlaceModel& place, double target_force_n, const PathMeasurement& now,
+                             const PathMeasurement& before, const PlaceBracket& bracket, double previous) {
+  if (!(place.force_n(now.chip_mm) > 0.0)) return previous;
+  double c = 0.0;
+  if (std::abs(now.force_n - target_force_n) <= kHoldBand * target_force_n) {
+    c = place.correction_at(now.chip_mm, target_force_n);
+  } else if (bracket.has_below() && bracket.has_above()) {
+    c = place.correction_at(secant_chip_mm(bracket.below_chip_mm, bracket.below_force_n, bracket.above_chip_mm,
+                                           bracket.above_force_n, target_force_n),
+                            target_force_n);
+  } else {
+    c = one_sided_correction(place, target_force_n, now, before);
+  }
+  if (!(c > 0.0)) c = now.force_n / place.force_n(now.chip_mm);
+  // Never past an end of the bracket: c falls as the t_m it runs grows.
+  if (bracket.has_below()) c = std::min(c, largest_correction_not_slower(place, target_force_n, bracket));
+  if (bracket.has_above()) {
+    const double at_above = place.correction_at(bracket.above_chip_mm, target_force_n);
+    if (at_above > 0.0) c = std::max(c, at_above);
+  }
+  return std::clamp(c, kMinPathCorrection, kMaxPathCorrection);
+}
+
+}  // namespace feedplan::learning::detail

@@ -1,0 +1,38 @@
+#pragma once
+// The 1-D search for the feed at one place of a repeated path (learn_along_path): the force at a place
+// rises with the chip thickness t_m run there, so the t_m at which it meets the target is a root to
+// bracket and close in on from one part to the next — a safeguarded secant, the model's shape giving
+// the first step. The planner is steered to that t_m through the correction c it puts on the model.
+
+#include "feedplan/learning/path_correction.hpp"
+#include "feedplan/model/response_surface_model.hpp"
+
+namespace feedplan::learning::detail {
+
+//! The model as the planner holds it at one place: F̂(t_m) = transfer_factor · F̂(t_m, L).
+struct PlaceModel {
+  const model::ResponseSurfaceModel* model = nullptr;
+  double contact_length_mm = 0.0;  //!< L the model is evaluated at, mm
+  double transfer_factor = 1.0;    //!< the plan sample's chip-load or depth transfer (> 0)
+
+  double force_n(double chip_mm) const;  //!< the planner's F̂ at t_m = chip_mm, N
+  //! The c with which the planner runs t_m = chip_mm here (c · F̂(t_m) = target), 0 when F̂ ≤ 0.
+  double correction_at(double chip_mm, double target_force_n) const;
+};
+
+//! `bracket` with the measurement `now` added (a force at or under the target raises the lower end,
+//! one over it lowers the upper end; an end the new measurement contradicts — more force at a thinner
+//! chip, or less at a thicker one — is dropped: the latest is believed).
+PlaceBracket bracket_with(const PlaceBracket& bracket, const PathMeasurement& now, double target_force_n);
+
+//! The next c at a place measured `now` (the measurement before: `before`, force 0 when none), with
+//! `bracket` already holding `now`; `previous` when the model predicts no force there. See
+//! learn_along_path for the rule.
+double next_place_correction(const PlaceModel& place, double target_force_n, const PathMeasurement& now,
+                             const PathMeasurement& before, const PlaceBracket& bracket, double previous);
+
+//! The largest c that does not run the place slower than its bracket's lower end (the thickest chip
+//! measured at or under the target); kMaxPathCorrection when there is none.
+double largest_correction_not_slower(const PlaceModel& place, double target_force_n, const PlaceBracket& bracket);
+
+}  // namespace feedplan::learning::detail
