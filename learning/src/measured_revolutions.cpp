@@ -14,6 +14,7 @@
 #include "feedplan/geometry/engagement.hpp"
 #include "feedplan/planner/feed_limit.hpp"
 #include "feedplan/force_log/revolution_peaks.hpp"
+#include "feedplan/learning/peak_noise_bias.hpp"
 #include "fixed_text.hpp"
 
 namespace feedplan::learning {
@@ -278,7 +279,7 @@ WindowPlace evaluate_window(const WindowContext& c, const force_log::RevolutionP
 
 // Every revolution's window into out: its span and peak, its sample when engaged, or why it is skipped.
 void add_revolutions(const WindowContext& c, const std::vector<force_log::RevolutionPeak>& peaks, double period_s,
-                     MeasuredRevolutions& out) {
+                     MeasuredRevolutions& out, std::vector<force_log::RevolutionPeak>& air) {
   for (const force_log::RevolutionPeak& peak : peaks) {
     const WindowPlace w = evaluate_window(c, peak, period_s);
     switch (w.outcome) {
@@ -286,6 +287,7 @@ void add_revolutions(const WindowContext& c, const std::vector<force_log::Revolu
       case WindowOutcome::kNotAligned: ++out.skipped_not_aligned; continue;
       case WindowOutcome::kNotEngaged:
         out.revolutions.push_back({w.s_start_mm, w.s_end_mm, peak.peak_xy_n});
+        air.push_back(peak);
         ++out.skipped_not_engaged;
         continue;
       case WindowOutcome::kEngaged:
@@ -299,7 +301,8 @@ void add_revolutions(const WindowContext& c, const std::vector<force_log::Revolu
 
 // 5. Tooth periods: the same rule on windows of 1/Z turn (window k in turn k / Z, flute window k mod Z),
 //    phased so that the tooth peaks lie in the middle of their windows; the engaged ones.
-std::vector<ToothPeriodPeak> engaged_tooth_periods(const WindowContext& c, double period_s) {
+std::vector<ToothPeriodPeak> engaged_tooth_periods(const WindowContext& c, double period_s,
+                                                   std::vector<force_log::RevolutionPeak>& windows) {
   const RowSignals& s = c.signals;
   const std::vector<force_log::RevolutionPeak> periods =
       tooth_periods_centred_on_peaks(s.t, s.fx, s.fy, c.spindle_rpm * c.flutes);
@@ -315,6 +318,7 @@ std::vector<ToothPeriodPeak> engaged_tooth_periods(const WindowContext& c, doubl
     p.t_peak_s = period.t_peak_s;
     p.sample = w.sample;
     tooth_periods.push_back(p);
+    windows.push_back(period);
   }
   return tooth_periods;
 }
@@ -441,10 +445,12 @@ MeasuredRevolutions measured_revolutions(const force_log::ForceLog& log, const A
   const RowSeries rows(t);
   const WindowContext context{signals, rows, mean_step_s, alignment, plan.samples, model, flutes, spindle_rpm, options};
 
-  add_revolutions(context, peaks, period_s, out);
-  out.tooth_periods = engaged_tooth_periods(context, period_s);
+  std::vector<force_log::RevolutionPeak> air, tooth_windows;
+  add_revolutions(context, peaks, period_s, out, air);
+  out.tooth_periods = engaged_tooth_periods(context, period_s, tooth_windows);
   set_runout_factors(out.tooth_periods, flutes);
-  out.message = counts_message(peaks.size(), spindle_rpm, alignment.delay_s, out);
+  out.noise = peak_noise(t, signals.fx, signals.fy, air, tooth_windows);
+  out.message = counts_message(peaks.size(), spindle_rpm, alignment.delay_s, out) + "; " + out.noise.message;
   return out;
 }
 

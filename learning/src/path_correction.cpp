@@ -74,6 +74,7 @@ PathLearning learn_along_path(const planner::PlanResult& plan, const model::Resp
   };
   for (const MeasuredRevolutions& log : measured) {
     const auto& periods = log.tooth_periods;
+    const double noise_excess_n = log.noise.peak_excess_n;
     std::size_t k = 0;
     while (k < periods.size()) {
       // A run of consecutive tooth periods (no window between them skipped).
@@ -88,8 +89,9 @@ PathLearning learn_along_path(const planner::PlanResult& plan, const model::Resp
         // than about the cut, and its factor comes from steady turns elsewhere, at other chips.
         if (!(p.sample.force_n > 0.0) || p.runout_factor > kMaxRunoutFactor) continue;
         // The measured peak itself: compared with the planner's F̂ at each plan sample, its transfer included.
-        run.push_back({p.s_peak_mm, {p.sample.chip_mm, p.sample.contact_length_mm,
-                                     p.runout_factor * p.sample.force_n * p.sample.transfer_factor,
+        // Less what the sensor's noise adds to a peak reading: the target is the true force's.
+        const double read_n = p.runout_factor * p.sample.force_n * p.sample.transfer_factor;
+        run.push_back({p.s_peak_mm, {p.sample.chip_mm, p.sample.contact_length_mm, std::max(read_n - noise_excess_n, 0.0),
                                      p.s_end_mm - p.s_start_mm},
                        p.sample.feed_mm_per_min});
       }

@@ -80,19 +80,20 @@ class LearningLoop : public ::testing::Test {
 // runout, size effect 0.29, a 1743 Hz dynamometer; family-04: 7 µm of runout, a 605 Hz dynamometer with
 // little damping; family-09: 5–6 µm of runout, helix 5° off, edge force K_re 37 N/mm, 558 Hz), the trochoid at
 // 400 N for three cycles. The first overshoots by 17–30 % (mostly the runout, which the model does not have).
-// Learning along the path searches the feed per place (learning/path_correction.hpp); the program keeps its
-// model. Measured (true peaks): cycle 3 held RMS 0.9, 3.7 and 1.8 %, cycle time 24.6, 36.7 and 35.6 s against
-// T* 23.4, 32.0 and 33.3 s (bench/learning_convergence_bench). family-04's dynamometer rings at the third
-// tooth harmonic and reads 4–6 % over the true peak, so learning that holds the reading holds the true force
-// under the target. Not yet the ±3 % largest error and 5 % of T* the product aims at: single revolutions at
-// loop entries still miss by more.
+// Learning along the path searches the feed per place (learning/path_correction.hpp) on peaks less the
+// noise's excess (learning/peak_noise_bias.hpp); the program keeps its model. Measured (true peaks): cycle 3
+// held RMS 0.66, 3.2 and 1.2 %, cycle time 24.2, 35.9 and 34.3 s against T* 23.4, 32.0 and 33.3 s
+// (1.035, 1.12 and 1.03 T*; bench/learning_convergence_bench). family-04's dynamometer rings at the third
+// tooth harmonic and reads 3–5 % over the true peak, so learning that holds the reading holds the true
+// force under the target. Not yet the ±3 % largest error the product aims at: single revolutions at loop
+// entries still miss by 5–24 %.
 TEST_F(LearningLoop, TrochoidOnThreeMachinesOfTheFamilyConvergesWithoutDraggingTheCycle) {
   struct Case {
     std::string machine;
     double third_rms_percent;  // bound on cycle 3's held RMS error
   };
-  for (const Case& m : {Case{"family/family-02.yaml", 1.5}, Case{"family/family-04.yaml", 4.5},
-                        Case{"family/family-09.yaml", 2.5}}) {
+  for (const Case& m : {Case{"family/family-02.yaml", 1.2}, Case{"family/family-04.yaml", 4.0},
+                        Case{"family/family-09.yaml", 2.0}}) {
     SCOPED_TRACE(m.machine);
     LoopRequest request = request_on_machine("trochoid.yaml", m.machine, 400.0);
     request.cycles = 3;

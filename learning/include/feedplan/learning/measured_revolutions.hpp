@@ -34,12 +34,15 @@
 //      runout's share changes with the feed per tooth, and because the flute whose peak a window holds
 //      changes where the cutting direction turns the force (measured on a corner with 8 µm runout: one
 //      factor per log was 5–8 % off on the second wall).
+//   6. Noise: its spread out of the cut and how far it raises the tooth periods' peak readings
+//      (peak_noise_bias.hpp); the peaks are given as read, the excess beside them.
 
 #include <string>
 #include <vector>
 
 #include "feedplan/learning/learning_sample.hpp"
 #include "feedplan/learning/log_alignment.hpp"
+#include "feedplan/learning/peak_noise_bias.hpp"
 #include "feedplan/model/response_surface_model.hpp"
 #include "feedplan/planner/feed_plan.hpp"
 #include "feedplan/planner/peak_comparison.hpp"
@@ -73,6 +76,7 @@ struct MeasuredRevolutions {
   //! For each entry of `samples`, the time its revolution starts on the log's clock, s.
   std::vector<double> sample_t_start_s;
   std::vector<ToothPeriodPeak> tooth_periods;  //!< engaged, fully aligned tooth periods, in time order
+  PeakNoise noise;  //!< the sensor noise out of the cut and how far it raises the tooth periods' peaks (step 6)
   int skipped_not_engaged = 0;  //!< aligned revolutions the plan has out of the material (or without a chip or feed)
   int skipped_nan = 0;          //!< revolutions with a NaN force or a gap in the rows
   int skipped_not_aligned = 0;  //!< revolutions with a row off the path, before or after it (after the delay shift)

@@ -63,7 +63,8 @@ struct PathLearning {
 //! Place: inside a run of consecutive tooth periods, the force, t_m and L at a plan sample are
 //! interpolated linearly between the peak places around it (the end values beyond the first and the
 //! last peak) — up to Z places per revolution, so an entry where the force rises within one revolution is
-//! resolved. Several logs are averaged. Plan samples no tooth period covers keep `previous`. A tooth period
+//! resolved. Each peak less the excess the log's noise puts on a peak reading (MeasuredRevolutions::noise):
+//! learning holds the true force at the target, not the reading. Several logs are averaged. Plan samples no tooth period covers keep `previous`. A tooth period
 //! whose runout factor exceeds kMaxRunoutFactor is left out: with a few µm of runout at thin chips a tooth
 //! can cut a fraction of the largest one's chip, and its factor — the median over the steady turns nearest
 //! to it, which may lie where the feed and engagement differ — multiplies its small peak into a revolution
