@@ -1,9 +1,6 @@
 #include "feedplan/trial/learning_loop.hpp"
 
 #include "feedplan/learning/path_correction.hpp"
-#include <cstdio>
-#include <cstdlib>
-#include <string>
 
 namespace feedplan::trial {
 
@@ -82,26 +79,6 @@ LoopResult run_learning_loop(const LoopRequest& request) {
       } else {
         settings.model = learned_model;
         plan_covariance = covariance;
-      }
-      if (const char* dump = std::getenv("FEEDPLAN_DEBUG_PATH")) {
-        std::FILE* f = std::fopen((std::string(dump) + std::to_string(cycle) + ".csv").c_str(), "w");
-        std::fprintf(f, "s,engaged,feed,reason,limit,force_pred,c,cplace,t,F,lo_t,lo_F,hi_t,hi_F\n");
-        for (std::size_t i = 0; i < plan.samples.size() && along_path.bracket.size() == plan.samples.size(); ++i) {
-          const auto& p = plan.samples[i];
-          const auto& m = along_path.measurement[i];
-          const auto& b = along_path.bracket[i];
-          std::fprintf(f, "%.4f,%d,%.2f,%d,%.2f,%.2f,%.4f,%.4f,%.5f,%.2f,%.5f,%.2f,%.5f,%.2f\n", p.s_mm, p.engaged ? 1 : 0,
-                       p.feed_mm_per_min, static_cast<int>(p.limit_reason), p.feed_limit_mm_per_min, p.predicted_force_n,
-                       along_path.correction[i], along_path.place_correction[i], m.chip_mm, m.force_n, b.below_chip_mm,
-                       b.below_force_n, b.above_chip_mm, b.above_force_n);
-        }
-        std::fclose(f);
-        std::FILE* h = std::fopen((std::string(dump) + "true" + std::to_string(cycle) + ".csv").c_str(), "w");
-        for (const auto& r : out.comparison.revolutions) {
-          std::fprintf(h, "%.4f,%.4f,%.2f,%.2f,%d,%d\n", r.revolution.s_start_mm, r.revolution.s_end_mm, r.revolution.peak_n,
-                       r.error_percent, r.in_cut ? 1 : 0, r.held ? 1 : 0);
-        }
-        std::fclose(h);
       }
     }
     result.cycles.push_back(std::move(out));
