@@ -193,7 +193,7 @@ void require_learnable(const model_db::Store& store, const model_db::ModelRecord
 }
 
 // The report's settings with the cautious bound F̂ + z·σ the plan held when it recorded a relative
-// uncertainty (a borrowed model, or --model-uncertainty): the covariance is the planned version's, as
+// uncertainty (a borrowed model, or --cautious): the covariance is the planned version's, as
 // the plan command takes it from the database.
 planner::PlanSettings settings_as_planned(const planner::PlanReport& report, const model_db::ModelRecord& before) {
   planner::PlanSettings settings = report.settings;

@@ -31,7 +31,7 @@ std::optional<ChosenModel> choose_model(const model_db::Store& store, const cycl
 inline constexpr double kBorrowedModelSigmas = 2.0;
 
 //! The relative uncertainty r a plan holds F̂ + z·σ at the target with (planner/force_bound.hpp, z =
-//! kBorrowedModelSigmas): `requested` (--model-uncertainty) when given, else δ / z with δ the fraction
+//! kBorrowedModelSigmas): `requested` (--cautious) when given, else δ / z with δ the fraction
 //! the chosen model is borrowed by (model_db/model_borrowing.hpp; 0 for an exact model) — so the bound
 //! is at least F̂·(1 + δ) and a model borrowed by δ cannot overshoot by more unseen.
 double planning_uncertainty(const ChosenModel& chosen, std::optional<double> requested);

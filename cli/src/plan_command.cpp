@@ -82,7 +82,7 @@ void check_plan_numbers(const PlanCommandOptions& o, const cycles::CycleSpec& sp
   check_flag(problems, "--jerk", o.jerk_limit_mm_per_s3, {0.0, false}, "mm/s³ (leave it out for no jerk limit)");
   check_flag(problems, "--ds", o.ds_mm, {0.001, true, spec.tool.radius_mm(), true}, "mm, at most the tool radius");
   check_flag(problems, "--constant-feed", o.constant_feed_mm_per_min, feed_range, machine_range);
-  check_flag(problems, "--model-uncertainty", o.model_uncertainty, {0.0, true, 2.0, true},
+  check_flag(problems, "--cautious", o.model_uncertainty, {0.0, true, 2.0, true},
              "a relative standard deviation of the model's force (0: plan on the model alone)");
   if (o.model_id && *o.model_id < 1) {
     problems.push_back({"--model-id", "= " + std::to_string(*o.model_id) + ": must be ≥ 1 (see feedplan db list)"});
@@ -216,7 +216,7 @@ std::optional<PlanModel> choose_plan_model(const PlanCommandOptions& o, const cy
   return model;
 }
 
-// The plan's settings; a borrowed model (or --model-uncertainty) plans on the cautious bound F̂ + z·σ.
+// The plan's settings; a borrowed model (or --cautious) plans on the cautious bound F̂ + z·σ.
 planner::PlanSettings plan_settings(const PlanCommandOptions& o, const PlanInputs& in, const PlanModel& model) {
   const ChosenModel& chosen = model.chosen;
   planner::PlanSettings settings;
@@ -425,9 +425,10 @@ void add_plan_command(CLI::App& app, PlanCommandOptions& options) {
                   "mechanistic (cutting coefficients on the exact engaged arcs) or response-surface (seed 003 Eq. 1)\n"
                   "(default: the kind with the lower leave-one-engagement-out error on the pair's cutting tests)")
 ;
-  add_number_flag(cmd, "--model-uncertainty", options.model_uncertainty,
+  add_number_flag(cmd, "--cautious,--model-uncertainty", options.model_uncertainty,
                   "Relative uncertainty r of the model's force: plan on F̂ + 2σ (default: from how far the model is\n"
-                  "borrowed, 0 for an exact one; 0 plans on the model alone)");
+                  "borrowed, 0 for an exact one; 0 plans on the model alone). For a first part on a machine the model\n"
+                  "was never checked on, 0.15");
   add_integer_flag(cmd, "--decimals", options.decimals, "Digits after the point in X Y Z I J (default 3)");
   cmd->add_flag("--line-numbers", options.line_numbers, "Number the blocks (N words)");
   cmd->add_flag("--coolant", options.coolant, "Flood coolant on (M8) while cutting");

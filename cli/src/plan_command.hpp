@@ -27,7 +27,7 @@ struct PlanCommandOptions {
   std::optional<double> jerk_limit_mm_per_s3;  //!< --jerk; unset: no jerk limit
   double ds_mm = 0.05;                //!< --ds: engagement sample spacing
   std::optional<std::int64_t> model_id;  //!< --model-id; unset: the closest active model
-  std::optional<double> model_uncertainty;  //!< --model-uncertainty r; unset: from how far the model is borrowed
+  std::optional<double> model_uncertainty;  //!< --cautious r; unset: from how far the model is borrowed
   std::string model_kind;  //!< --model-kind mechanistic|response-surface; empty: the lower cross-validated error
   int decimals = 3;                   //!< --decimals
   bool line_numbers = false;          //!< --line-numbers

@@ -34,7 +34,7 @@ struct PlanModel {
   std::string db_path;             //!< --db, else $FEEDPLAN_DB, else the sample database: absolute, canonical
   ChosenModel chosen;              //!< the model, why, and how far it is borrowed
   double relative_uncertainty = 0.0;  //!< r of the cautious bound (0: planned on the model alone)
-  bool uncertainty_requested = false;  //!< r came from --model-uncertainty (else from the borrowing)
+  bool uncertainty_requested = false;  //!< r came from --cautious (else from the borrowing)
   //! The mechanistic version planned with instead of the response surface (same tool and material).
   std::optional<model_db::ModelRecord> mechanistic;
   std::string kind_reason;  //!< which kind plans, and why, for people

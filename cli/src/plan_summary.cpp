@@ -26,14 +26,14 @@ std::string caution_text(const PlanModel& model) {
   const double delta = model.chosen.borrowing.borrowed_fraction;
   const std::string r = shortest_number_text(model.relative_uncertainty);
   if (model.relative_uncertainty > 0.0) {
-    const std::string why = model.uncertainty_requested ? " as asked (--model-uncertainty)"
-                                                        : " from the borrowing; --model-uncertainty R to change";
+    const std::string why = model.uncertainty_requested ? " as asked (--cautious)"
+                                                        : " from the borrowing; --cautious R to change";
     return "planned cautiously: F̂ + " + shortest_number_text(kBorrowedModelSigmas) + "σ held at the target, r = " + r +
            " (the bound ≥ the model's force + " + fixed(100.0 * kBorrowedModelSigmas * model.relative_uncertainty, 0) +
            " %)" + why;
   }
   if (delta > 0.0) {
-    return "planned on the model alone as asked (--model-uncertainty 0): the true force may be " +
+    return "planned on the model alone as asked (--cautious 0): the true force may be " +
            fixed(100.0 * delta, 0) + " % above the prediction";
   }
   return "planned on the model alone";
@@ -106,7 +106,7 @@ nlohmann::json model_match_json(const PlanModel& model) {
           {"borrowed_fraction", b.borrowed_fraction},
           {"relative_uncertainty", model.relative_uncertainty},
           {"sigmas", model.relative_uncertainty > 0.0 ? kBorrowedModelSigmas : 0.0},
-          {"uncertainty_from", model.uncertainty_requested ? "--model-uncertainty" : "borrowing"}};
+          {"uncertainty_from", model.uncertainty_requested ? "--cautious" : "borrowing"}};
 }
 
 nlohmann::json baselines_json(const planner::PlanSummary& s, const PlanOutputs& outputs) {
@@ -177,7 +177,7 @@ std::string plan_status_text(const planner::PlanResult& result, const PlanModel&
   if (model.relative_uncertainty > 0.0) {
     text += " (planned cautiously, r = " + shortest_number_text(model.relative_uncertainty) + ")";
   } else if (model.chosen.borrowing.status == mdb::ModelMatchStatus::kBorrowed) {
-    text += " (NOT planned cautiously: --model-uncertainty 0)";
+    text += " (NOT planned cautiously: --cautious 0)";
   }
   return text;
 }

@@ -165,9 +165,24 @@ TEST_F(HonestSummaryCliTest, ABorrowedDiameterIsAStatusAndIsPlannedCautiously) {
 
   const RunResult alone = run_feedplan(plan_args(spec, dir_ / "p.nc") + " --simulate --model-uncertainty 0");
   ASSERT_EQ(alone.exit_code, 0) << alone.output;
-  EXPECT_NE(alone.output.find("status: ok, model borrowed (NOT planned cautiously: --model-uncertainty 0)"),
+  EXPECT_NE(alone.output.find("status: ok, model borrowed (NOT planned cautiously: --cautious 0)"),
             std::string::npos) << alone.output;
   EXPECT_GT(number_after(alone.output, "virtual machine: largest per-revolution peak: "), cautious_peak_n) << alone.output;
+}
+
+// An exact model not yet checked on the machine: `--cautious R` plans the first part on F̂ + 2σ, σ = R·F̂, and
+// so predicts a largest peak at most the target / (1 + 2R) of the model's own.
+TEST_F(HonestSummaryCliTest, AnExactModelIsPlannedCautiouslyWhenAsked) {
+  const fs::path spec = fs::path(kSamples) / "corner.yaml";
+  const RunResult plain = run_feedplan(plan_args(spec, dir_ / "p.nc"));
+  ASSERT_EQ(plain.exit_code, 0) << plain.output;
+  EXPECT_NE(plain.output.find("status: ok, model exact"), std::string::npos) << plain.output;
+  const RunResult cautious = run_feedplan(plan_args(spec, dir_ / "p.nc") + " --cautious 0.15");
+  ASSERT_EQ(cautious.exit_code, 0) << cautious.output;
+  EXPECT_NE(cautious.output.find("status: ok, model exact (planned cautiously, r = 0.15)"), std::string::npos)
+      << cautious.output;
+  EXPECT_NE(cautious.output.find("as asked (--cautious)"), std::string::npos) << cautious.output;
+  EXPECT_LE(number_after(cautious.output, "predicted peak "), 350.0 / 1.3 + 0.5) << cautious.output;
 }
 
 // A stored tool's name does not make a model exact: the spec's Ø8 tool named like the Ø10 one borrows.
@@ -241,7 +256,8 @@ TEST_F(HonestSummaryCliTest, EmptyAndZeroNumericFlagsAreBadInputNamingTheFlag) {
       {plan + " --model-id 0", "--model-id = 0: must be ≥ 1"},
       {plan + " --ds nan", "--ds = 'nan': expected a finite number"},
       {plan + " --decimals ''", "--decimals = '': expected a whole number"},
-      {plan + " --model-uncertainty -1", "--model-uncertainty = -1: must be in [0, 2]"},
+      {plan + " --model-uncertainty -1", "--cautious = -1: must be in [0, 2]"},
+      {plan + " --cautious 3", "--cautious = 3: must be in [0, 2]"},
       {simulate + " --spindle-rpm 0", "--spindle-rpm = 0: must be > 0"},
       {simulate + " --max-feed 0", "--max-feed = 0: must be > 0"},
       {simulate + " --angle-step ''", "--angle-step = '': expected a finite number"},
