@@ -64,11 +64,11 @@ void BM_LearnAndReplanTrochoid(benchmark::State& state) {
   for (auto _ : state) {
     const learning::ModelUpdate update =
         learning::update_model(s.plan, s.settings, s.geometry.tool.flutes, {{"cycle", s.log}}, {}, std::nullopt);
+    // The same program again: its own model with the correction learned along the path.
     planner::PlanSettings next = s.settings;
-    next.model = update.model;
     std::vector<learning::MeasuredRevolutions> measured;
     for (const auto& log : update.logs) measured.push_back(log.revolutions);
-    next.force_correction = learning::learn_along_path(s.plan, update.model, measured, s.settings.target_force_n, {}).correction;
+    next.force_correction = learning::learn_along_path(s.plan, s.settings.model, measured, s.settings.target_force_n, {}).correction;
     auto result = planner::plan(s.geometry, next);
     samples = update.samples.size();
     tooth_periods = update.logs.empty() ? 0 : update.logs.front().revolutions.tooth_periods.size();

@@ -9,6 +9,7 @@
 //   FEEDPLAN_FAMILY_MACHINES  machine numbers, e.g. "02,04,09" (default: all 12)
 //   FEEDPLAN_FAMILY_SAMPLES   sample specs, e.g. "trochoid,spiral,corner" (default: trochoid)
 //   FEEDPLAN_FAMILY_TARGETS   target force per sample, N, e.g. "400,400,350" (default: the spec's own)
+//   FEEDPLAN_FAMILY_NO_T_STAR set: learning only (the counters over T* are then 0)
 // Run: build/bench/learning_convergence_bench --benchmark_counters_tabular=true
 
 #include <benchmark/benchmark.h>
@@ -97,7 +98,7 @@ void BM_LearningAgainstBestAchievable(benchmark::State& state, const std::string
     request.geometry = loop.geometry;
     request.settings = loop.settings;
     request.machine = loop.machine;
-    best = trial::best_achievable_plan(request);
+    if (!std::getenv("FEEDPLAN_FAMILY_NO_T_STAR")) best = trial::best_achievable_plan(request);
     loop.cycles = 3;
     learned = trial::run_learning_loop(loop);
   }
@@ -108,6 +109,7 @@ void BM_LearningAgainstBestAchievable(benchmark::State& state, const std::string
   for (const trial::LoopCycle& c : learned.cycles) {
     const std::string k = "c" + std::to_string(c.cycle);
     state.counters[k + "_time/T*"] = t_star_s > 0.0 ? c.simulated_cycle_time_s / t_star_s : 0.0;
+    state.counters[k + "_time_s"] = c.simulated_cycle_time_s;
     state.counters[k + "_max%"] = c.comparison.max_abs_error_percent;
     state.counters[k + "_rms%"] = c.comparison.rms_error_percent;
     state.counters[k + "_over%"] = c.comparison.max_overshoot_percent;

@@ -50,12 +50,12 @@ double secant_chip_mm(double chip_a_mm, double force_a_n, double chip_b_mm, doub
   return chip_a_mm * std::exp((target_force_n - force_a_n) / slope);
 }
 
-// `c` kept within kSecantReach of the measured chip `now_mm` in the t_m it runs (c falls as t_m grows): a
-// step from one measurement far under the target (a cautious first cut) extrapolates the model's shape no
-// further than a secant may.
+// `c` kept within the reach of the measured chip `now_mm` in the t_m it runs (c falls as t_m grows): no
+// thicker than kSecantReach × (a step from one measurement far under the target, a cautious first cut,
+// extrapolates the model's shape no further than a secant may), no thinner than 1 / kSlowingReach ×.
 double within_reach(const PlaceModel& place, double target_force_n, double c, double now_mm) {
   const double at_thickest = place.correction_at(now_mm * kSecantReach, target_force_n);
-  const double at_thinnest = place.correction_at(now_mm / kSecantReach, target_force_n);
+  const double at_thinnest = place.correction_at(now_mm / kSlowingReach, target_force_n);
   if (!(at_thickest > 0.0 && at_thickest < at_thinnest)) return c;  // a model not rising there: no reach in t_m
   return std::clamp(c, at_thickest, at_thinnest);
 }
@@ -70,7 +70,7 @@ double one_sided_correction(const PlaceModel& place, double target_force_n, cons
   if (spread < kMinSecantSpread * std::max(now.chip_mm, before.chip_mm)) return ratio;
   const double chip_mm = secant_chip_mm(before.chip_mm, before.force_n, now.chip_mm, now.force_n, target_force_n);
   if (!(chip_mm > 0.0)) return ratio;
-  const double lo = std::min(now.chip_mm, before.chip_mm) / kSecantReach;
+  const double lo = std::min(now.chip_mm, before.chip_mm) / kSlowingReach;
   const double hi = std::max(now.chip_mm, before.chip_mm) * kSecantReach;
   const double c = place.correction_at(std::clamp(chip_mm, lo, hi), target_force_n);
   return c > 0.0 ? c : ratio;

@@ -13,14 +13,19 @@
 
 namespace feedplan::learning {
 
-//! Smallest and largest correction applied (a ratio outside is more likely a bad measurement than physics).
-inline constexpr double kMinPathCorrection = 0.5;
-inline constexpr double kMaxPathCorrection = 2.0;  //!< see kMinPathCorrection
+//! Smallest and largest correction applied: the planner's range (planner::kMinForceCorrection …
+//! kMaxForceCorrection). Near the force floor the force hardly falls with the feed, and the c that runs the
+//! chip meeting the target there is far above the model's ratio (family-05's trochoid fronts at 400 N).
+inline constexpr double kMinPathCorrection = planner::kMinForceCorrection;
+inline constexpr double kMaxPathCorrection = planner::kMaxForceCorrection;  //!< see kMinPathCorrection
 //! Two measurements at a place whose t_m differ by less than this share of the larger give no slope.
 inline constexpr double kMinSecantSpread = 0.15;
-//! A secant's t_m at the target outside the bracket is kept within the measured t_m widened by this
-//! factor either way.
+//! A step out of the bracket runs at most this factor thicker a chip than measured (speeding up on an
+//! extrapolation: the force's risk) …
 inline constexpr double kSecantReach = 2.0;
+//! … and at most this factor thinner (slowing down: only time is at stake; near the force floor the
+//! chip that meets the target can be many times thinner).
+inline constexpr double kSlowingReach = 8.0;
 //! A place measured within this share of the target keeps the chip it ran (the search has converged
 //! there: a smaller step would chase the sensor's noise).
 inline constexpr double kHoldBand = 0.01;
@@ -81,10 +86,10 @@ struct PathLearning {
 //!  - bracketed on both sides: the secant through the two ends (F = α + β t_m there; edge forces make α > 0,
 //!    which no ratio to a straight-cut model represents);
 //!  - one side only: the secant through this and the previous measurement when they are at least
-//!    kMinSecantSpread apart in t_m and the force rises (kept within kSecantReach of them); otherwise
-//!    the model's shape scaled to the measurement, c = F / F̂(t_m, L), kept within kSecantReach of t_m (the
-//!    corner cut cautiously with a model 40 % soft: +8 % in cycle 2 with the whole ratio, within 5 % with
-//!    the reach);
+//!    kMinSecantSpread apart in t_m and the force rises; otherwise the model's shape scaled to the
+//!    measurement, c = F / F̂(t_m, L); either within kSecantReach thicker and kSlowingReach thinner than the
+//!    chips measured (the corner cut cautiously with a model 40 % soft: +8 % in cycle 2 with the whole
+//!    ratio, within 5 % with the reach);
 //! and never past an end of the bracket: a place measured at or under the target is not slowed below
 //! the t_m it ran, one measured over it does not run faster than the t_m that was too much. Clamped to
 //! [kMinPathCorrection, kMaxPathCorrection]. Why not the ratio alone: at an entry the ratio to a
