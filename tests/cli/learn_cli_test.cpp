@@ -493,6 +493,28 @@ TEST_F(LearnCliTest, MissingOrNonNumericForceCellsNameTheLine) {
                   "broken.csv line " + std::to_string(log.line_of(nan_row)), "fy_n"});
 }
 
+// The next part's report names the version learned from the first; one not in the database is bad input,
+// named by its field, and nothing is stored or written.
+TEST_F(LearnCliTest, ALearnedVersionTheDatabaseDoesNotHoldIsBadInput) {
+  const fs::path report_2 = dir_ / "part2.json";
+  const RunResult first = run_feedplan(learn_args(log_) + " --report " + report_2.string());
+  ASSERT_EQ(first.exit_code, 0) << first.output;
+  json edited = json::parse(read_text(report_2));
+  ASSERT_EQ(edited["path_learning"]["learned_model"]["version"], 2);
+  edited["path_learning"]["learned_model"]["id"] = 999;
+  const fs::path report_bad = write("part2_bad.json", edited.dump(2));
+  const std::string before = content();
+  const fs::path program_3 = dir_ / "part3.nc";
+  const RunResult r = run_feedplan("learn " + report_bad.string() + " " + log_.string() + " -o " + program_3.string() +
+                                   " --db " + db_);
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("path_learning.learned_model.id"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("= 999 (v2): the version learned from this program's earlier parts is not in"), std::string::npos)
+      << r.output;
+  EXPECT_EQ(content(), before);
+  EXPECT_FALSE(fs::exists(program_3));
+}
+
 TEST_F(LearnCliTest, AMissingLogOrAMalformedPlanIsBadInput) {
   const fs::path missing = dir_ / "no_such_log.csv";
   expect_refused(learn_args(missing), 2, {missing.string()});
