@@ -74,13 +74,7 @@ trial::LoopRequest request_for(const std::string& sample, const std::string& mac
   request.start_fit_covariance = sample_model().fit.covariance;
   const sim::MaterialLibrary materials = sim::load_materials(std::string(FEEDPLAN_DATA_DIR) + "/materials.yaml");
   const sim::MachineFile file = sim::load_machine_file(machine_path, materials);
-  sim::SimulationRequest physics;
-  physics.tool = spec.tool;
-  sim::apply_machine(file, physics);
-  request.machine.tool = physics.tool;
-  request.machine.coefficients = physics.coefficients;
-  request.machine.runout_mm = physics.options.runout_mm;
-  request.machine.sensors.dynamometer = physics.sensors.dynamometer;
+  trial::use_machine_file(request.machine, file, spec.tool);
   request.machine.stock = cycle.stock;
   request.machine.machine = spec.machine;
   request.machine.spindle_rpm = spec.spindle_rpm;

@@ -130,14 +130,7 @@ trial::LoopRequest loop_request(const LoopOptions& o, const LoopInputs& in, cons
     request.machine.coefficients = sim::scaled(materials.get(spec.material, "material").coefficients, machine_scale(o));
   } else {
     // The machine file's physics on the spec's catalogue tool (its helix moved by the file's offset).
-    const sim::MachineFile file = sim::load_machine_file(o.machine_path, materials);
-    sim::SimulationRequest physics;
-    physics.tool = spec.tool;
-    if (auto problems = sim::apply_machine(file, physics); !problems.empty()) throw InputError(std::move(problems));
-    request.machine.tool = physics.tool;
-    request.machine.coefficients = physics.coefficients;
-    request.machine.runout_mm = physics.options.runout_mm;
-    request.machine.sensors.dynamometer = physics.sensors.dynamometer;
+    trial::use_machine_file(request.machine, sim::load_machine_file(o.machine_path, materials), spec.tool);
   }
   request.machine.stock = cycle.stock;
   request.machine.machine = spec.machine;

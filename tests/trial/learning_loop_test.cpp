@@ -62,13 +62,7 @@ class LearningLoop : public ::testing::Test {
     const sim::MaterialLibrary materials = sim::load_materials(std::string(FEEDPLAN_SAMPLES_DIR) + "/../data/materials.yaml");
     const sim::MachineFile file =
         sim::load_machine_file(std::string(FEEDPLAN_SAMPLES_DIR) + "/../data/machines/" + machine_file, materials);
-    sim::SimulationRequest physics;
-    physics.tool = request.machine.tool;
-    EXPECT_TRUE(sim::apply_machine(file, physics).empty());
-    request.machine.tool = physics.tool;
-    request.machine.coefficients = physics.coefficients;
-    request.machine.runout_mm = physics.options.runout_mm;
-    request.machine.sensors.dynamometer = physics.sensors.dynamometer;
+    use_machine_file(request.machine, file, request.machine.tool);
     return request;
   }
 

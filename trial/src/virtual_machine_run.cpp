@@ -1,5 +1,6 @@
 #include "feedplan/trial/virtual_machine_run.hpp"
 
+#include "feedplan/core/input_error.hpp"
 #include "feedplan/sim/motion_profile.hpp"
 
 namespace feedplan::trial {
@@ -14,6 +15,16 @@ class RowsDropped final : public force_log::ForceLogSink {
 };
 
 }  // namespace
+
+void use_machine_file(VirtualMachine& machine, const sim::MachineFile& file, const geometry::Tool& tool) {
+  sim::SimulationRequest physics;
+  physics.tool = tool;
+  if (auto problems = sim::apply_machine(file, physics); !problems.empty()) throw InputError(std::move(problems));
+  machine.tool = physics.tool;
+  machine.coefficients = physics.coefficients;
+  machine.runout_mm = physics.options.runout_mm;
+  machine.sensors.dynamometer = physics.sensors.dynamometer;
+}
 
 sim::SimulationResult simulate_on(const geometry::Program& program, const VirtualMachine& machine) {
   sim::SimulationRequest request;

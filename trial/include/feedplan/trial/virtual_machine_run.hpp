@@ -12,6 +12,7 @@
 #include "feedplan/planner/feed_plan.hpp"
 #include "feedplan/planner/peak_comparison.hpp"
 #include "feedplan/sim/cutting_coefficients.hpp"
+#include "feedplan/sim/machine_file.hpp"
 #include "feedplan/sim/milling_simulation.hpp"
 
 namespace feedplan::trial {
@@ -31,6 +32,11 @@ struct VirtualMachine {
   //! Called with the fraction of the simulation done (sim::SimulationRequest::progress); may be empty.
   std::function<void(double)> progress;
 };
+
+//! Gives `machine` the physics of a machine file (sim/machine_file.hpp) on the catalogue tool `tool`: the
+//! tool with the file's helix offset, the cutting coefficients, the runout and the dynamometer. Throws
+//! InputError with sim::apply_machine's problems when the file does not fit the tool (machine unchanged).
+void use_machine_file(VirtualMachine& machine, const sim::MachineFile& file, const geometry::Tool& tool);
 
 //! One run.
 struct VirtualMachineRun {
