@@ -99,18 +99,41 @@ double tooth_load(double phi0, double c0, double s0, double lag, std::span<const
   return load;
 }
 
+// The tip immersions the peak is sampled at, φ = 2π·k/(kChipLoadSteps·N) for k = step + j·kChipLoadSteps,
+// with their cosines and sines: the same for every call with N teeth, so computed once per N.
+struct ToothAngles {
+  std::vector<double> phi, cos, sin;
+};
+
+const ToothAngles& tooth_angles(int flutes) {
+  thread_local std::vector<ToothAngles> tables;
+  if (static_cast<std::size_t>(flutes) >= tables.size()) tables.resize(static_cast<std::size_t>(flutes) + 1);
+  ToothAngles& t = tables[static_cast<std::size_t>(flutes)];
+  if (t.phi.empty()) {
+    const double period = kTwoPi / flutes;
+    for (int j = 0; j < flutes; ++j) {
+      for (int step = 0; step < kChipLoadSteps; ++step) {
+        const double phi0 = period * step / kChipLoadSteps + j * period;
+        t.phi.push_back(phi0);
+        t.cos.push_back(std::cos(phi0));
+        t.sin.push_back(std::sin(phi0));
+      }
+    }
+  }
+  return t;
+}
+
 double peak_load(std::span<const LoadLayer> layers, const Tool& tool) {
   if (layers.empty() || tool.flutes < 1 || !(tool.diameter_mm > 0.0)) return 0.0;
   const double lag = std::abs(std::tan(deg_to_rad(tool.helix_deg))) / tool.radius_mm();
-  const double period = kTwoPi / tool.flutes;
   const std::vector<PreparedLayer> prepared = prepare(layers, lag);
+  const ToothAngles& angles = tooth_angles(tool.flutes);
   double peak = 0.0;
   for (int step = 0; step < kChipLoadSteps; ++step) {
-    const double omega = period * step / kChipLoadSteps;
     double load = 0.0;
     for (int j = 0; j < tool.flutes; ++j) {
-      const double phi0 = omega + j * period;
-      load += tooth_load(phi0, std::cos(phi0), std::sin(phi0), lag, prepared);
+      const auto k = static_cast<std::size_t>(step + j * kChipLoadSteps);
+      load += tooth_load(angles.phi[k], angles.cos[k], angles.sin[k], lag, prepared);
     }
     peak = std::max(peak, load);
   }

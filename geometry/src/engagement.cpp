@@ -9,6 +9,7 @@
 #include "candidate_index.hpp"
 #include "feedplan/core/angle.hpp"
 #include "feedplan/geometry/chip_area_ratio.hpp"
+#include "move_chain.hpp"
 #include "stock_section.hpp"
 #include "swept_piece.hpp"
 #include "vec2.hpp"
@@ -150,12 +151,14 @@ std::string describe(const Move& move, std::size_t index, const std::vector<std:
   return out.str();
 }
 
-// The earlier sweeps and the path as short pieces (split_into_pieces).
+// The earlier sweeps and the path as short pieces (split_into_pieces). The path's moves are cut into
+// pieces by chain (move_chain.hpp): a move written as many blocks is as few pieces as the move itself.
 struct PathPieces {
   std::vector<SweptPiece> pieces;
-  std::size_t first_path_piece = 0;                 // the stock's pieces come before it
-  std::vector<std::size_t> move_first_piece;        // first piece of every move
-  std::vector<std::vector<double>> move_fractions;  // every move's piece bounds, as fractions of the move
+  std::size_t first_path_piece = 0;                  // the stock's pieces come before it
+  std::vector<detail::ChainPlace> places;            // every move's place on its chain
+  std::vector<std::size_t> chain_first_piece;        // first piece of every chain
+  std::vector<std::vector<double>> chain_fractions;  // every chain's piece bounds, as fractions of it
 };
 
 // Earlier sweeps as short pieces, in the order they were cut: the stock's, then the path's.
@@ -167,11 +170,13 @@ PathPieces split_into_pieces(const ToolPath& path, const Stock& stock, double r)
     detail::split_move(swept.move, swept.tool_radius_mm, max_piece_mm, pieces, nullptr);
   }
   split.first_path_piece = pieces.size();
-  split.move_first_piece.resize(path.moves.size());
-  split.move_fractions.resize(path.moves.size());
-  for (std::size_t i = 0; i < path.moves.size(); ++i) {
-    split.move_first_piece[i] = pieces.size();
-    detail::split_move(path.moves[i], r, max_piece_mm, pieces, &split.move_fractions[i]);
+  detail::MoveChains chains = detail::join_continuations(path.moves);
+  split.places = std::move(chains.places);
+  split.chain_first_piece.resize(chains.joined.size());
+  split.chain_fractions.resize(chains.joined.size());
+  for (std::size_t c = 0; c < chains.joined.size(); ++c) {
+    split.chain_first_piece[c] = pieces.size();
+    detail::split_move(chains.joined[c], r, max_piece_mm, pieces, &split.chain_fractions[c]);
   }
   return split;
 }
@@ -232,11 +237,13 @@ struct TravelledPiece {
 };
 
 TravelledPiece travelled_piece(const Sampler& sampler, const MoveSampling& m, double f) {
-  const auto& fractions = sampler.split.move_fractions[m.index];
-  std::size_t piece_in_move = 0;
-  while (piece_in_move + 2 < fractions.size() && f >= fractions[piece_in_move + 1]) ++piece_in_move;
-  return {sampler.split.move_first_piece[m.index] + piece_in_move,
-          (f - fractions[piece_in_move]) / (fractions[piece_in_move + 1] - fractions[piece_in_move])};
+  const detail::ChainPlace& place = sampler.split.places[m.index];
+  const double at = std::clamp(place.start + f * place.share, 0.0, 1.0);  // fraction of the chain
+  const auto& fractions = sampler.split.chain_fractions[place.chain];
+  std::size_t piece_in_chain = 0;
+  while (piece_in_chain + 2 < fractions.size() && at >= fractions[piece_in_chain + 1]) ++piece_in_chain;
+  return {sampler.split.chain_first_piece[place.chain] + piece_in_chain,
+          (at - fractions[piece_in_chain]) / (fractions[piece_in_chain + 1] - fractions[piece_in_chain])};
 }
 
 std::size_t exclude_travelled_piece(Sampler& sampler, const MoveSampling& m, double f, Vec2 p, double r,

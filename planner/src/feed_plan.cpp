@@ -685,6 +685,8 @@ SafetyCheck check_program(const PlanContext& c, const PlanGeometry& geometry, co
   input.settings = &c.settings;
   input.correction_s_mm = c.s;
   input.ds_mm = c.engagement.ds_mm;  // the spacing the plan was analysed at
+  input.planned_engagement = &c.engagement;
+  input.planned_load_ratio = &c.load_ratio;
   // --mode regulate promises F within the merge tolerance of the limit (feed_plan.hpp), not below it.
   if (c.settings.options.mode == PlanMode::kRegulate) {
     input.relative_tolerance = std::max(input.relative_tolerance, c.settings.options.merge_tolerance);

@@ -27,6 +27,51 @@ double correction_at(const SafetyCheckInput& input, double s_mm) {
   return std::max(values[k - 1], values[k]);
 }
 
+// Engagements closer than this (rad, mm) are the same input to the chip load.
+constexpr double kSameEngagement = 1e-9;
+
+bool near(double a, double b) { return std::abs(a - b) <= kSameEngagement; }
+
+// True when sample `a` of `pa` and `b` of `pb` hold the same engaged layers and sets relative to the tip.
+bool same_engagement(const geometry::EngagementProfile& pa, const geometry::EngagementSample& a,
+                     const geometry::EngagementProfile& pb, const geometry::EngagementSample& b) {
+  if (a.layer_count != b.layer_count || !near(a.chip_factor, b.chip_factor) ||
+      !near(a.contact_length_mm, b.contact_length_mm) || !near(a.material_height_mm, b.material_height_mm)) {
+    return false;
+  }
+  for (int k = 0; k < a.layer_count; ++k) {
+    const geometry::EngagementLayer& la = pa.layers[static_cast<std::size_t>(a.layer_begin + k)];
+    const geometry::EngagementLayer& lb = pb.layers[static_cast<std::size_t>(b.layer_begin + k)];
+    if (la.interval_count != lb.interval_count || !near(la.bottom_z_mm - a.position.z_mm, lb.bottom_z_mm - b.position.z_mm) ||
+        !near(la.top_z_mm - a.position.z_mm, lb.top_z_mm - b.position.z_mm)) {
+      return false;
+    }
+    for (int i = 0; i < la.interval_count; ++i) {
+      const geometry::EngagedInterval& ia = pa.intervals[static_cast<std::size_t>(la.interval_begin + i)];
+      const geometry::EngagedInterval& ib = pb.intervals[static_cast<std::size_t>(lb.interval_begin + i)];
+      if (!near(ia.entry_rad, ib.entry_rad) || !near(ia.exit_rad, ib.exit_rad)) return false;
+    }
+  }
+  return true;
+}
+
+// The chip-load ratio at the check's sample: the planner's where its sample at the same place has the same
+// engagement, else computed.
+double load_ratio_at(const SafetyCheckInput& input, const SampleForceModel& forces,
+                     const geometry::EngagementProfile& profile, const geometry::EngagementSample& sample) {
+  const auto* planned = input.planned_engagement;
+  const auto* ratios = input.planned_load_ratio;
+  if (planned && ratios && ratios->size() == planned->samples.size()) {
+    const auto& samples = planned->samples;
+    const auto at = std::lower_bound(samples.begin(), samples.end(), sample.s_mm - kSameEngagement,
+                                     [](const geometry::EngagementSample& p, double s) { return p.s_mm < s; });
+    if (at != samples.end() && near(at->s_mm, sample.s_mm) && same_engagement(*planned, *at, profile, sample)) {
+      return (*ratios)[static_cast<std::size_t>(at - samples.begin())];
+    }
+  }
+  return forces.load_ratio(sample);
+}
+
 // The largest feed the force model allows at the sample (the machine's minimum where none meets the target).
 double force_limit_mm_per_min(const SafetyCheckInput& input, const geometry::EngagementProfile& profile,
                               const geometry::EngagementSample& sample) {
@@ -39,7 +84,7 @@ double force_limit_mm_per_min(const SafetyCheckInput& input, const geometry::Eng
   }
   const SampleForceModel forces(settings.model, settings.mechanistic ? &*settings.mechanistic : nullptr, profile,
                                 *input.tool);
-  const double load_ratio = forces.load_ratio(sample);
+  const double load_ratio = load_ratio_at(input, forces, profile, sample);
   const SampleFeedLimit limit =
       forces.feed_limit(bound_sample, load_ratio, settings.target_force_n / correction, input.tool->flutes,
                         settings.spindle_rpm, std::numeric_limits<double>::infinity(), uncertainty);

@@ -12,6 +12,7 @@
 #include "feedplan/cycles/spec_reader.hpp"
 #include "feedplan/planner/feed_plan.hpp"
 #include "feedplan/planner/safety_check.hpp"
+#include "feedplan/planner/sample_force_model.hpp"
 #include "test_models.hpp"
 
 namespace feedplan::planner {
@@ -43,6 +44,49 @@ SafetyCheck check(const Planned& p, const geometry::Program& program) {
   input.tool = &p.geometry.tool;
   input.settings = &p.settings;
   return check_safety(program, input);
+}
+
+// The check may take the planner's chip-load ratios where its own engagement is the planner's: then its
+// allowed feeds are those it computes itself, and a planner engagement that differs anywhere (here by
+// 1e-6 rad on every engaged set) is never trusted, however wrong the ratios it comes with.
+TEST(SafetyCheck, ThePlannersChipLoadIsTakenOnlyWhereTheEngagementIsTheSame) {
+  const Planned p = plan_sample("trochoid.yaml");
+  const SafetyCheck own = check(p, p.result.program);
+  const SampleForceModel forces(p.settings.model, nullptr, p.geometry.engagement, p.geometry.tool);
+  std::vector<double> ratios;
+  for (const auto& sample : p.geometry.engagement.samples) ratios.push_back(forces.load_ratio(sample));
+  auto check_with = [&](const geometry::EngagementProfile& planned, const std::vector<double>& planned_ratios) {
+    SafetyCheckInput input;
+    input.stock = &p.geometry.stock;
+    input.tool = &p.geometry.tool;
+    input.settings = &p.settings;
+    input.planned_engagement = &planned;
+    input.planned_load_ratio = &planned_ratios;
+    return check_safety(p.result.program, input);
+  };
+  auto expect_same_allowed = [&](const SafetyCheck& found, const char* what) {
+    ASSERT_EQ(found.allowed.size(), own.allowed.size()) << what;
+    for (std::size_t k = 0; k < own.allowed.size(); ++k) {
+      const double a = own.allowed[k].mm_per_min, b = found.allowed[k].mm_per_min;
+      if (std::isinf(a) && std::isinf(b)) continue;
+      ASSERT_NEAR(b, a, 1e-9 * std::max(1.0, a)) << what << " at s " << own.allowed[k].s_mm;
+    }
+  };
+  expect_same_allowed(check_with(p.geometry.engagement, ratios), "the planner's own ratios");
+
+  std::vector<double> wrong = ratios;
+  for (double& r : wrong) r *= 3.0;
+  int differing = 0;
+  const SafetyCheck trusted = check_with(p.geometry.engagement, wrong);
+  for (std::size_t k = 0; k < own.allowed.size(); ++k) {
+    differing += std::isfinite(own.allowed[k].mm_per_min) &&
+                 trusted.allowed[k].mm_per_min < own.allowed[k].mm_per_min * 0.99;
+  }
+  EXPECT_GT(differing, 1000) << "the check does take the planner's ratios where the engagement agrees";
+
+  geometry::EngagementProfile shifted = p.geometry.engagement;
+  for (auto& interval : shifted.intervals) interval.entry_rad += 1e-6;
+  expect_same_allowed(check_with(shifted, wrong), "an engagement 1e-6 rad off");
 }
 
 TEST(SafetyCheck, TheSamplesPlansPassIt) {

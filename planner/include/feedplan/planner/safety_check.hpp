@@ -39,6 +39,12 @@ struct SafetyCheckInput {
   //! the correction at a place between two of them is the larger of the two. Empty: no correction.
   std::vector<double> correction_s_mm;
   double ds_mm = 0.05;                 //!< spacing of the check's samples, mm (> 0)
+  //! Optional: the planner's engagement and the chip-load ratio it computed at each of its samples. A
+  //! check sample at a planner sample's place whose own engagement there is the same (every layer and
+  //! engaged set to 1e-9) takes that ratio instead of computing it again: the same function of inputs
+  //! the check derived itself. Null (or a mismatch anywhere): computed.
+  const geometry::EngagementProfile* planned_engagement = nullptr;
+  const std::vector<double>* planned_load_ratio = nullptr;
   double relative_tolerance = 0.01;    //!< a feed this much above the limit is not reported
 };
 
