@@ -56,25 +56,31 @@ double robust_sigma(const AxisNoise& axis) {
   return 1.4826 * median(std::move(absolute));
 }
 
-// The mean largest |F_xy| over one window with noise of spread `sigma_n` (lag-1 correlation `lag1`) added.
-double noisy_largest_n(const std::vector<double>& fx, const std::vector<double>& fy, RowRange r, double sigma_n,
-                       double lag1, std::mt19937& random) {
+// The mean largest |F_xy| over one window with noise of spread sigma_n[l] (lag-1 correlation `lag1`)
+// added, for every l: the same unit noise draws scaled to each spread (common random numbers, so the
+// extrapolation across spreads sees the spread's effect, not the draws' scatter).
+std::vector<double> noisy_largest_n(const std::vector<double>& fx, const std::vector<double>& fy, RowRange r,
+                                    const std::vector<double>& sigma_n, double lag1, std::mt19937& random) {
   std::normal_distribution<double> normal(0.0, 1.0);
-  const double innovation = sigma_n * std::sqrt(1.0 - lag1 * lag1);
-  double sum = 0.0;
+  const double innovation = std::sqrt(1.0 - lag1 * lag1);
+  const std::size_t rows = r.end - r.first;
+  std::vector<double> ux(rows), uy(rows), sum(sigma_n.size(), 0.0);
   for (int draw = 0; draw < kNoiseBiasDraws; ++draw) {
-    double nx = sigma_n * normal(random), ny = sigma_n * normal(random);
-    double largest = 0.0;
-    for (std::size_t i = r.first; i < r.end; ++i) {
-      if (i > r.first) {
-        nx = lag1 * nx + innovation * normal(random);
-        ny = lag1 * ny + innovation * normal(random);
-      }
-      largest = std::max(largest, std::hypot(fx[i] + nx, fy[i] + ny));
+    for (std::size_t k = 0; k < rows; ++k) {
+      ux[k] = k == 0 ? normal(random) : lag1 * ux[k - 1] + innovation * normal(random);
+      uy[k] = k == 0 ? normal(random) : lag1 * uy[k - 1] + innovation * normal(random);
     }
-    sum += largest;
+    for (std::size_t l = 0; l < sigma_n.size(); ++l) {
+      double largest_squared = 0.0;  // of |F_xy|: one square root per draw
+      for (std::size_t k = 0; k < rows; ++k) {
+        const double x = fx[r.first + k] + sigma_n[l] * ux[k], y = fy[r.first + k] + sigma_n[l] * uy[k];
+        largest_squared = std::max(largest_squared, x * x + y * y);
+      }
+      sum[l] += std::sqrt(largest_squared);
+    }
   }
-  return sum / kNoiseBiasDraws;
+  for (double& v : sum) v /= kNoiseBiasDraws;
+  return sum;
 }
 
 // The mean peak without noise from the means S at noise variance u σ² (u = 1 + λ): S = P + k u^p fitted by
@@ -136,6 +142,8 @@ PeakNoise peak_noise(const std::vector<double>& t_s, const std::vector<double>& 
   std::mt19937 random(20261127u);
   const std::vector<double> u = {1.0, 2.0, 3.0, 4.0};
   std::vector<double> mean_peak(u.size(), 0.0);
+  std::vector<double> added_sigma_n;  // the noise added to reach u σ²
+  for (std::size_t l = 1; l < u.size(); ++l) added_sigma_n.push_back(out.sigma_n * std::sqrt(u[l] - 1.0));
   std::size_t windows = 0;
   const std::size_t step = std::max<std::size_t>(1, periods.size() / kNoiseBiasWindows);
   for (std::size_t k = 0; k < periods.size(); k += step) {
@@ -145,9 +153,8 @@ PeakNoise peak_noise(const std::vector<double>& t_s, const std::vector<double>& 
     double read = 0.0;
     for (std::size_t i = r.first; i < r.end; ++i) read = std::max(read, std::hypot(fx_n[i], fy_n[i]));
     mean_peak[0] += read;
-    for (std::size_t l = 1; l < u.size(); ++l) {
-      mean_peak[l] += noisy_largest_n(fx_n, fy_n, r, out.sigma_n * std::sqrt(u[l] - 1.0), out.lag1, random);
-    }
+    const std::vector<double> noisy = noisy_largest_n(fx_n, fy_n, r, added_sigma_n, out.lag1, random);
+    for (std::size_t l = 1; l < u.size(); ++l) mean_peak[l] += noisy[l - 1];
   }
   if (windows > 0) {
     for (double& v : mean_peak) v /= static_cast<double>(windows);

@@ -208,8 +208,11 @@ TEST(LearnAlongPath, ConvergesOnAForceOfAnotherShapeAndNeverSlowsAPlaceMeasuredU
     errors.push_back(std::abs(force_n - target_n) / target_n);
     state = learn_along_path(plan, model, {at_sample_5(chip_mm, force_n)}, target_n, state);
     const double next_mm = chip_run_mm(state.place_correction[5], target_n);
-    if (force_n <= target_n) EXPECT_GE(next_mm, chip_mm - 1e-12) << "cycle " << cycle;  // never slowed
-    if (force_n > target_n) EXPECT_LT(next_mm, chip_mm) << "cycle " << cycle;
+    if (force_n <= target_n) {
+      EXPECT_GE(next_mm, chip_mm - 1e-12) << "cycle " << cycle;  // never slowed
+    } else {
+      EXPECT_LT(next_mm, chip_mm) << "cycle " << cycle;
+    }
     chip_mm = next_mm;
   }
   EXPECT_GT(errors[0], 0.3);
