@@ -23,6 +23,7 @@
 #include "feedplan/learning/path_correction.hpp"
 #include "feedplan/model_db/stale_model_error.hpp"
 #include "feedplan/model_db/store.hpp"
+#include "feedplan/planner/path_history_plot.hpp"
 #include "feedplan/planner/plan_plot.hpp"
 #include "feedplan/planner/plan_report.hpp"
 #include "feedplan/force_log/force_log.hpp"
@@ -74,6 +75,7 @@ struct RemadePlan {
 struct Replanned {
   planner::PlanSettings settings;      // the report's, with the path correction (or the learned model)
   learning::PathLearning along_path;   // the learning along this path, for the next part
+  std::vector<planner::PathHistoryCycle> history;  // the parts learned from so far, this one last
   planner::PlanResult plan;            // the new plan
   std::string program_text;            // its G-code
 };
@@ -275,6 +277,8 @@ Replanned replan(const LearnInputs& in, const RemadePlan& remade, const learning
   Replanned next;
   next.settings = remade.settings;
   next.along_path = learn_along_this_path(report, remade.plan, remade.settings.model, update);
+  next.history = planner::with_cycle(report.context.path_history,
+                                     planner::history_cycle(remade.plan, next.along_path.step_force_n, report.context.path_history));
   next.settings.force_correction = next.along_path.correction;
   next.plan = planner::plan(remade.geometry, next.settings);
   next.program_text = program_text(in, next.plan);
@@ -315,7 +319,8 @@ model_db::ModelRecord store_learned_model(const LearnOptions& o, const LearnInpu
 
 // The report's context for the new plan: the stored version, the program, the learning along the path.
 planner::PlanReportContext next_context(const LearnOptions& o, const LearnInputs& in, const model_db::ModelRecord& stored,
-                                        const learning::PathLearning& along_path) {
+                                        const Replanned& next) {
+  const learning::PathLearning& along_path = next.along_path;
   planner::PlanReportContext context = in.report.context;
   if (along_path.correction.empty()) {
     // Re-planned with the learned version itself (the mechanistic kind).
@@ -340,6 +345,7 @@ planner::PlanReportContext next_context(const LearnOptions& o, const LearnInputs
   for (const auto& b : along_path.bracket) {
     context.path_brackets.push_back({b.below_chip_mm, b.below_force_n, b.above_chip_mm, b.above_force_n});
   }
+  context.path_history = next.history;
   return context;
 }
 
@@ -347,9 +353,18 @@ planner::PlanReportContext next_context(const LearnOptions& o, const LearnInputs
 void stage_learn_reports(const LearnOptions& o, const LearnInputs& in, const model_db::ModelRecord& stored,
                          const std::string& model_label, const std::vector<std::pair<double, double>>& peaks,
                          const Replanned& next, OutputFiles& files) {
-  const planner::PlanReportContext context = next_context(o, in, stored, next.along_path);
+  const planner::PlanReportContext context = next_context(o, in, stored, next);
   if (!o.report_path.empty()) files.add(o.report_path, planner::plan_report_json(next.plan, next.settings, context));
-  if (!o.plot_path.empty()) {
+  if (!o.plot_path.empty() && !next.history.empty()) {
+    // Every part learned from so far, and the plan for the next one.
+    planner::PathHistoryPlotOptions plot;
+    plot.title = in.spec.cycle + ": learning along the path, " + std::to_string(next.history.size()) +
+                 (next.history.size() == 1 ? " cycle" : " cycles") + " (newest darkest) and the next plan";
+    plot.next = &next.plan;
+    std::vector<double> s_mm;
+    for (const auto& sample : next.plan.samples) s_mm.push_back(sample.s_mm);
+    files.add(o.plot_path, planner::path_history_svg(s_mm, next.history, next.settings.target_force_n, plot));
+  } else if (!o.plot_path.empty()) {
     planner::PlanPlotOptions plot;
     plot.title = next.along_path.correction.empty()
                      ? in.spec.cycle + " re-planned with " + model_label + " v" + std::to_string(stored.version) +
@@ -548,7 +563,7 @@ void add_learn_command(CLI::App& app, LearnOptions& options) {
   cmd->add_option("-o,--output", options.program_path, "Re-planned G-code program to write")->required();
   cmd->add_option("--db", options.db_path, "Model database (default: the report's, else $FEEDPLAN_DB, else the sample)");
   cmd->add_option("--report", options.report_path, "Write the re-planned plan's report (JSON)");
-  cmd->add_option("--plot", options.plot_path, "Write the re-planned plan's plot (SVG) with the measured peaks");
+  cmd->add_option("--plot", options.plot_path, "Write the learning history (SVG): measured force and feed along the path for every cycle so far, and the next plan (the mechanistic kind: the re-planned plan with the measured peaks)");
   cmd->add_option("--note", options.note, "Note stored with the new model version");
   cmd->add_option("--calibration", options.calibration_path,
                   "Servo-current calibration (feedplan calibrate-currents -o) for logs with currents but no forces");

@@ -17,9 +17,11 @@
 #include "feedplan/core/atomic_file.hpp"
 #include "feedplan/core/input_error.hpp"
 #include "feedplan/core/number_text.hpp"
+#include "output_files.hpp"
 #include "feedplan/cycles/cycle.hpp"
 #include "feedplan/cycles/spec_reader.hpp"
 #include "feedplan/trial/learning_loop.hpp"
+#include "feedplan/planner/path_history_plot.hpp"
 #include "feedplan/sim/machine_file.hpp"
 #include "feedplan/sim/material.hpp"
 
@@ -48,6 +50,9 @@ void add_loop_command(CLI::App& app, LoopOptions& options) {
   cmd->add_flag("--json", options.json, "Print the table as JSON");
   cmd->add_option("--revolutions", options.revolutions_path,
                   "Also write every cycle's simulated revolutions (s span, place, peak, planned force, error) as CSV");
+  cmd->add_option("--plot", options.plot_path,
+                  "Also write the learning history (SVG): the force measured and the feed planned along the path in\n"
+                  "every cycle (the newest 8), and the plan for the next part");
 }
 
 namespace {
@@ -107,7 +112,7 @@ LoopInputs read_loop_inputs(const LoopOptions& o) {
                  {"--db", database_path(o.db_path)},
                  {"--machine", o.machine_path},
                  {"--materials", o.materials_path.empty() ? bundled_materials_path() : o.materials_path}},
-                {{"--revolutions", o.revolutions_path}}, problems);
+                {{"--revolutions", o.revolutions_path}, {"--plot", o.plot_path}}, problems);
   if (!problems.empty()) throw InputError(std::move(problems));
   return in;
 }
@@ -186,6 +191,19 @@ void print_loop_json(const LoopOptions& o, const LoopInputs& in, const ChosenMod
   std::cout << out.dump(2) << "\n";
 }
 
+// The learning history of the loop and the plan of the part after its last cycle (path_history_plot.hpp).
+std::string history_plot(const trial::LoopRequest& request, const trial::LoopResult& result, const LoopInputs& in) {
+  const planner::PlanResult next = planner::plan(request.geometry, result.next_settings);
+  std::vector<double> s_mm;
+  for (const auto& sample : next.samples) s_mm.push_back(sample.s_mm);
+  planner::PathHistoryPlotOptions plot;
+  plot.title = in.spec.cycle + " on the virtual machine: learning along the path, " +
+               std::to_string(result.cycles.size()) + (result.cycles.size() == 1 ? " cycle" : " cycles") +
+               " (newest darkest) and the next plan";
+  plot.next = &next;
+  return planner::path_history_svg(s_mm, result.history, in.target_force_n, plot);
+}
+
 void print_loop_text(const LoopOptions& o, const LoopInputs& in, const ChosenModel& chosen, const trial::LoopResult& result) {
   const std::string machine = o.machine_path.empty()
                                   ? "virtual machine forces × " + shortest_number_text(machine_scale(o)) + " of the material's"
@@ -220,13 +238,14 @@ int run_loop_command(const LoopOptions& o) {
   const std::optional<ChosenModel> chosen = choose_model(store, in.spec, o.model_id);
   if (!chosen) return 1;
   in.cautious = planning_uncertainty(*chosen, o.cautious);
-  const trial::LoopResult result = run_loop_with_progress(loop_request(o, in, *chosen), o.cycles);
-  if (!o.revolutions_path.empty()) {
-    if (const std::string error = write_file_atomically(o.revolutions_path, revolutions_csv(result, in.target_force_n));
-        !error.empty()) {
-      std::cerr << "feedplan: failed: " << error << "\n";  // a write error is not bad input: exit 1
-      return 1;
-    }
+  const trial::LoopRequest request = loop_request(o, in, *chosen);
+  const trial::LoopResult result = run_loop_with_progress(request, o.cycles);
+  OutputFiles files;
+  if (!o.revolutions_path.empty()) files.add(o.revolutions_path, revolutions_csv(result, in.target_force_n));
+  if (!o.plot_path.empty()) files.add(o.plot_path, history_plot(request, result, in));
+  if (const std::string error = files.commit(); !error.empty()) {
+    std::cerr << "feedplan: failed: " << error << "\n";  // a write error is not bad input: exit 1
+    return 1;
   }
   if (o.json) {
     print_loop_json(o, in, *chosen, result);

@@ -28,6 +28,7 @@ struct LoopOptions {
   std::string materials_path;       //!< --materials
   bool json = false;                //!< --json
   std::string revolutions_path;     //!< --revolutions: per-revolution CSV of every cycle
+  std::string plot_path;            //!< --plot: learning along the path, every cycle, as SVG
 };
 
 //! Registers the subcommand.

@@ -113,6 +113,7 @@ PathLearning learn_along_path(const planner::PlanResult& plan, const model::Resp
   out.place_correction = had_correction ? previous_correction : std::vector<double>(n, 1.0);
   out.measurement = had_measurement ? previous.measurement : std::vector<PathMeasurement>(n);
   out.bracket = previous.bracket.size() == n ? previous.bracket : std::vector<PlaceBracket>(n);
+  out.step_force_n.assign(n, 0.0);
   std::vector<detail::PlaceModel> places(n);
   for (std::size_t i = 0; i < n; ++i) {
     places[i].model = &model;
@@ -129,6 +130,7 @@ PathLearning learn_along_path(const planner::PlanResult& plan, const model::Resp
     out.place_correction[i] =
         detail::next_place_correction(places[i], target_force_n, now, before, out.bracket[i], out.place_correction[i]);
     out.measurement[i] = now;
+    out.step_force_n[i] = now.force_n;
   }
   // Look ahead one tooth period: where the force rises along the path (an entry), the next plan slows
   // down before the place the rise was seen at.

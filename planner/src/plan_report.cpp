@@ -336,6 +336,42 @@ void check_path_learning_values(const Node& learning, const PlanReportContext& c
   }
 }
 
+// path_learning.history: cycles numbered upwards from 1, a cycle time ≥ 0, and per array one value ≥ 0 per
+// plan sample (`samples`).
+std::vector<PathHistoryCycle> read_path_history(const Node& learning, std::size_t samples) {
+  std::vector<PathHistoryCycle> history;
+  const Node list = learning.array("history");
+  for (std::size_t k = 0; k < list.size(); ++k) {
+    const Node item = list.item(k);
+    PathHistoryCycle c;
+    c.cycle = static_cast<int>(item.integer_in("cycle", 1, 1000000000));
+    if (!history.empty() && c.cycle <= history.back().cycle) {
+      item.report(item.child_path("cycle"), "= " + std::to_string(c.cycle) + ": must be larger than the cycle before (" +
+                                                std::to_string(history.back().cycle) + ")");
+    }
+    c.cycle_time_s = item.number_at_least("cycle_time_s", 0.0);
+    const auto values = [&](const char* key) {
+      std::vector<double> v = item.numbers(key);
+      if (v.size() != samples) {
+        item.report(item.child_path(key), "has " + std::to_string(v.size()) + " values: must have " +
+                                              std::to_string(samples) + ", one per plan sample as force_correction");
+      }
+      for (std::size_t i = 0; i < v.size(); ++i) {
+        if (!(v[i] >= 0.0)) {
+          item.report(item.child_path(key) + "[" + std::to_string(i) + "]", "= " + shortest_number_text(v[i]) + ": must be ≥ 0");
+          break;
+        }
+      }
+      return v;
+    };
+    c.feed_mm_per_min = values("feed_mm_per_min");
+    c.predicted_n = values("predicted_n");
+    c.measured_n = values("measured_n");
+    history.push_back(std::move(c));
+  }
+  return history;
+}
+
 // Learning along the path, when the report has it (`samples`: the force_correction entries).
 void read_path_learning(const Node& root, std::size_t samples, PlanReportContext& context) {
   if (!root.has("path_learning")) return;
@@ -357,6 +393,7 @@ void read_path_learning(const Node& root, std::size_t samples, PlanReportContext
       context.path_learned_model_version = static_cast<int>(version);
     }
   }
+  if (learning.has("history")) context.path_history = read_path_history(learning, samples);
   check_path_learning_lengths(learning, context, samples);
   check_path_learning_values(learning, context);
 }
@@ -389,6 +426,29 @@ void check_settings(const PlanReport& report) {
   std::erase_if(settings_problems, [](const InputProblem& p) { return p.field == "tool.flutes"; });  // check_tool's
   check_tool(report.context.tool, settings_problems);
   if (!settings_problems.empty()) throw InputError(std::move(settings_problems));
+}
+
+}  // namespace
+
+namespace {
+
+Json numbers_json(const std::vector<double>& values) {
+  Json out = Json::array();
+  for (const double v : values) out.push_back(json_number(v));
+  return out;
+}
+
+// path_learning.history (path_history.hpp).
+Json history_json(const std::vector<PathHistoryCycle>& history) {
+  Json out = Json::array();
+  for (const PathHistoryCycle& c : history) {
+    out.push_back(Json{{"cycle", c.cycle},
+                       {"cycle_time_s", json_number(c.cycle_time_s)},
+                       {"feed_mm_per_min", numbers_json(c.feed_mm_per_min)},
+                       {"predicted_n", numbers_json(c.predicted_n)},
+                       {"measured_n", numbers_json(c.measured_n)}});
+  }
+  return out;
 }
 
 }  // namespace
@@ -448,6 +508,7 @@ std::string plan_report_json(const PlanResult& result, const PlanSettings& setti
       root["path_learning"]["learned_model"] = Json{{"id", context.path_learned_model_id},
                                                     {"version", context.path_learned_model_version}};
     }
+    if (!context.path_history.empty()) root["path_learning"]["history"] = history_json(context.path_history);
   }
   root["summary"] = summary_json(result.summary);
   root["program"] = Json{{"path", context.program_path},

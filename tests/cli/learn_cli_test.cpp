@@ -277,8 +277,10 @@ TEST_F(LearnCliTest, TheNextPartLearnsOnFromThePathLearningOfTheFirst) {
   ASSERT_EQ(cut.exit_code, 0) << cut.output;
   const fs::path report_3 = dir_ / "part3.json";
   const fs::path program_3 = dir_ / "part3.nc";
+  const fs::path plot_3 = dir_ / "part3.svg";
   const RunResult second = run_feedplan("learn " + report_2.string() + " " + log_2.string() + " -o " + program_3.string() +
-                                        " --report " + report_3.string() + " --db " + db_ + " --json");
+                                        " --report " + report_3.string() + " --plot " + plot_3.string() + " --db " + db_ +
+                                        " --json");
   ASSERT_EQ(second.exit_code, 0) << second.output;
   EXPECT_EQ(json_of(second.output)["model_before"]["version"], 2);  // built on part 1's learned version
   EXPECT_EQ(json_of(second.output)["model_after"]["version"], 3);
@@ -295,6 +297,34 @@ TEST_F(LearnCliTest, TheNextPartLearnsOnFromThePathLearningOfTheFirst) {
     EXPECT_GE(after[3].get<double>(), before[3].get<double>()) << "sample " << i;
   }
   EXPECT_GT(remeasured, 100);  // part 2 ran other feeds at the same places
+
+  // The history: part 1 in part 2's report, parts 1 and 2 in part 3's, each with the time of the plan it
+  // was cut with; part 2's measured force per place is the measurement part 3's report carries.
+  const json& history_2 = part_2["path_learning"]["history"];
+  const json& history_3 = part_3["path_learning"]["history"];
+  ASSERT_EQ(history_2.size(), 1u);
+  ASSERT_EQ(history_3.size(), 2u);
+  EXPECT_EQ(history_3[0], history_2[0]);
+  EXPECT_EQ(history_3[1]["cycle"], 2);
+  EXPECT_DOUBLE_EQ(history_3[1]["cycle_time_s"].get<double>(), part_2["summary"]["cycle_time_s"].get<double>());
+  const json& measured = history_3[1]["measured_n"];
+  ASSERT_EQ(measured.size(), part_3["path_learning"]["measurements"].size());
+  int compared = 0;
+  for (std::size_t i = 0; i < measured.size(); ++i) {
+    const double now = part_3["path_learning"]["measurements"][i][2].get<double>();
+    const double before = part_2["path_learning"]["measurements"][i][2].get<double>();
+    if (measured[i].get<double>() > 0.0) {
+      EXPECT_NEAR(measured[i].get<double>(), now, 0.051) << "sample " << i;
+      ++compared;
+    } else {
+      EXPECT_EQ(now, before) << "sample " << i;  // not measured by part 2: the older measurement stays
+    }
+  }
+  EXPECT_GT(compared, 100);
+  const std::string svg = read_text(plot_3);
+  for (const char* series : {"measured cycle-1", "measured cycle-2", "feed cycle-2", "next-force", "next-feed"}) {
+    EXPECT_NE(svg.find(std::string("class=\"") + series + "\""), std::string::npos) << series;
+  }
 }
 
 // A Ø8 corner planned with the Ø10 model (borrowed): learning must not change the Ø10's model. It is
@@ -536,8 +566,13 @@ TEST_F(LoopCliTest, LearnsTheMachineAndLeavesTheDatabaseAlone) {
   const std::string before = content();
   const fs::path revolutions = dir_ / "revolutions.csv";
   const RunResult r = run_feedplan("loop " + kSamples + "/corner.yaml --cycles 2 --db " + db_ +
-                                   " --machine-scale 1.5 --target-force 600 --json --revolutions " + revolutions.string());
+                                   " --machine-scale 1.5 --target-force 600 --json --revolutions " + revolutions.string() +
+                                   " --plot " + (dir_ / "loop.svg").string());
   ASSERT_EQ(r.exit_code, 0) << r.output;
+  const std::string svg = read_text(dir_ / "loop.svg");
+  for (const char* series : {"measured cycle-1", "measured cycle-2", "feed cycle-1", "next-force", "next-feed", "target"}) {
+    EXPECT_NE(svg.find(std::string("class=\"") + series + "\""), std::string::npos) << series;
+  }
   const json out = json_of(r.output);
   ASSERT_EQ(out["cycles"].size(), 2u) << r.output;
   const double first = out["cycles"][0]["steady_max_abs_error_percent"].get<double>();
@@ -590,6 +625,9 @@ TEST_F(LoopCliTest, BadFlagsNameTheFlag) {
   const RunResult nowhere = run_feedplan(loop + " --revolutions " + (dir_ / "missing" / "r.csv").string());
   EXPECT_EQ(nowhere.exit_code, 2) << nowhere.output;
   EXPECT_NE(nowhere.output.find("--revolutions"), std::string::npos) << nowhere.output;
+  const RunResult no_plot = run_feedplan(loop + " --plot " + (dir_ / "missing" / "h.svg").string());
+  EXPECT_EQ(no_plot.exit_code, 2) << no_plot.output;
+  EXPECT_NE(no_plot.output.find("--plot"), std::string::npos) << no_plot.output;
 }
 
 TEST_F(LoopCliTest, CutsOnAMachineFile) {

@@ -315,6 +315,17 @@ TEST(PlanReportRoundTrip, LearningAlongThePathIsCarriedToTheNextPart) {
   }
   context.path_learned_model_id = 7;
   context.path_learned_model_version = 3;
+  for (int cycle : {1, 2}) {
+    PathHistoryCycle h;
+    h.cycle = cycle;
+    h.cycle_time_s = 20.0 / cycle;
+    for (std::size_t i = 0; i < n; ++i) {
+      h.feed_mm_per_min.push_back(100.0 + 0.1 * static_cast<double>(i));
+      h.predicted_n.push_back(300.0 + cycle);
+      h.measured_n.push_back(i % 4 == 0 ? 0.0 : 310.5 - cycle);
+    }
+    context.path_history.push_back(h);
+  }
   const fs::path path = temporary_path("path_learning.json");
   ASSERT_EQ(write_plan_report(path, p.result, settings, context), "");
   const PlanReport report = read_plan_report(path);
@@ -324,6 +335,14 @@ TEST(PlanReportRoundTrip, LearningAlongThePathIsCarriedToTheNextPart) {
   EXPECT_EQ(report.context.path_brackets, context.path_brackets);
   EXPECT_EQ(report.context.path_learned_model_id, 7);
   EXPECT_EQ(report.context.path_learned_model_version, 3);
+  ASSERT_EQ(report.context.path_history.size(), 2u);
+  for (std::size_t k = 0; k < 2; ++k) {
+    EXPECT_EQ(report.context.path_history[k].cycle, context.path_history[k].cycle);
+    EXPECT_EQ(report.context.path_history[k].cycle_time_s, context.path_history[k].cycle_time_s);
+    EXPECT_EQ(report.context.path_history[k].feed_mm_per_min, context.path_history[k].feed_mm_per_min);
+    EXPECT_EQ(report.context.path_history[k].predicted_n, context.path_history[k].predicted_n);
+    EXPECT_EQ(report.context.path_history[k].measured_n, context.path_history[k].measured_n);
+  }
   // A plan that has not learned along its path writes none of it.
   const std::string plain = plan_report_json(p.result, p.settings, p.context);
   EXPECT_EQ(plain.find("path_learning"), std::string::npos);
@@ -510,6 +529,29 @@ TEST(PlanReportRead, LearningAlongThePathMustMatchThePlanSamples) {
               Contains(problem("path_learning.learned_model.id", "= 2.5: must be a whole number ≥ 1")));
   EXPECT_THAT(problems_after(with_learning({{"learned_model", {{"id", 2}, {"version", 0}}}})),
               Contains(problem("path_learning.learned_model.version", "= 0: must be a whole number ≥ 1")));
+  const auto cycle = [](int number, nlohmann::json measured) {
+    return nlohmann::json{{"cycle", number}, {"cycle_time_s", 12.5}, {"feed_mm_per_min", {800.0}},
+                          {"predicted_n", {400.0}}, {"measured_n", std::move(measured)}};
+  };
+  EXPECT_THAT(problems_after(with_learning({{"history", {cycle(1, {410.0, 2.0})}}})),
+              Contains(problem("path_learning.history[0].measured_n", "has 2 values: must have 1")));
+  EXPECT_THAT(problems_after(with_learning({{"history", {cycle(1, {-4.0})}}})),
+              Contains(problem("path_learning.history[0].measured_n[0]", "= -4: must be ≥ 0")));
+  EXPECT_THAT(problems_after(with_learning({{"history", {cycle(2, {410.0}), cycle(2, {405.0})}}})),
+              Contains(problem("path_learning.history[1].cycle", "= 2: must be larger than the cycle before (2)")));
+  EXPECT_THAT(problems_after(with_learning({{"history", {cycle(0, {410.0})}}})),
+              Contains(problem("path_learning.history[0].cycle", "")));
+  // A well-formed history reads back (the edit that makes it so, and nothing else, in a valid report).
+  const CornerPlan& p = corner_plan();
+  nlohmann::ordered_json json = nlohmann::ordered_json::parse(plan_report_json(p.result, p.settings, p.context));
+  json["force_correction"] = nlohmann::ordered_json::array();
+  for (std::size_t i = 0; i < p.result.samples.size(); ++i) json["force_correction"].push_back(1.0);
+  const std::vector<double> ones(p.result.samples.size(), 1.0), zeros(p.result.samples.size(), 0.0);
+  std::vector<std::array<double, 4>> rows(p.result.samples.size(), {0.0, 0.0, 0.0, 0.0});
+  json["path_learning"] = {{"place_correction", ones}, {"measurements", rows},
+                           {"history", {{{"cycle", 1}, {"cycle_time_s", 12.5}, {"feed_mm_per_min", ones},
+                                         {"predicted_n", ones}, {"measured_n", zeros}}}}};
+  EXPECT_EQ(parse_plan_report(json.dump()).context.path_history.size(), 1u);
 }
 
 // A report's tool of diameter 0 was accepted, and learning refitted a model for a tool that cannot exist.

@@ -5,6 +5,8 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include <filesystem>
 #include <unistd.h>
 
@@ -104,6 +106,49 @@ TEST_F(LearningLoop, TrochoidOnThreeMachinesOfTheFamilyConvergesWithoutDraggingT
     EXPECT_LE(result.cycles[2].simulated_cycle_time_s, 1.45 * result.cycles[1].simulated_cycle_time_s);
     EXPECT_LE(result.cycles[2].comparison.max_overshoot_percent, 8.0);
   }
+}
+
+// The learning history (planner/path_history.hpp) holds, per cycle, the plan's time and its predictions, and
+// what the log measured at each place: on steady revolutions its largest value there is the virtual
+// machine's true peak of that revolution (a truth the learner never sees) to within the sensor's noise.
+TEST_F(LearningLoop, TheHistoryHoldsWhatEachCycleMeasuredWhereItWasMeasured) {
+  LoopRequest request = corner_request(1.5, 600.0);
+  request.cycles = 2;
+  const LoopResult result = run_learning_loop(request);
+  ASSERT_EQ(result.history.size(), 2u);
+  const auto& samples = request.geometry.engagement.samples;
+  for (std::size_t k = 0; k < 2; ++k) {
+    const planner::PathHistoryCycle& h = result.history[k];
+    const LoopCycle& c = result.cycles[k];
+    EXPECT_EQ(h.cycle, c.cycle);
+    EXPECT_DOUBLE_EQ(h.cycle_time_s, c.planned_cycle_time_s);
+    ASSERT_EQ(h.measured_n.size(), samples.size());
+    std::vector<double> errors;
+    for (const auto& r : c.comparison.revolutions) {
+      if (!r.steady) continue;
+      double largest_n = 0.0;
+      for (std::size_t i = 0; i < samples.size(); ++i) {
+        if (samples[i].s_mm >= r.revolution.s_start_mm && samples[i].s_mm <= r.revolution.s_end_mm) {
+          largest_n = std::max(largest_n, h.measured_n[i]);
+        }
+      }
+      if (largest_n > 0.0) errors.push_back(std::abs(largest_n / r.revolution.peak_n - 1.0));
+    }
+    ASSERT_GT(errors.size(), 50u) << "cycle " << h.cycle;
+    std::sort(errors.begin(), errors.end());
+    const double median = errors[errors.size() / 2];
+    std::printf("cycle %d: %zu steady revolutions, measured in the history vs true peak: median |error| %.2f %%, p90 %.2f %%\n",
+                h.cycle, errors.size(), 100 * median, 100 * errors[errors.size() * 9 / 10]);
+    EXPECT_LE(median, 0.01) << "cycle " << h.cycle;
+  }
+  // The first cycle ran over the target on a soft model, the second close to it.
+  double first = 0.0, second = 0.0;
+  for (std::size_t i = 0; i < samples.size(); ++i) {
+    first = std::max(first, result.history[0].measured_n[i]);
+    second = std::max(second, result.history[1].measured_n[i]);
+  }
+  EXPECT_GT(first, 1.2 * 600.0);
+  EXPECT_LT(second, first);
 }
 
 TEST_F(LearningLoop, ThirdCycleHoldsTheTargetWithinFivePercentOnSteadyCuts) {

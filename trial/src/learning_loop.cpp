@@ -76,6 +76,8 @@ LoopResult run_learning_loop(const LoopRequest& request) {
         // (path_correction.hpp), a fixed knob per place from part to part; the refit is for other programs.
         along_path = learning::learn_along_path(plan, settings.model, measured, settings.target_force_n, along_path);
         settings.force_correction = along_path.correction;
+        result.history =
+            planner::with_cycle(std::move(result.history), planner::history_cycle(plan, along_path.step_force_n, result.history));
       } else {
         settings.model = learned_model;
         plan_covariance = covariance;
@@ -86,6 +88,11 @@ LoopResult run_learning_loop(const LoopRequest& request) {
     if (request.progress) request.progress(static_cast<double>(cycle) / request.cycles);
   }
   result.final_model = learned_model;
+  result.next_settings = settings;
+  result.next_settings.uncertainty.reset();
+  if (plan_covariance && request.first_cut_uncertainty > 0.0) {  // as the cycles above
+    result.next_settings.uncertainty = planner::ForceUncertainty{*plan_covariance, request.sigmas, relative, true};
+  }
   if (covariance) result.final_covariance = *covariance;
   return result;
 }

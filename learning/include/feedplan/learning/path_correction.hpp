@@ -58,6 +58,9 @@ struct PathLearning {
   std::vector<double> place_correction;      //!< c per plan sample before the look-ahead (what the next step updates)
   std::vector<PathMeasurement> measurement;  //!< the latest measurement per plan sample
   std::vector<PlaceBracket> bracket;         //!< the bracket per plan sample (empty: none yet)
+  //! The peak force this step measured per plan sample, averaged over its logs, N (0: not measured in
+  //! this step); the step's entry in the learning history (path_history.hpp).
+  std::vector<double> step_force_n;
 };
 
 //! One learning step along `plan`'s path from the tooth periods of `measured` (one or more logs cut

@@ -24,8 +24,10 @@
 //   force_correction[] (only when set: one c per plan sample),
 //   path_learning {place_correction[], measurements[[t_m, L, F, window] per sample],
 //            brackets[[t_m below, F below, t_m above, F above] per sample] (optional on reading),
-//            learned_model {id, version} (optional on reading)} (only after learning along the path; as many
-//            entries as force_correction),
+//            learned_model {id, version} (optional on reading),
+//            history [{cycle, cycle_time_s, feed_mm_per_min[], predicted_n[], measured_n[]}] (path_history.hpp;
+//            optional on reading)} (only after learning along the path; as many entries as force_correction,
+//            in every array of history too),
 //   summary {every PlanSummary field by its name; baseline {feed_mm_per_min, peak_force_n,
 //            cycle_time_s, cutting_time_s}},
 //   program {path, dialect, blocks (count of program blocks)},
@@ -55,6 +57,7 @@
 
 #include "feedplan/geometry/tool.hpp"
 #include "feedplan/planner/feed_plan.hpp"
+#include "feedplan/planner/path_history.hpp"
 
 namespace feedplan::planner {
 
@@ -91,6 +94,8 @@ struct PlanReportContext {
   //! builds on it, while the program itself keeps being planned with `model_id` and the corrections.
   long long path_learned_model_id = 0;
   int path_learned_model_version = 0;  //!< see path_learned_model_id
+  //! The parts learned from so far, oldest first (path_history.hpp); empty when the report has none.
+  std::vector<PathHistoryCycle> path_history;
 };
 
 //! The plan report as JSON text (the format at the top of this file), indented by 2, ending in a

@@ -13,6 +13,7 @@
 #include "feedplan/learning/model_update.hpp"
 #include "feedplan/trial/virtual_machine_run.hpp"
 #include "feedplan/planner/feed_plan.hpp"
+#include "feedplan/planner/path_history.hpp"
 
 namespace feedplan::trial {
 
@@ -58,6 +59,9 @@ struct LoopResult {
   std::vector<LoopCycle> cycles;             //!< in order
   model::ResponseSurfaceModel final_model; //!< after the last cycle's learning
   model::Covariance final_covariance;         //!< its covariance, N²
+  //! Learning along the path cycle by cycle (the newest planner::kPathHistoryCycles; empty without it).
+  std::vector<planner::PathHistoryCycle> history;
+  planner::PlanSettings next_settings;  //!< what the part after the last cycle would be planned with
 };
 
 //! Runs the loop. Throws InputError on invalid settings (planner::validate) or cycles < 1.
