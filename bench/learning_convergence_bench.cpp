@@ -10,6 +10,8 @@
 //   FEEDPLAN_FAMILY_SAMPLES   sample specs, e.g. "trochoid,spiral,corner" (default: trochoid)
 //   FEEDPLAN_FAMILY_TARGETS   target force per sample, N, e.g. "400,400,350" (default: the spec's own)
 //   FEEDPLAN_FAMILY_NO_T_STAR set: learning only (the counters over T* are then 0)
+//   FEEDPLAN_FAMILY_NO_SENSOR set: peaks taken as read (default: corrected for the machine's dynamometer
+//                             mode as its tap test gives it, as `loop --sensor-hz --sensor-damping`)
 // Run: build/bench/learning_convergence_bench --benchmark_counters_tabular=true
 
 #include <benchmark/benchmark.h>
@@ -75,6 +77,7 @@ trial::LoopRequest request_for(const std::string& sample, const std::string& mac
   const sim::MaterialLibrary materials = sim::load_materials(std::string(FEEDPLAN_DATA_DIR) + "/materials.yaml");
   const sim::MachineFile file = sim::load_machine_file(machine_path, materials);
   trial::use_machine_file(request.machine, file, spec.tool);
+  if (!std::getenv("FEEDPLAN_FAMILY_NO_SENSOR")) request.sensor = trial::dynamometer_mode(file.dynamometer);
   request.machine.stock = cycle.stock;
   request.machine.machine = spec.machine;
   request.machine.spindle_rpm = spec.spindle_rpm;

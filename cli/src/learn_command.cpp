@@ -54,6 +54,7 @@ struct LearnInputs {
   cycles::CycleSpec spec;                // that spec
   std::vector<learning::NamedLog> logs;  // the logs, with forces (from currents when calibrated)
   std::string db_path;                   // --db, else the report's (found from here), else $FEEDPLAN_DB, else the sample
+  std::optional<learning::SensorDynamics> sensor;  // --sensor-hz, --sensor-damping
 };
 
 // The model version planned with, the version learning builds on, and the one learned.
@@ -121,6 +122,7 @@ void check_learn_outputs(const LearnOptions& o, const LearnInputs& in) {
 // Inputs, all read and checked before anything is written.
 LearnInputs read_learn_inputs(const LearnOptions& o) {
   LearnInputs in;
+  in.sensor = sensor_dynamics(o.sensor);
   in.report = planner::read_plan_report(o.plan_path);
   in.spec_path = resolve_spec(in.report.context.spec_path, o.plan_path);
   in.db_path = learn_database_path(o, in.report);
@@ -241,8 +243,13 @@ learning::ModelUpdate learn_from_logs(const LearnOptions& o, const LearnInputs& 
   // The refit goes on from the version learned so far; the plan as cut is the one the logs are aligned with.
   planner::PlanSettings learn_settings = remade.settings;
   learn_settings.model = before.model;
-  const learning::ModelUpdate update =
-      learning::update_model(remade.plan, learn_settings, in.spec.tool.flutes, in.logs, earlier, prior_covariance);
+  learning::ModelUpdateOptions options;
+  if (in.sensor) {
+    options.revolutions.sensor_peak_gain = learning::sensor_peak_gains(remade.geometry.engagement, remade.geometry.tool,
+                                                                       remade.settings.spindle_rpm, *in.sensor);
+  }
+  const learning::ModelUpdate update = learning::update_model(remade.plan, learn_settings, in.spec.tool.flutes, in.logs,
+                                                              earlier, prior_covariance, options);
   throw_if_not_these_parts(update.logs, o.log_paths);
   return update;
 }
@@ -567,6 +574,7 @@ void add_learn_command(CLI::App& app, LearnOptions& options) {
   cmd->add_option("--note", options.note, "Note stored with the new model version");
   cmd->add_option("--calibration", options.calibration_path,
                   "Servo-current calibration (feedplan calibrate-currents -o) for logs with currents but no forces");
+  add_sensor_flags(cmd, options.sensor);
   cmd->add_flag("--json", options.json, "Print the summary as JSON");
 }
 

@@ -10,6 +10,8 @@
 #include <string>
 #include <vector>
 
+#include "sensor_flags.hpp"
+
 namespace feedplan::cli {
 
 struct LearnOptions {
@@ -21,6 +23,7 @@ struct LearnOptions {
   std::string plot_path;               //!< --plot
   std::string note;                    //!< --note: stored with the new version
   std::string calibration_path;        //!< --calibration: turns current-only logs into force logs
+  SensorFlags sensor;                  //!< --sensor-hz, --sensor-damping
   bool json = false;                   //!< --json
 };
 

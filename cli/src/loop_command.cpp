@@ -50,6 +50,7 @@ void add_loop_command(CLI::App& app, LoopOptions& options) {
   cmd->add_flag("--json", options.json, "Print the table as JSON");
   cmd->add_option("--revolutions", options.revolutions_path,
                   "Also write every cycle's simulated revolutions (s span, place, peak, planned force, error) as CSV");
+  add_sensor_flags(cmd, options.sensor);
   cmd->add_option("--plot", options.plot_path,
                   "Also write the learning history (SVG): the force measured and the feed planned along the path in\n"
                   "every cycle (the newest 8), and the plan for the next part");
@@ -81,10 +82,12 @@ struct LoopInputs {
   cycles::CycleSpec spec;       // the cycle spec
   double target_force_n = 0.0;  // --target-force, else the spec's, N
   double cautious = 0.0;        // r of the first cut's bound: --cautious, else from the borrowing (set with the model)
+  std::optional<learning::SensorDynamics> sensor;  // --sensor-hz, --sensor-damping
 };
 
 LoopInputs read_loop_inputs(const LoopOptions& o) {
   LoopInputs in;
+  in.sensor = sensor_dynamics(o.sensor);
   in.spec = cycles::load_cycle_spec(o.spec_path);
   const cycles::CycleSpec& spec = in.spec;
   std::vector<InputProblem> problems;
@@ -144,6 +147,7 @@ trial::LoopRequest loop_request(const LoopOptions& o, const LoopInputs& in, cons
   request.first_cut_uncertainty = in.cautious;
   request.sigmas = o.sigmas;
   request.start_fit_covariance = chosen.record.fit.covariance;
+  request.sensor = in.sensor;
   return request;
 }
 

@@ -10,6 +10,8 @@
 #include <optional>
 #include <string>
 
+#include "sensor_flags.hpp"
+
 namespace feedplan::cli {
 
 struct LoopOptions {
@@ -29,6 +31,7 @@ struct LoopOptions {
   bool json = false;                //!< --json
   std::string revolutions_path;     //!< --revolutions: per-revolution CSV of every cycle
   std::string plot_path;            //!< --plot: learning along the path, every cycle, as SVG
+  SensorFlags sensor;               //!< --sensor-hz, --sensor-damping
 };
 
 //! Registers the subcommand.

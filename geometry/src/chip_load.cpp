@@ -123,33 +123,48 @@ const ToothAngles& tooth_angles(int flutes) {
   return t;
 }
 
-double peak_load(std::span<const LoadLayer> layers, const Tool& tool) {
-  if (layers.empty() || tool.flutes < 1 || !(tool.diameter_mm > 0.0)) return 0.0;
+// C(Ω) at the kChipLoadSteps spindle angles of one tooth period (empty without layers or a usable tool).
+std::vector<double> load_waveform(std::span<const LoadLayer> layers, const Tool& tool) {
+  if (layers.empty() || tool.flutes < 1 || !(tool.diameter_mm > 0.0)) return {};
   const double lag = std::abs(std::tan(deg_to_rad(tool.helix_deg))) / tool.radius_mm();
   const std::vector<PreparedLayer> prepared = prepare(layers, lag);
   const ToothAngles& angles = tooth_angles(tool.flutes);
-  double peak = 0.0;
+  std::vector<double> waveform(kChipLoadSteps, 0.0);
   for (int step = 0; step < kChipLoadSteps; ++step) {
     double load = 0.0;
     for (int j = 0; j < tool.flutes; ++j) {
       const auto k = static_cast<std::size_t>(step + j * kChipLoadSteps);
       load += tooth_load(angles.phi[k], angles.cos[k], angles.sin[k], lag, prepared);
     }
-    peak = std::max(peak, load);
+    waveform[static_cast<std::size_t>(step)] = load;
   }
-  return peak;
+  return waveform;
 }
 
-}  // namespace
+double peak_load(std::span<const LoadLayer> layers, const Tool& tool) {
+  const std::vector<double> waveform = load_waveform(layers, tool);
+  return waveform.empty() ? 0.0 : std::max(0.0, *std::max_element(waveform.begin(), waveform.end()));
+}
 
-double peak_chip_load_mm(const EngagementProfile& profile, const EngagementSample& sample, const Tool& tool) {
+std::vector<LoadLayer> sample_layers(const EngagementProfile& profile, const EngagementSample& sample) {
   std::vector<LoadLayer> layers;
   for (int k = 0; k < sample.layer_count; ++k) {
     const EngagementLayer& layer = profile.layers[static_cast<std::size_t>(sample.layer_begin + k)];
     layers.push_back({layer.bottom_z_mm - sample.position.z_mm, layer.top_z_mm - sample.position.z_mm,
                       {profile.intervals.data() + layer.interval_begin, static_cast<std::size_t>(layer.interval_count)}});
   }
-  return peak_load(layers, tool);
+  return layers;
+}
+
+}  // namespace
+
+double peak_chip_load_mm(const EngagementProfile& profile, const EngagementSample& sample, const Tool& tool) {
+  return peak_load(sample_layers(profile, sample), tool);
+}
+
+std::vector<double> chip_load_waveform_mm(const EngagementProfile& profile, const EngagementSample& sample,
+                                          const Tool& tool) {
+  return load_waveform(sample_layers(profile, sample), tool);
 }
 
 double straight_cut_chip_load_mm(double engagement_rad, double depth_mm, const Tool& tool) {

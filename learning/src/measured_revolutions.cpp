@@ -240,6 +240,9 @@ LearningSample learning_sample(const WindowContext& c, const force_log::Revoluti
   sample.chip_mm = planner::chip_thickness_mm(at.place, at.feed_mm_per_min, c.flutes, c.spindle_rpm);
   sample.contact_length_mm = planner::model_contact_length_mm(c.model, planned.contact_length_mm);
   sample.force_n = peak.peak_xy_n;
+  if (!c.options.sensor_peak_gain.empty()) {
+    sample.force_n /= c.options.sensor_peak_gain[static_cast<std::size_t>(&planned - c.samples.data())];
+  }
   if (c.options.transfer_to_model) {
     sample.transfer_factor = planner::force_transfer_factor(c.model, at.place, planned.load_ratio, at.feed_mm_per_min,
                                                             c.flutes, c.spindle_rpm);
@@ -389,8 +392,22 @@ void set_runout_factors(std::vector<ToothPeriodPeak>& tooth_periods, int flutes)
 
 // Throws InputError when the tool, the speed, the options or the log cannot give samples.
 void check_input(const force_log::ForceLog& log, int flutes, double spindle_rpm,
-                 const MeasuredRevolutionOptions& options) {
+                 const MeasuredRevolutionOptions& options, std::size_t plan_samples) {
   std::vector<InputProblem> problems;
+  const auto& gains = options.sensor_peak_gain;
+  if (!gains.empty() && gains.size() != plan_samples) {
+    problems.push_back({"sensor_peak_gain", "has " + std::to_string(gains.size()) + " values: must have " +
+                                                std::to_string(plan_samples) + ", one per plan sample"});
+  }
+  for (std::size_t i = 0; i < gains.size(); ++i) {
+    if (!(std::isfinite(gains[i]) && gains[i] > 0.0)) {
+      std::string field = "sensor_peak_gain[";
+      field += std::to_string(i);
+      field += ']';
+      problems.push_back({std::move(field), "= " + shortest_number_text(gains[i]) + ": must be > 0"});
+      break;
+    }
+  }
   if (flutes < 1) problems.push_back({"flutes", "= " + std::to_string(flutes) + ": must be >= 1"});
   if (!(std::isfinite(spindle_rpm) && spindle_rpm > 0.0)) {
     problems.push_back({"spindle_rpm", "= " + shortest_number_text(spindle_rpm) + ": must be > 0"});
@@ -422,7 +439,7 @@ std::string counts_message(std::size_t revolutions, double spindle_rpm, double d
 MeasuredRevolutions measured_revolutions(const force_log::ForceLog& log, const Alignment& alignment,
                                          const planner::PlanResult& plan, const model::ResponseSurfaceModel& model,
                                          int flutes, double spindle_rpm, const MeasuredRevolutionOptions& options) {
-  check_input(log, flutes, spindle_rpm, options);
+  check_input(log, flutes, spindle_rpm, options, plan.samples.size());
   assert(alignment.s_mm.size() == log.rows.size());
 
   MeasuredRevolutions out;

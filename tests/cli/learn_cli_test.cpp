@@ -548,6 +548,10 @@ TEST_F(LearnCliTest, ALearnedVersionTheDatabaseDoesNotHoldIsBadInput) {
 TEST_F(LearnCliTest, AMissingLogOrAMalformedPlanIsBadInput) {
   const fs::path missing = dir_ / "no_such_log.csv";
   expect_refused(learn_args(missing), 2, {missing.string()});
+  // The sensor's mode: both flags, each in range.
+  expect_refused(learn_args(log_) + " --sensor-hz 800", 2, {"--sensor-damping is missing"});
+  expect_refused(learn_args(log_) + " --sensor-hz 800 --sensor-damping 0", 2, {"--sensor-damping = 0", "(0, 2]"});
+  expect_refused(learn_args(log_) + " --sensor-hz nan --sensor-damping 0.4", 2, {"--sensor-hz"});
 
   const std::string report = read_text(plan_);
   // Not JSON at all: cut in the middle.
@@ -633,7 +637,7 @@ TEST_F(LoopCliTest, BadFlagsNameTheFlag) {
 TEST_F(LoopCliTest, CutsOnAMachineFile) {
   const std::string machine = kSamples + "/../data/machines/steel-mild.yaml";
   const RunResult r = run_feedplan("loop " + kSamples + "/corner.yaml --cycles 1 --db " + db_ + " --machine " + machine +
-                                   " --json");
+                                   " --sensor-hz 1500 --sensor-damping 0.6 --json");
   ASSERT_EQ(r.exit_code, 0) << r.output;
   const json out = json_of(r.output);
   EXPECT_EQ(out["machine"].get<std::string>(), machine);

@@ -77,22 +77,22 @@ class LearningLoop : public ::testing::Test {
 // little damping; family-09: 5–6 µm of runout, helix 5° off, edge force K_re 37 N/mm, 558 Hz), the trochoid at
 // 400 N for three cycles. The first overshoots by 17–30 % (mostly the runout, which the model does not have).
 // Learning along the path searches the feed per place (learning/path_correction.hpp) on peaks less the
-// noise's excess (learning/peak_noise_bias.hpp); the program keeps its model. Measured (true peaks): cycle 3
-// held RMS 0.66, 3.2 and 1.2 %, cycle time 24.2, 35.9 and 34.3 s against T* 23.4, 32.0 and 33.3 s
-// (1.035, 1.12 and 1.03 T*; bench/learning_convergence_bench). family-04's dynamometer rings at the third
-// tooth harmonic and reads 3–5 % over the true peak, so learning that holds the reading holds the true
-// force under the target. Not yet the ±3 % largest error the product aims at: single revolutions at loop
-// entries still miss by 5–24 %.
+// noise's excess (learning/peak_noise_bias.hpp) and corrected for the dynamometer's mode as its tap test
+// gives it (learning/sensor_dynamics.hpp); the program keeps its model. Measured (true peaks): cycle 3 held
+// RMS 0.69, 1.00 and 1.04 %, cycle time 24.2, 34.5 and 33.5 s against T* 23.4, 32.0 and 33.3 s (1.03, 1.08
+// and 1.005 T*; bench/learning_convergence_bench), largest revolution over the target +4.2, +1.7, +2.8 %.
+// Not yet the ±3 % largest error the product aims at: single revolutions at loop entries still miss by 5–8 %.
 TEST_F(LearningLoop, TrochoidOnThreeMachinesOfTheFamilyConvergesWithoutDraggingTheCycle) {
   struct Case {
     std::string machine;
     double third_rms_percent;  // bound on cycle 3's held RMS error
   };
-  for (const Case& m : {Case{"family/family-02.yaml", 1.2}, Case{"family/family-04.yaml", 4.0},
+  for (const Case& m : {Case{"family/family-02.yaml", 1.2}, Case{"family/family-04.yaml", 2.0},
                         Case{"family/family-09.yaml", 2.0}}) {
     SCOPED_TRACE(m.machine);
     LoopRequest request = request_on_machine("trochoid.yaml", m.machine, 400.0);
     request.cycles = 3;
+    request.sensor = dynamometer_mode(request.machine.sensors.dynamometer);  // its tap test
     const LoopResult result = run_learning_loop(request);
     ASSERT_EQ(result.cycles.size(), 3u);
     for (const LoopCycle& c : result.cycles) {
@@ -104,7 +104,7 @@ TEST_F(LearningLoop, TrochoidOnThreeMachinesOfTheFamilyConvergesWithoutDraggingT
     EXPECT_LE(result.cycles[2].comparison.rms_error_percent, m.third_rms_percent);
     // Cycle 2 still overshot here, so cycle 3 may be slower; by how much is bounded.
     EXPECT_LE(result.cycles[2].simulated_cycle_time_s, 1.45 * result.cycles[1].simulated_cycle_time_s);
-    EXPECT_LE(result.cycles[2].comparison.max_overshoot_percent, 8.0);
+    EXPECT_LE(result.cycles[2].comparison.max_overshoot_percent, 6.0);
   }
 }
 

@@ -26,6 +26,11 @@ LoopResult run_learning_loop(const LoopRequest& request) {
   std::vector<learning::LearningSample> earlier;
   learning::PathLearning along_path;
   model::ResponseSurfaceModel learned_model = settings.model;
+  learning::ModelUpdateOptions update_options = request.update;
+  if (request.sensor) {
+    update_options.revolutions.sensor_peak_gain = learning::sensor_peak_gains(
+        request.geometry.engagement, request.geometry.tool, settings.spindle_rpm, *request.sensor);
+  }
   for (int cycle = 1; cycle <= request.cycles; ++cycle) {
     settings.uncertainty.reset();
     if (plan_covariance && request.first_cut_uncertainty > 0.0) {
@@ -58,7 +63,7 @@ LoopResult run_learning_loop(const LoopRequest& request) {
     planner::PlanSettings learn_settings = settings;
     learn_settings.model = learned_model;
     const learning::ModelUpdate update = learning::update_model(plan, learn_settings, request.geometry.tool.flutes,
-                                                                std::move(logs), earlier, covariance, request.update);
+                                                                std::move(logs), earlier, covariance, update_options);
     out.update_status = update.status;
     std::vector<learning::MeasuredRevolutions> measured;
     for (const learning::LogEvidence& log : update.logs) measured.push_back(log.revolutions);

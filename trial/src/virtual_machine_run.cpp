@@ -1,5 +1,7 @@
 #include "feedplan/trial/virtual_machine_run.hpp"
 
+#include <cmath>
+
 #include "feedplan/core/input_error.hpp"
 #include "feedplan/sim/motion_profile.hpp"
 
@@ -24,6 +26,12 @@ void use_machine_file(VirtualMachine& machine, const sim::MachineFile& file, con
   machine.coefficients = physics.coefficients;
   machine.runout_mm = physics.options.runout_mm;
   machine.sensors.dynamometer = physics.sensors.dynamometer;
+}
+
+learning::SensorDynamics dynamometer_mode(const sim::DynamometerOptions& dynamometer) {
+  const double zeta = dynamometer.damping_ratio;
+  const double a = 1.0 - 2.0 * zeta * zeta;
+  return {dynamometer.bandwidth_hz / std::sqrt(a + std::sqrt(a * a + 1.0)), zeta};
 }
 
 sim::SimulationResult simulate_on(const geometry::Program& program, const VirtualMachine& machine) {

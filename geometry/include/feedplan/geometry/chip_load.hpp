@@ -17,6 +17,8 @@
 // straight_cut_chip_load_mm. A force model fitted on straight cuts at depth a_model transfers to
 // another engagement with the same t_m through the ratio of their chip loads (planner/feed_limit.hpp).
 
+#include <vector>
+
 #include "feedplan/geometry/engagement.hpp"
 #include "feedplan/geometry/tool.hpp"
 
@@ -28,6 +30,12 @@ inline constexpr int kChipLoadSteps = 128;
 //! Peak chip load (mm; see the file comment) of `sample`'s engaged layers (profile.layers) for `tool`;
 //! 0 when the sample has no layers (not engaged, or evaluated on one height only).
 double peak_chip_load_mm(const EngagementProfile& profile, const EngagementSample& sample, const Tool& tool);
+
+//! C(Ω) (mm) of `sample`'s engaged layers at the kChipLoadSteps spindle angles Ω = k·(2π/N)/kChipLoadSteps of
+//! one tooth period (peak_chip_load_mm is its largest value): the shape of the cutting force over a tooth
+//! period, as far as the force scales with the chip in the cut. Empty when the sample has no layers.
+std::vector<double> chip_load_waveform_mm(const EngagementProfile& profile, const EngagementSample& sample,
+                                          const Tool& tool);
 
 //! Peak chip load (mm) of a straight down-milling cut of engagement `engagement_rad` (clamped to
 //! [0, π]) and axial depth `depth_mm` with `tool`.

@@ -17,7 +17,8 @@
 //      actually run: the log's feed_mm_per_min at the shifted peak time when present and finite, else
 //      ds/dt over the window. t_m = planner::chip_thickness_mm, L = planner::model_contact_length_mm
 //      (evaluated as the planner evaluates the model), force = peak / planner::axial_depth_ratio (on the
-//      model's axial depth) unless disabled.
+//      model's axial depth) unless disabled — and / the sensor's peak gain there when given
+//      (MeasuredRevolutionOptions::sensor_peak_gain; the revolutions' raw peaks stay as read).
 //   4. A revolution becomes a LearningSample when the plan has it engaged at the peak's place with at
 //      least min_engagement_rad and a chip (chip factor × XY ratio ≥ planner::kMinChipFactor) and a
 //      positive feed; otherwise skipped_not_engaged. Every aligned revolution (engaged or not) is in
@@ -56,6 +57,9 @@ struct MeasuredRevolutionOptions {
   //! Divide forces by the factor the planner puts on the straight-cut model there (planner::
   //! force_transfer_factor: the axial-depth scaling or the chip-load transfer, whichever binds)
   bool transfer_to_model = true;
+  //! Per plan sample: the factor the force sensor's own dynamics put on a peak read there
+  //! (sensor_dynamics.hpp); each window's peak is divided by the one at its peak's place. Empty: none.
+  std::vector<double> sensor_peak_gain;
 };
 
 //! One tooth period's peak (step 5).

@@ -11,6 +11,7 @@
 #include "feedplan/model/covariance.hpp"
 #include "feedplan/learning/infeasible_places.hpp"
 #include "feedplan/learning/model_update.hpp"
+#include "feedplan/learning/sensor_dynamics.hpp"
 #include "feedplan/trial/virtual_machine_run.hpp"
 #include "feedplan/planner/feed_plan.hpp"
 #include "feedplan/planner/path_history.hpp"
@@ -32,6 +33,9 @@ struct LoopRequest {
   //! Also learn along the path: the next plan scales the model by a correction per place, learned per
   //! tooth period (path_correction.hpp) — what repeated parts of one program allow beyond the model.
   bool path_correction = true;
+  //! The force sensor's first mode as its owner knows it (a tap test): peaks are corrected for it before
+  //! anything learns from them (learning/sensor_dynamics.hpp). None: taken as read.
+  std::optional<learning::SensorDynamics> sensor;
   //! Called after each cycle with its number (1-based); may be empty.
   std::function<void(int)> on_cycle_done;
   //! Called with the fraction of the whole loop done (0..1) while the virtual machine cuts and after

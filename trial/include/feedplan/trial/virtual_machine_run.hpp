@@ -9,6 +9,7 @@
 #include "feedplan/geometry/program.hpp"
 #include "feedplan/geometry/stock.hpp"
 #include "feedplan/geometry/tool.hpp"
+#include "feedplan/learning/sensor_dynamics.hpp"
 #include "feedplan/planner/feed_plan.hpp"
 #include "feedplan/planner/peak_comparison.hpp"
 #include "feedplan/sim/cutting_coefficients.hpp"
@@ -37,6 +38,10 @@ struct VirtualMachine {
 //! tool with the file's helix offset, the cutting coefficients, the runout and the dynamometer. Throws
 //! InputError with sim::apply_machine's problems when the file does not fit the tool (machine unchanged).
 void use_machine_file(VirtualMachine& machine, const sim::MachineFile& file, const geometry::Tool& tool);
+
+//! The first mode of a virtual dynamometer as its tap test would give it: the natural frequency from the
+//! −3 dB bandwidth and the damping (sim/sensors.hpp: ω_n = ω_bw / sqrt(1 − 2ζ² + sqrt((1 − 2ζ²)² + 1))).
+learning::SensorDynamics dynamometer_mode(const sim::DynamometerOptions& dynamometer);
 
 //! One run.
 struct VirtualMachineRun {
