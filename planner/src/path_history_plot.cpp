@@ -73,19 +73,29 @@ Series series_of(const std::vector<PathHistoryCycle>& history, const PlanResult*
   return out;
 }
 
+// One line per cycle (class "<what> cycle-K"), older ones lighter; their legend entries, with the cycle's
+// planned time when `with_time`.
+std::vector<svg::LegendEntry> append_cycles(std::string& svg, const svg::PlotArea& area, const std::vector<double>& s_mm,
+                                            const std::vector<PathHistoryCycle>& history,
+                                            const std::vector<std::vector<double>>& per_cycle, const std::string& what,
+                                            bool with_time) {
+  std::vector<svg::LegendEntry> legend;
+  for (std::size_t k = 0; k < history.size(); ++k) {
+    const std::string style = cycle_style(k, history.size());
+    const std::string css = what + " cycle-" + std::to_string(history[k].cycle);
+    svg::append_series(svg, area, s_mm, per_cycle[k], css.c_str(), style.c_str());
+    std::string label = "cycle " + std::to_string(history[k].cycle);
+    if (with_time) label += ": " + fixed_number_text(history[k].cycle_time_s, 1) + " s planned";
+    legend.push_back({label, style});
+  }
+  return legend;
+}
+
 void append_force_panel(std::string& svg, const svg::PlotArea& area, const std::vector<double>& s_mm,
                         const std::vector<PathHistoryCycle>& history, const Series& series, double target_force_n) {
   svg += "<g id=\"panel-force\">\n";
   svg::append_panel_axes(svg, area, "measured peak force F [N]", false, "");
-  std::vector<svg::LegendEntry> legend;
-  for (std::size_t k = 0; k < history.size(); ++k) {
-    const std::string style = cycle_style(k, history.size());
-    const std::string css = "measured cycle-" + std::to_string(history[k].cycle);
-    svg::append_series(svg, area, s_mm, series.force[k], css.c_str(), style.c_str());
-    legend.push_back({"cycle " + std::to_string(history[k].cycle) + ": " + fixed_number_text(history[k].cycle_time_s, 1) +
-                          " s planned",
-                      style});
-  }
+  std::vector<svg::LegendEntry> legend = append_cycles(svg, area, s_mm, history, series.force, "measured", true);
   if (!series.next_force.empty()) {
     svg::append_series(svg, area, s_mm, series.next_force, "next-force", kNextStyle);
     legend.push_back({"next plan, predicted", kNextStyle});
@@ -104,13 +114,7 @@ void append_feed_panel(std::string& svg, const svg::PlotArea& area, const std::v
                        const std::vector<PathHistoryCycle>& history, const Series& series, const PlanResult* next) {
   svg += "<g id=\"panel-feed\">\n";
   svg::append_panel_axes(svg, area, "feed in the cut [mm/min]", true, "path length s [mm]");
-  std::vector<svg::LegendEntry> legend;
-  for (std::size_t k = 0; k < history.size(); ++k) {
-    const std::string style = cycle_style(k, history.size());
-    const std::string css = "feed cycle-" + std::to_string(history[k].cycle);
-    svg::append_series(svg, area, s_mm, series.feed[k], css.c_str(), style.c_str());
-    legend.push_back({"cycle " + std::to_string(history[k].cycle), style});
-  }
+  std::vector<svg::LegendEntry> legend = append_cycles(svg, area, s_mm, history, series.feed, "feed", false);
   if (!series.next_feed.empty()) {
     svg::append_series(svg, area, s_mm, series.next_feed, "next-feed", kNextStyle);
     legend.push_back({"next plan: " + fixed_number_text(next->summary.cycle_time_s, 1) + " s", kNextStyle});

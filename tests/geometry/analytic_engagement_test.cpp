@@ -10,6 +10,7 @@
 #include "feedplan/core/angle.hpp"
 #include "feedplan/geometry/analytic_engagement.hpp"
 #include "feedplan/geometry/engagement.hpp"
+#include "test_moves.hpp"
 
 namespace feedplan::geometry {
 namespace {
@@ -26,19 +27,7 @@ Move line(Point3 a, Point3 b, double axial_depth_mm) {
   return m;
 }
 
-Move arc(Point2 center, double radius_mm, double from_rad, double sweep_rad, bool ccw, double z_mm) {
-  Move m;
-  m.kind = MoveKind::kArc;
-  m.center = center;
-  m.ccw = ccw;
-  m.sweep_rad = sweep_rad;
-  const double to_rad = from_rad + (ccw ? sweep_rad : -sweep_rad);
-  m.start = {center.x_mm + radius_mm * std::cos(from_rad), center.y_mm + radius_mm * std::sin(from_rad), z_mm};
-  m.end = {center.x_mm + radius_mm * std::cos(to_rad), center.y_mm + radius_mm * std::sin(to_rad), z_mm};
-  m.cutting = true;
-  m.axial_depth_mm = -z_mm;
-  return m;
-}
+using testing::arc;
 
 // The docs/method.md §5.1 reference values, checked against the closed forms themselves.
 TEST(AnalyticEngagement, DesignReferenceValues) {

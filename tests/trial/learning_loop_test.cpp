@@ -68,6 +68,15 @@ class LearningLoop : public ::testing::Test {
     return request;
   }
 
+  //! The search for T* on the loop's cycle, machine and settings.
+  static BestPlanRequest search_for(const LoopRequest& loop) {
+    BestPlanRequest search;
+    search.geometry = loop.geometry;
+    search.settings = loop.settings;
+    search.machine = loop.machine;
+    return search;
+  }
+
   fs::path dir_;
   model_db::ModelRecord record_;
 };
@@ -195,11 +204,7 @@ TEST_F(LearningLoop, ATargetBelowTheForceAtTheMinimumFeedIsNamedWithItsFloor) {
 // revolutions named with a floor of 392 N, held RMS 1.8 %.
 TEST_F(LearningLoop, AnInfeasibleTargetIsNamedAndTheRestOfTheCycleIsNotDraggedDown) {
   LoopRequest loop = request_on_machine("corner.yaml", "family/family-06.yaml", 350.0);
-  BestPlanRequest search;
-  search.geometry = loop.geometry;
-  search.settings = loop.settings;
-  search.machine = loop.machine;
-  const BestPlan best = best_achievable_plan(search);
+  const BestPlan best = best_achievable_plan(search_for(loop));
   std::printf("T* %.2f s (search %d of %zu), %d samples infeasible\n", best.best_cycle_time_s, best.best_iteration + 1,
               best.iterations.size(), best.infeasible_samples);
   ASSERT_GE(best.best_iteration, 0);
@@ -282,10 +287,7 @@ TEST_F(LearningLoop, CautiousFirstCutStaysWithinFivePercentWhenTheModelIsFortyPe
 // shortest), and learning's cycles are printed against it.
 TEST_F(LearningLoop, BestAchievablePlanIsTheFloorOfWhatLearningReaches) {
   LoopRequest loop = request_on_machine("trochoid.yaml", "family/family-02.yaml", 400.0);
-  BestPlanRequest request;
-  request.geometry = loop.geometry;
-  request.settings = loop.settings;
-  request.machine = loop.machine;
+  const BestPlanRequest request = search_for(loop);
   const BestPlan best = best_achievable_plan(request);
   for (std::size_t i = 0; i < best.iterations.size(); ++i) {
     const BestPlanIteration& it = best.iterations[i];
