@@ -104,7 +104,8 @@ void BM_LearningAgainstBestAchievable(benchmark::State& state, const std::string
   state.counters["T*_s"] = t_star_s;
   state.counters["infeasible"] = best.infeasible_samples;
   for (const trial::LoopCycle& c : learned.cycles) {
-    const std::string k = "c" + std::to_string(c.cycle);
+    std::string k = "c";  // built in place: GCC 12 warns (-Wrestrict, falsely) on "c" + std::to_string(…)
+    k += std::to_string(c.cycle);
     state.counters[k + "_time/T*"] = t_star_s > 0.0 ? c.simulated_cycle_time_s / t_star_s : 0.0;
     state.counters[k + "_time_s"] = c.simulated_cycle_time_s;
     state.counters[k + "_max%"] = c.comparison.max_abs_error_percent;
@@ -121,7 +122,9 @@ int register_all() {
   for (std::size_t k = 0; k < samples.size(); ++k) {
     const double target_force_n = k < targets.size() ? std::atof(targets[k].c_str()) : 0.0;
     for (const std::string& machine : machines) {
-      benchmark::RegisterBenchmark(("learning/" + samples[k] + "/family-" + machine).c_str(),
+      std::string name = "learning/";
+      name += samples[k] + "/family-" + machine;
+      benchmark::RegisterBenchmark(name.c_str(),
                                    BM_LearningAgainstBestAchievable, samples[k], machine, target_force_n)
           ->Iterations(1)
           ->Unit(benchmark::kSecond);
