@@ -443,6 +443,7 @@ MeasuredRevolutions measured_revolutions(const force_log::ForceLog& log, const A
   assert(alignment.s_mm.size() == log.rows.size());
 
   MeasuredRevolutions out;
+  out.flutes = flutes;
   if (!usable(alignment.status)) {
     out.message =
         "no revolutions: the alignment is not usable (" + to_string(alignment.status) + ": " + alignment.message + ")";

@@ -37,6 +37,25 @@ Placed measurement_at(const std::vector<Placed>& run, double s_mm) {
   return ds > 1e-12 ? lerp(a, b, (s_mm - a.s_mm) / ds) : (a.m.force_n >= b.m.force_n ? a : b);
 }
 
+// The largest raw peak (× its transfer) of the periods left out by the runout filter within half a turn
+// either side of period `k` (floor(Z / 2) periods, in the run of consecutive periods that starts at
+// `first`; 0 when Z is not known or none was left out): with runout the turn's dominant tooth carries the
+// revolution's peak, and where the engagement changes (entries) the factor that says which tooth that is
+// comes from steady turns elsewhere, so the period left out may be the dominant one.
+double half_turn_envelope_n(const std::vector<ToothPeriodPeak>& periods, std::size_t first, std::size_t k, int flutes) {
+  if (flutes < 1) return 0.0;
+  const long reach = std::max(1, flutes / 2);
+  const long window = periods[k].window;
+  double largest = 0.0;
+  for (std::size_t j = first; j < periods.size(); ++j) {
+    if (j > first && periods[j].window != periods[j - 1].window + 1) break;
+    if (periods[j].window > window + reach) break;
+    if (periods[j].window < window - reach || periods[j].runout_factor <= kMaxRunoutFactor) continue;
+    largest = std::max(largest, periods[j].sample.force_n * periods[j].sample.transfer_factor);
+  }
+  return largest;
+}
+
 // The measurement at plan sample `planned` from the one interpolated between peak places (`at`): the force
 // as interpolated, but t_m and L the sample's own — t_m for the feed run where the tool passed the sample
 // (t_m is proportional to the feed), L as the planner evaluates the model there — so that the chip a
@@ -90,7 +109,8 @@ PathLearning learn_along_path(const planner::PlanResult& plan, const model::Resp
         if (!(p.sample.force_n > 0.0) || p.runout_factor > kMaxRunoutFactor) continue;
         // The measured peak itself: compared with the planner's F̂ at each plan sample, its transfer included.
         // Less what the sensor's noise adds to a peak reading: the target is the true force's.
-        const double read_n = p.runout_factor * p.sample.force_n * p.sample.transfer_factor;
+        const double read_n = std::max(p.runout_factor * p.sample.force_n * p.sample.transfer_factor,
+                                       half_turn_envelope_n(periods, first, k, log.flutes));
         run.push_back({p.s_peak_mm, {p.sample.chip_mm, p.sample.contact_length_mm, std::max(read_n - noise_excess_n, 0.0),
                                      p.s_end_mm - p.s_start_mm},
                        p.sample.feed_mm_per_min});

@@ -112,6 +112,27 @@ TEST(LearnAlongPath, ToothPeriodsOfAFluteThatCutsMuchLessThanTheLargestAreNotLea
   EXPECT_NEAR(step.place_correction[9], 1.6, 1e-12);  // past the last kept peak: its value
 }
 
+// With the flute count known (a log from measured_revolutions), a place is never taken for less than a
+// period the runout filter left out within half a turn of it — at an entry the factor that picks the
+// dominant tooth comes from steady turns elsewhere, and the period left out may be the dominant one.
+// Z = 4: two periods either side.
+TEST(LearnAlongPath, APlaceIsNeverTakenForLessThanAPeriodLeftOutWithinHalfATurn) {
+  MeasuredRevolutions log;
+  log.tooth_periods = {period(0, 1.5, 3.5, 3.0, 120.0), period(1, 3.5, 5.5, 5.0, 160.0), period(2, 5.5, 7.5, 7.0, 120.0),
+                       period(3, 7.5, 9.5, 9.0, 100.0), period(4, 9.5, 11.5, 11.0, 100.0), period(5, 11.5, 13.5, 13.0, 100.0)};
+  log.tooth_periods[1].runout_factor = 1.25;  // left out itself, as a flute that cuts less
+  const PathLearning alone = learn_along_path(plan_on_a_line(), flat_model(), {log}, 300.0, {});
+  log.flutes = 4;
+  const PathLearning step = learn_along_path(plan_on_a_line(), flat_model(), {log}, 300.0, {});
+  EXPECT_NEAR(alone.measurement[5].force_n, 120.0, 1e-9);  // between the kept peaks of windows 0 and 2
+  for (const std::size_t i : {3u, 5u, 7u, 9u}) {
+    EXPECT_NEAR(step.measurement[i].force_n, 160.0, 1e-9) << "sample " << i;  // windows 0, 2, 3 reach window 1
+  }
+  // Window 4 is three periods from window 1: its own peak (the kept window 2 does not raise it); halfway
+  // between 160 N at 9 mm and 100 N at 11 mm.
+  EXPECT_NEAR(step.measurement[10].force_n, 130.0, 1e-9);
+}
+
 TEST(LearnAlongPath, SkippedToothPeriodsAreNotBridgedAndUncoveredSamplesKeepThePreviousCorrection) {
   MeasuredRevolutions log;
   log.tooth_periods = {period(0, 1.5, 2.5, 2.0, 150.0), period(1, 2.5, 3.5, 3.0, 150.0), period(4, 6.5, 7.5, 7.0, 50.0),

@@ -81,6 +81,7 @@ struct MeasuredRevolutions {
   std::vector<double> sample_t_start_s;
   std::vector<ToothPeriodPeak> tooth_periods;  //!< engaged, fully aligned tooth periods, in time order
   PeakNoise noise;  //!< the sensor noise out of the cut and how far it raises the tooth periods' peaks (step 6)
+  int flutes = 0;   //!< Z: tooth periods per turn
   int skipped_not_engaged = 0;  //!< aligned revolutions the plan has out of the material (or without a chip or feed)
   int skipped_nan = 0;          //!< revolutions with a NaN force or a gap in the rows
   int skipped_not_aligned = 0;  //!< revolutions with a row off the path, before or after it (after the delay shift)

@@ -79,6 +79,13 @@ struct PathLearning {
 //! peak that the place never had. Measured on the trochoid at 400 N with the sample model, 4 cycles on
 //! machines of the family (data/machines/family): family-09 (5–6 µm runout) cycle 4 at 91.4 s and 17.8 % RMS
 //! with those periods, 35.9 s and 2.8 % without; family-02 (4 µm) 35.5 s, 5.3 % → 25.5 s, 2.4 %.
+//! The other way round, a kept period's peak is raised to the raw peak of any period left out within half a
+//! turn of it (floor(Z/2) periods either side; MeasuredRevolutions::flutes, none when 0): at an entry the
+//! factor that picks the dominant tooth comes from steady turns elsewhere, the period left out may be the
+//! dominant one, and a place learned from a tooth that cut less than the turn's largest was sped up into a
+//! revolution 17–18 % over the target (trochoid at 400 N, cycle 3, family-07 and -11; +6.6 and +5.0 % so,
+//! cycle times within 1 %). Raising every period to the largest peak within half a turn did as well on the
+//! family but held an entry revolution 10 % under the target where no tooth was left out.
 //!
 //! Search at a measured place. The force there rises with t_m, so the t_m where it meets the target is a
 //! root of a monotone function, bracketed by the measurements (PlaceBracket); the next plan is steered to
