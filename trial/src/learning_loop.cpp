@@ -1,5 +1,7 @@
 #include "feedplan/trial/learning_loop.hpp"
 
+#include <optional>
+
 #include "feedplan/learning/path_correction.hpp"
 
 namespace feedplan::trial {
@@ -31,13 +33,14 @@ LoopResult run_learning_loop(const LoopRequest& request) {
     update_options.revolutions.sensor_peak_gain = learning::sensor_peak_gains(
         request.geometry.engagement, request.geometry.tool, settings.spindle_rpm, *request.sensor);
   }
+  // The cautious bound a plan is made on now: entries off the straight cuts at their worst (force_bound.hpp)
+  // until learning along the path has measured a larger factor there (PlanSettings::force_correction).
+  const auto bound_now = [&]() -> std::optional<planner::ForceUncertainty> {
+    if (!plan_covariance || !(request.first_cut_uncertainty > 0.0)) return std::nullopt;
+    return planner::ForceUncertainty{*plan_covariance, request.sigmas, relative, true};
+  };
   for (int cycle = 1; cycle <= request.cycles; ++cycle) {
-    settings.uncertainty.reset();
-    if (plan_covariance && request.first_cut_uncertainty > 0.0) {
-      // Entries off the straight cuts at their worst (force_bound.hpp) until learning along the path has
-      // measured a larger factor there (PlanSettings::force_correction).
-      settings.uncertainty = planner::ForceUncertainty{*plan_covariance, request.sigmas, relative, true};
-    }
+    settings.uncertainty = bound_now();
     const planner::PlanResult plan = planner::plan(request.geometry, settings);
     VirtualMachine machine = request.machine;
     if (request.progress) {
@@ -81,8 +84,9 @@ LoopResult run_learning_loop(const LoopRequest& request) {
         // (path_correction.hpp), a fixed knob per place from part to part; the refit is for other programs.
         along_path = learning::learn_along_path(plan, settings.model, measured, settings.target_force_n, along_path);
         settings.force_correction = along_path.correction;
-        result.history =
-            planner::with_cycle(std::move(result.history), planner::history_cycle(plan, along_path.step_force_n, result.history));
+        // The entry first: it numbers itself after the history, which with_cycle then takes.
+        planner::PathHistoryCycle entry = planner::history_cycle(plan, along_path.step_force_n, result.history);
+        result.history = planner::with_cycle(std::move(result.history), std::move(entry));
       } else {
         settings.model = learned_model;
         plan_covariance = covariance;
@@ -94,10 +98,7 @@ LoopResult run_learning_loop(const LoopRequest& request) {
   }
   result.final_model = learned_model;
   result.next_settings = settings;
-  result.next_settings.uncertainty.reset();
-  if (plan_covariance && request.first_cut_uncertainty > 0.0) {  // as the cycles above
-    result.next_settings.uncertainty = planner::ForceUncertainty{*plan_covariance, request.sigmas, relative, true};
-  }
+  result.next_settings.uncertainty = bound_now();
   if (covariance) result.final_covariance = *covariance;
   return result;
 }
