@@ -20,8 +20,10 @@ constexpr double kBoundaryTolerance_turns = 1e-6;
 void check_times(const std::vector<double>& t_s) {
   std::vector<InputProblem> problems;
   for (std::size_t i = 0; i < t_s.size(); ++i) {
+    const bool finite = std::isfinite(t_s[i]);
+    if (finite && (i == 0 || !std::isfinite(t_s[i - 1]) || t_s[i] > t_s[i - 1])) continue;
     const std::string field = "t_s[" + std::to_string(i) + "]";
-    if (!std::isfinite(t_s[i])) {
+    if (!finite) {
       problems.push_back({field, "= " + shortest_number_text(t_s[i]) + ": must be a finite time in s"});
     } else if (i > 0 && std::isfinite(t_s[i - 1]) && !(t_s[i] > t_s[i - 1])) {
       problems.push_back({field, "= " + shortest_number_text(t_s[i]) + ": must be after t_s[" + std::to_string(i - 1) +
@@ -107,7 +109,9 @@ std::vector<RevolutionPeak> revolution_peaks(const std::vector<double>& t_s, con
 std::vector<RevolutionPeak> revolution_peaks(const std::vector<double>& t_s, const std::vector<double>& fx_n,
                                              const std::vector<double>& fy_n, const std::vector<double>& spindle_rpm) {
   assert(fx_n.size() == t_s.size() && fy_n.size() == t_s.size() && spindle_rpm.size() == t_s.size());
-  for (std::size_t i = 0; i < spindle_rpm.size(); ++i) check_rpm(spindle_rpm[i], "spindle_rpm[" + std::to_string(i) + "]");
+  for (std::size_t i = 0; i < spindle_rpm.size(); ++i) {
+    if (!(std::isfinite(spindle_rpm[i]) && spindle_rpm[i] > 0.0)) check_rpm(spindle_rpm[i], "spindle_rpm[" + std::to_string(i) + "]");
+  }
   check_times(t_s);
   check_forces(fx_n, "fx_n");
   check_forces(fy_n, "fy_n");

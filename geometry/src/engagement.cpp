@@ -8,6 +8,7 @@
 #include "angle_set.hpp"
 #include "candidate_index.hpp"
 #include "feedplan/core/angle.hpp"
+#include "feedplan/core/parallel_tasks.hpp"
 #include "feedplan/geometry/chip_area_ratio.hpp"
 #include "move_chain.hpp"
 #include "stock_section.hpp"
@@ -472,27 +473,96 @@ void sample_move(Sampler& sampler, std::size_t i, double s_start_mm) {
   }
 }
 
+// The direction of XY travel of the last sample before move `first` that has one (sample_move's
+// samples and place_sample's rule), 0 when none has.
+double direction_before(const ToolPath& path, std::size_t first, double ds_mm) {
+  for (std::size_t j = first; j-- > 0;) {
+    const Move& move = path.moves[j];
+    if (!(xy_length_mm(move) > 0.0)) continue;
+    const int steps = std::max(1, static_cast<int>(std::ceil(length_mm(move) / ds_mm - 1e-9)));
+    const int last_step = j + 1 == path.moves.size() ? steps : steps - 1;
+    const MoveFrame frame(move);
+    Point3 position;
+    for (int k = last_step; k >= 0; --k) {
+      const double direction = frame.evaluate(static_cast<double>(k) / steps, position);
+      if (!std::isnan(direction)) return direction;
+    }
+  }
+  return 0.0;
+}
+
+// Move indices where the path is cut into stretches computed apart: bounds[k] to bounds[k + 1]. About
+// kStretchesPerWorker stretches per worker so that a stretch in air and one in material even out, none
+// with fewer than kMinStretchSamples samples; one stretch on a short path or one core.
+constexpr int kStretchesPerWorker = 4;
+constexpr double kMinStretchSamples = 400.0;
+
+std::vector<std::size_t> stretch_bounds(const ToolPath& path, double ds_mm) {
+  const std::size_t n = path.moves.size();
+  std::vector<double> samples_before(n + 1, 0.0);
+  for (std::size_t i = 0; i < n; ++i) samples_before[i + 1] = samples_before[i] + std::ceil(length_mm(path.moves[i]) / ds_mm);
+  const double total = samples_before[n];
+  const int workers = worker_count();
+  const int stretches = workers <= 1 ? 1
+                                     : std::max(1, std::min(kStretchesPerWorker * workers,
+                                                            static_cast<int>(total / kMinStretchSamples)));
+  std::vector<std::size_t> bounds{0};
+  for (int k = 1; k < stretches; ++k) {
+    const double at = total * k / stretches;
+    const auto i = static_cast<std::size_t>(std::lower_bound(samples_before.begin(), samples_before.end(), at) -
+                                            samples_before.begin());
+    if (i > bounds.back() && i < n) bounds.push_back(i);
+  }
+  bounds.push_back(n);
+  return bounds;
+}
+
+// The stretches' profiles as one: samples, intervals, layers and warnings in path order, indices shifted.
+EngagementProfile joined(std::vector<EngagementProfile> stretches) {
+  EngagementProfile profile = std::move(stretches.front());
+  for (std::size_t k = 1; k < stretches.size(); ++k) {
+    EngagementProfile& next = stretches[k];
+    const int interval_offset = static_cast<int>(profile.intervals.size());
+    const int layer_offset = static_cast<int>(profile.layers.size());
+    for (EngagementSample& sample : next.samples) {
+      sample.interval_begin += interval_offset;
+      if (sample.layer_count > 0) sample.layer_begin += layer_offset;
+      profile.samples.push_back(sample);
+    }
+    for (EngagementLayer& layer : next.layers) {
+      layer.interval_begin += interval_offset;
+      profile.layers.push_back(layer);
+    }
+    profile.intervals.insert(profile.intervals.end(), next.intervals.begin(), next.intervals.end());
+    for (std::string& warning : next.warnings) profile.warnings.push_back(std::move(warning));
+  }
+  return profile;
+}
+
 }  // namespace
 
 EngagementProfile compute_engagement(const ToolPath& path, const Stock& stock, double tool_radius_mm,
                                      const EngagementOptions& options) {
   assert(tool_radius_mm > 0.0 && options.ds_mm > 0.0);
   const double r = tool_radius_mm;
-  EngagementProfile profile;
-  profile.tool_radius_mm = r;
-  profile.ds_mm = options.ds_mm;
-  profile.part_names = path.part_names;
-
   const PathPieces split = split_into_pieces(path, stock, r);
   // Candidate earlier pieces for every piece of the path.
   const auto candidates = detail::earlier_candidates(split.pieces, r, split.first_path_piece);
-  Sampler sampler{path, stock, r, options, split, candidates, profile, {}, 0.0,
-                  std::vector<bool>(path.moves.size(), false)};
-  double s_start_mm = 0.0;
-  for (std::size_t i = 0; i < path.moves.size(); ++i) {
-    sample_move(sampler, i, s_start_mm);
-    s_start_mm += length_mm(path.moves[i]);
-  }
+  std::vector<double> move_start_mm(path.moves.size() + 1, 0.0);
+  for (std::size_t i = 0; i < path.moves.size(); ++i) move_start_mm[i + 1] = move_start_mm[i] + length_mm(path.moves[i]);
+  // Stretches of the path computed apart, on the cores there are: a sample reads only the path, the
+  // stock and the pieces, and the direction of the last sample before it with XY travel.
+  const std::vector<std::size_t> bounds = stretch_bounds(path, options.ds_mm);
+  std::vector<EngagementProfile> stretches(bounds.size() - 1);
+  run_tasks(stretches.size(), [&](std::size_t k) {
+    Sampler sampler{path, stock, r, options, split, candidates, stretches[k], {}, direction_before(path, bounds[k], options.ds_mm),
+                    std::vector<bool>(path.moves.size(), false)};
+    for (std::size_t i = bounds[k]; i < bounds[k + 1]; ++i) sample_move(sampler, i, move_start_mm[i]);
+  });
+  EngagementProfile profile = joined(std::move(stretches));
+  profile.tool_radius_mm = r;
+  profile.ds_mm = options.ds_mm;
+  profile.part_names = path.part_names;
   return profile;
 }
 

@@ -18,11 +18,14 @@ constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 // the nearest sets the bar, and the first minimum within `tie_mm` of it wins. So a crossing of the path
 // far ahead (the next trochoid loop) never takes the match, and at a reversal (down and back up the same
 // line) the leg the row is really on beats the one it only grazes.
+// Distances are compared squared; `minima` is the caller's buffer (one allocation for all rows).
 std::optional<Projection> match_row(const PathIndex& path, double x, double y, double z, int k_min, double reach_mm,
-                                    double window_mm, double tie_mm) {
-  const std::vector<int>& cell = path.candidates(x, y);
+                                    double window_mm, double tie_mm, std::vector<Projection>& minima) {
+  const std::span<const int> cell = path.candidates(x, y);
   auto it = std::lower_bound(cell.begin(), cell.end(), k_min);
-  std::vector<Projection> minima;
+  minima.clear();
+  const bool use_z = std::isfinite(z);
+  const double reach2 = reach_mm * reach_mm;
   double window_end = 1e300;
   int previous_k = -2;
   Projection previous{1e300, 0.0};
@@ -33,8 +36,8 @@ std::optional<Projection> match_row(const PathIndex& path, double x, double y, d
   for (; it != cell.end(); ++it) {
     const int k = *it;
     if (path.s_of_segment_start(k) > window_end) break;
-    const Projection p = path.project(k, x, y, z);
-    if (p.distance_mm > reach_mm) continue;
+    const Projection p = path.project_squared(k, x, y, z, use_z);
+    if (p.distance_mm > reach2) continue;
     if (k != previous_k + 1) {  // a new run of segments within reach
       close_run_at_previous();
       previous_falling = true;
@@ -53,7 +56,10 @@ std::optional<Projection> match_row(const PathIndex& path, double x, double y, d
   close_run_at_previous();
   if (minima.empty()) return std::nullopt;
   double best = 1e300;
-  for (const auto& m : minima) best = std::min(best, m.distance_mm);
+  for (auto& m : minima) {
+    m.distance_mm = std::sqrt(m.distance_mm);
+    best = std::min(best, m.distance_mm);
+  }
   for (const auto& m : minima) {
     if (m.distance_mm <= best + tie_mm) return m;
   }
@@ -73,12 +79,13 @@ PositionMatch match_rows_forward(const force_log::ForceLog& log, const PathIndex
   const double window_mm = 2.0 + 4.0 * reach_mm;
   const double tie_mm = 0.1 * reach_mm;
   double anchor_mm = -1e300;
+  std::vector<Projection> minima;
   for (std::size_t i = 0; i < n; ++i) {
     const auto& row = log.rows[i];
     if (!finite_xy(row)) continue;
     const int k_min = anchor_mm > -1e299 ? path.segment_at(anchor_mm - back_mm) : 0;
     const auto match =
-        match_row(path, scale * row.x_mm, scale * row.y_mm, scale * row.z_mm, k_min, reach_mm, window_mm, tie_mm);
+        match_row(path, scale * row.x_mm, scale * row.y_mm, scale * row.z_mm, k_min, reach_mm, window_mm, tie_mm, minima);
     if (!match) continue;
     m.s_mm[i] = match->s_mm;
     anchor_mm = std::max(anchor_mm, match->s_mm);

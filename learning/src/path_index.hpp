@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <span>
 #include <vector>
 
 #include "feedplan/planner/feed_plan.hpp"
@@ -29,19 +30,24 @@ class PathIndex {
   double s_of_segment_start(int k) const { return s_[static_cast<std::size_t>(k)]; }
   double length_mm() const { return s_.back() - s_.front(); }
 
-  // Nearest point of segment k to q (z compared only when finite).
-  Projection project(int k, double x, double y, double z) const {
-    const auto& a = points_[static_cast<std::size_t>(k)];
-    const auto& b = points_[static_cast<std::size_t>(k) + 1];
-    const bool use_z = std::isfinite(z);
-    const double dx = b.x_mm - a.x_mm, dy = b.y_mm - a.y_mm, dz = use_z ? b.z_mm - a.z_mm : 0.0;
-    const double qx = x - a.x_mm, qy = y - a.y_mm, qz = use_z ? z - a.z_mm : 0.0;
-    const double len2 = dx * dx + dy * dy + dz * dz;
-    const double t = len2 > 0.0 ? std::clamp((qx * dx + qy * dy + qz * dz) / len2, 0.0, 1.0) : 0.0;
-    const double ex = qx - t * dx, ey = qy - t * dy, ez = qz - t * dz;
+  // Nearest point of segment k to q, with the squared distance (z compared only when `use_z`).
+  Projection project_squared(int k, double x, double y, double z, bool use_z) const {
+    const Segment& g = segments_[static_cast<std::size_t>(k)];
+    const double qx = x - g.ax, qy = y - g.ay, qz = use_z ? z - g.az : 0.0;
+    const double dz = use_z ? g.dz : 0.0;
+    const double inverse = use_z ? g.inverse_length2 : g.inverse_length2_xy;
+    const double t = std::clamp((qx * g.dx + qy * g.dy + qz * dz) * inverse, 0.0, 1.0);
+    const double ex = qx - t * g.dx, ey = qy - t * g.dy, ez = qz - t * dz;
     const double sa = s_[static_cast<std::size_t>(k)];
     const double sb = s_[static_cast<std::size_t>(k) + 1];
-    return {std::sqrt(ex * ex + ey * ey + ez * ez), sa + t * (sb - sa)};
+    return {ex * ex + ey * ey + ez * ez, sa + t * (sb - sa)};
+  }
+
+  // Nearest point of segment k to q (z compared only when finite).
+  Projection project(int k, double x, double y, double z) const {
+    Projection p = project_squared(k, x, y, z, std::isfinite(z));
+    p.distance_mm = std::sqrt(p.distance_mm);
+    return p;
   }
 
   // Distance from q to the whole path (linear in its length; for messages only).
@@ -59,11 +65,11 @@ class PathIndex {
 
   // Every segment within reach of q is in this list (sorted by index), with others near it; empty
   // outside the grid.
-  const std::vector<int>& candidates(double x, double y) const {
-    static const std::vector<int> none;
+  std::span<const int> candidates(double x, double y) const {
     const double fx = (x - x0_) / cell_mm_, fy = (y - y0_) / cell_mm_;
-    if (!(fx >= 0.0 && fy >= 0.0 && fx < nx_ && fy < ny_)) return none;
-    return cells_[index(static_cast<int>(fx), static_cast<int>(fy))];
+    if (!(fx >= 0.0 && fy >= 0.0 && fx < nx_ && fy < ny_)) return {};
+    const std::size_t c = index(static_cast<int>(fx), static_cast<int>(fy));
+    return {cell_segments_.data() + cell_start_[c], cell_start_[c + 1] - cell_start_[c]};
   }
 
  private:
@@ -73,12 +79,20 @@ class PathIndex {
     return static_cast<std::size_t>(j) * static_cast<std::size_t>(nx_) + static_cast<std::size_t>(i);
   }
 
+  // Segment k from points_[k]: its start, its direction (end − start) and 1 / its squared length, in 3D
+  // and in XY (0 for a segment of no length, so its start is the nearest place).
+  struct Segment {
+    double ax, ay, az, dx, dy, dz, inverse_length2, inverse_length2_xy;
+  };
+
   double reach_mm_;
   std::vector<geometry::Point3> points_;
+  std::vector<Segment> segments_;
   std::vector<double> s_;
   double x0_ = 0, y0_ = 0, cell_mm_ = 1;
   int nx_ = 1, ny_ = 1;
-  std::vector<std::vector<int>> cells_;
+  std::vector<std::size_t> cell_start_;  // per cell, and one past the last
+  std::vector<int> cell_segments_;
 };
 
 }  // namespace feedplan::learning::detail

@@ -56,24 +56,50 @@ double robust_sigma(const AxisNoise& axis) {
   return 1.4826 * median(std::move(absolute));
 }
 
+// Rows of a window that can carry its largest reading with noise of spread sigma_n added: a 2-D Gaussian
+// error beyond kMaxNoiseSpreads spreads has probability e^(−kMaxNoiseSpreads²/2) (< 1e-7), so a row whose
+// clean |F_xy| is more than twice that below the window's largest never carries it. Row offsets from
+// r.first, ascending.
+constexpr double kMaxNoiseSpreads = 5.7;
+
+std::vector<std::size_t> rows_that_can_peak(const std::vector<double>& fx, const std::vector<double>& fy, RowRange r,
+                                            double sigma_n) {
+  double largest = 0.0;
+  for (std::size_t k = r.first; k < r.end; ++k) largest = std::max(largest, std::hypot(fx[k], fy[k]));
+  const double bar = largest - 2.0 * kMaxNoiseSpreads * sigma_n;
+  std::vector<std::size_t> rows;
+  for (std::size_t k = r.first; k < r.end; ++k) {
+    if (std::hypot(fx[k], fy[k]) >= bar) rows.push_back(k - r.first);
+  }
+  return rows;
+}
+
 // The mean largest |F_xy| over one window with noise of spread sigma_n[l] (lag-1 correlation `lag1`)
 // added, for every l: the same unit noise draws scaled to each spread (common random numbers, so the
-// extrapolation across spreads sees the spread's effect, not the draws' scatter).
+// extrapolation across spreads sees the spread's effect, not the draws' scatter). The noise is drawn
+// only at the rows that can carry the largest reading; an AR(1) sequence seen g rows later has
+// correlation lag1^g, so drawing it there with that correlation is the same noise as drawing every row.
 std::vector<double> noisy_largest_n(const std::vector<double>& fx, const std::vector<double>& fy, RowRange r,
-                                    const std::vector<double>& sigma_n, double lag1, std::mt19937& random) {
+                                    const std::vector<double>& sigma_n, double lag1, std::mt19937_64& random) {
   std::normal_distribution<double> normal(0.0, 1.0);
-  const double innovation = std::sqrt(1.0 - lag1 * lag1);
-  const std::size_t rows = r.end - r.first;
-  std::vector<double> ux(rows), uy(rows), sum(sigma_n.size(), 0.0);
+  const std::vector<std::size_t> rows =
+      rows_that_can_peak(fx, fy, r, *std::max_element(sigma_n.begin(), sigma_n.end()));
+  std::vector<double> carry(rows.size(), 0.0), innovation(rows.size(), 1.0);
+  for (std::size_t k = 1; k < rows.size(); ++k) {
+    carry[k] = std::pow(lag1, static_cast<double>(rows[k] - rows[k - 1]));
+    innovation[k] = std::sqrt(1.0 - carry[k] * carry[k]);
+  }
+  std::vector<double> ux(rows.size()), uy(rows.size()), sum(sigma_n.size(), 0.0);
   for (int draw = 0; draw < kNoiseBiasDraws; ++draw) {
-    for (std::size_t k = 0; k < rows; ++k) {
-      ux[k] = k == 0 ? normal(random) : lag1 * ux[k - 1] + innovation * normal(random);
-      uy[k] = k == 0 ? normal(random) : lag1 * uy[k - 1] + innovation * normal(random);
+    for (std::size_t k = 0; k < rows.size(); ++k) {
+      ux[k] = k == 0 ? normal(random) : carry[k] * ux[k - 1] + innovation[k] * normal(random);
+      uy[k] = k == 0 ? normal(random) : carry[k] * uy[k - 1] + innovation[k] * normal(random);
     }
     for (std::size_t l = 0; l < sigma_n.size(); ++l) {
       double largest_squared = 0.0;  // of |F_xy|: one square root per draw
-      for (std::size_t k = 0; k < rows; ++k) {
-        const double x = fx[r.first + k] + sigma_n[l] * ux[k], y = fy[r.first + k] + sigma_n[l] * uy[k];
+      for (std::size_t k = 0; k < rows.size(); ++k) {
+        const std::size_t i = r.first + rows[k];
+        const double x = fx[i] + sigma_n[l] * ux[k], y = fy[i] + sigma_n[l] * uy[k];
         largest_squared = std::max(largest_squared, x * x + y * y);
       }
       sum[l] += std::sqrt(largest_squared);
@@ -139,7 +165,7 @@ PeakNoise peak_noise(const std::vector<double>& t_s, const std::vector<double>& 
   out.lag1 = squares > 0.0 ? std::clamp((x.lag_products + y.lag_products) / squares, 0.0, 0.99) : 0.0;
   // SIMEX: the mean peak reading with the noise variance raised to u σ², u = 1 (as read), 2, 3, 4,
   // extrapolated back to u = 0 (no noise).
-  std::mt19937 random(20261127u);
+  std::mt19937_64 random(20261127u);
   const std::vector<double> u = {1.0, 2.0, 3.0, 4.0};
   std::vector<double> mean_peak(u.size(), 0.0);
   std::vector<double> added_sigma_n;  // the noise added to reach u σ²

@@ -116,18 +116,24 @@ double model_contact_length_mm(const model::ResponseSurfaceModel& model, double 
 
 double chip_load_ratio(const model::ResponseSurfaceModel& model, const geometry::EngagementProfile& profile,
                        const geometry::EngagementSample& sample, const geometry::Tool& tool) {
+  if (!is_engaged(sample) || sample.chip_factor < kMinChipFactor || sample.layer_count == 0) return 0.0;
+  geometry::StraightCutLoads straight_cuts(tool);
+  return chip_load_ratio(model, sample, geometry::peak_chip_load_mm(profile, sample, tool), straight_cuts);
+}
+
+double chip_load_ratio(const model::ResponseSurfaceModel& model, const geometry::EngagementSample& sample,
+                       double load_mm, geometry::StraightCutLoads& straight_cuts) {
   const double k = sample.chip_factor;
   if (!is_engaged(sample) || k < kMinChipFactor || sample.layer_count == 0) return 0.0;
-  const double load_mm = geometry::peak_chip_load_mm(profile, sample, tool);
   const auto& range = model.range;
   const double clamped_mm = std::min(model_contact_length_mm(model, sample.contact_length_mm),
                                      std::max(range.contact_length_max_mm, range.contact_length_min_mm));
-  const double reference_rad = clamped_mm / tool.radius_mm();
+  const double reference_rad = clamped_mm / straight_cuts.tool().radius_mm();
   const double reference_depth_mm = model.axial_depth_mm > 0.0 ? model.axial_depth_mm : sample.material_height_mm;
   // The straight cut with the same t_m: f_z' = t_m / sin(min(α', π/2)), so per unit f_z of the sample its
   // load is C_ref · k / sin(min(α', π/2)).
-  const double reference_mm = geometry::straight_cut_chip_load_mm(reference_rad, reference_depth_mm, tool) * k /
-                              std::sin(std::min(reference_rad, 0.5 * kPi));
+  const double reference_mm =
+      straight_cuts.peak_mm(reference_rad, reference_depth_mm) * k / std::sin(std::min(reference_rad, 0.5 * kPi));
   if (!(reference_mm > 0.0) || !std::isfinite(reference_mm)) return 0.0;
   return load_mm / reference_mm;
 }

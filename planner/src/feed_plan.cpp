@@ -11,6 +11,7 @@
 
 #include "block_split.hpp"
 #include "feedplan/core/number_text.hpp"
+#include "feedplan/geometry/chip_load.hpp"
 #include "feedplan/model/model_prediction.hpp"
 #include "feedplan/planner/controller_model.hpp"
 #include "feedplan/planner/feed_limit.hpp"
@@ -115,6 +116,11 @@ PlanGeometry analyse(const geometry::ToolPath& path, const geometry::Stock& stoc
   geometry::EngagementOptions options;
   options.ds_mm = ds_mm;
   result.engagement = geometry::compute_engagement(path, stock, tool.radius_mm(), options);
+  result.straight_cuts = std::make_shared<geometry::StraightCutLoads>(tool);
+  result.peak_chip_load_mm.reserve(result.engagement.samples.size());
+  for (const auto& sample : result.engagement.samples) {
+    result.peak_chip_load_mm.push_back(is_engaged(sample) ? geometry::peak_chip_load_mm(result.engagement, sample, tool) : 0.0);
+  }
   return result;
 }
 
@@ -193,6 +199,14 @@ namespace {
 // Plans of the program before one the safety check refuses is reported unsafe.
 constexpr int kSafetyPasses = 4;
 
+// True when analyse's chip loads in `geometry` belong to its tool (not changed since).
+bool made_for_tool(const PlanGeometry& geometry) {
+  if (!geometry.straight_cuts) return false;
+  const geometry::Tool& made = geometry.straight_cuts->tool();
+  return made.diameter_mm == geometry.tool.diameter_mm && made.flutes == geometry.tool.flutes &&
+         made.helix_deg == geometry.tool.helix_deg;
+}
+
 // What every step of plan() reads: the inputs, and the values derived from them once.
 struct PlanContext {
   PlanContext(const PlanGeometry& geometry, const PlanSettings& settings);
@@ -237,7 +251,8 @@ PlanContext::PlanContext(const PlanGeometry& geometry, const PlanSettings& setti
       tool(geometry.tool),
       s(n),
       move_first(first_samples(path, engagement)),
-      forces(settings.model, settings.mechanistic ? &*settings.mechanistic : nullptr, geometry.engagement, geometry.tool),
+      forces(settings.model, settings.mechanistic ? &*settings.mechanistic : nullptr, geometry.engagement, geometry.tool,
+             made_for_tool(geometry) ? geometry.straight_cuts : nullptr),
       load_ratio(n) {
   assert(!samples.empty());
   if (uncertainty && uncertainty->off_straight_cut && !settings.force_correction.empty()) {
@@ -246,9 +261,10 @@ PlanContext::PlanContext(const PlanGeometry& geometry, const PlanSettings& setti
       corrected_bound_samples[i].chip_area_ratio = std::max(samples[i].chip_area_ratio / correction(i), 1.0);
     }
   }
+  const bool loads_known = made_for_tool(geometry) && geometry.peak_chip_load_mm.size() == n;
   for (std::size_t i = 0; i < n; ++i) {
     s[i] = samples[i].s_mm;
-    load_ratio[i] = forces.load_ratio(samples[i]);
+    load_ratio[i] = loads_known ? forces.load_ratio(samples[i], geometry.peak_chip_load_mm[i]) : forces.load_ratio(samples[i]);
   }
 }
 

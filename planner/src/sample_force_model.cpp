@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "feedplan/geometry/chip_load.hpp"
 #include "feedplan/model/mechanistic_force.hpp"
 #include "feedplan/model/model_prediction.hpp"
 #include "feedplan/planner/engaged_sections.hpp"
@@ -39,11 +40,17 @@ double bound_factor(const ForceUncertainty* uncertainty) {
 }  // namespace
 
 SampleForceModel::SampleForceModel(const model::ResponseSurfaceModel& surface, const model::MechanisticModel* mechanistic,
-                                   const geometry::EngagementProfile& profile, const geometry::Tool& tool)
-    : surface_(surface), mechanistic_(mechanistic), profile_(profile), tool_(tool) {}
+                                   const geometry::EngagementProfile& profile, const geometry::Tool& tool,
+                                   std::shared_ptr<geometry::StraightCutLoads> straight_cuts)
+    : straight_cuts_(straight_cuts ? std::move(straight_cuts) : std::make_shared<geometry::StraightCutLoads>(tool)), surface_(surface), mechanistic_(mechanistic), profile_(profile), tool_(tool) {}
 
 double SampleForceModel::load_ratio(const geometry::EngagementSample& sample) const {
-  return mechanistic_ ? 0.0 : chip_load_ratio(surface_, profile_, sample, tool_);
+  if (mechanistic_ || !is_engaged(sample) || sample.layer_count == 0) return 0.0;
+  return load_ratio(sample, geometry::peak_chip_load_mm(profile_, sample, tool_));
+}
+
+double SampleForceModel::load_ratio(const geometry::EngagementSample& sample, double peak_chip_load_mm) const {
+  return mechanistic_ ? 0.0 : chip_load_ratio(surface_, sample, peak_chip_load_mm, *straight_cuts_);
 }
 
 double SampleForceModel::kernel_peak_n(const geometry::EngagementSample& sample, double feed_per_tooth_mm) const {

@@ -58,7 +58,9 @@ TEST(TargetSweep, EachRowIsThePlanAtItsTargetAndMoreForceNeverCostsTime) {
     EXPECT_EQ(row.status, single.status) << row.target_n;
     EXPECT_DOUBLE_EQ(row.cycle_time_s, single.summary.cycle_time_s) << row.target_n;
     EXPECT_DOUBLE_EQ(row.max_predicted_force_n, single.summary.max_predicted_force_n) << row.target_n;
-    if (i > 0) EXPECT_LE(row.cycle_time_s, rows[i - 1].cycle_time_s * (1 + 1e-9)) << row.target_n;
+    if (i > 0) {
+      EXPECT_LE(row.cycle_time_s, rows[i - 1].cycle_time_s * (1 + 1e-9)) << row.target_n;
+    }
     if (row.status == PlanStatus::kTargetNotMet) {
       some_not_met = true;
       EXPECT_GT(row.unreachable_samples, 0);

@@ -32,6 +32,7 @@
 // plunge feed per tooth (geometry::Tool::plunge_feed_per_tooth_mm): F ≤ f_z,plunge · Z · n / |dz/ds|.
 
 #include "feedplan/geometry/engagement.hpp"
+#include "feedplan/geometry/straight_cut_loads.hpp"
 #include "feedplan/geometry/move.hpp"
 #include "feedplan/geometry/tool.hpp"
 #include "feedplan/model/feed_solve.hpp"
@@ -65,6 +66,11 @@ double axial_depth_ratio(const model::ResponseSurfaceModel& model, double axial_
 //! the sample makes no chip or has no layers (the transfer does not apply).
 double chip_load_ratio(const model::ResponseSurfaceModel& model, const geometry::EngagementProfile& profile,
                        const geometry::EngagementSample& sample, const geometry::Tool& tool);
+
+//! The same with the sample's peak chip load given (`load_mm`: geometry::peak_chip_load_mm of the sample)
+//! and the straight cuts' taken from `straight_cuts` (for the tool of the sample).
+double chip_load_ratio(const model::ResponseSurfaceModel& model, const geometry::EngagementSample& sample,
+                       double load_mm, geometry::StraightCutLoads& straight_cuts);
 
 //! The largest path feed (mm/min) at which `move` descends no faster than the tool's plunge feed per tooth
 //! allows at `spindle_rpm`, with its descent taken `resolution_mm` deeper than planned (the written

@@ -32,6 +32,7 @@
 //     every F change feasible within the faster block (it decelerates at the end of a fast block and
 //     accelerates at the start of the next fast one).
 
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -39,6 +40,7 @@
 #include "feedplan/core/input_error.hpp"
 #include "feedplan/geometry/machine_limits.hpp"
 #include "feedplan/geometry/engagement.hpp"
+#include "feedplan/geometry/straight_cut_loads.hpp"
 #include "feedplan/geometry/program.hpp"
 #include "feedplan/geometry/stock.hpp"
 #include "feedplan/geometry/tool.hpp"
@@ -92,6 +94,13 @@ struct PlanGeometry {
   geometry::Stock stock;                    //!< the material before the path (what the safety check cuts)
   geometry::Tool tool;                      //!< the end mill
   geometry::EngagementProfile engagement;   //!< engagement along the path (docs/method.md §5.1–5.2)
+  //! geometry::peak_chip_load_mm of every engagement sample (0 where it has no layers): geometric, so
+  //! computed once for all plans of the path. plan() computes it again when it is empty or
+  //! `straight_cuts` is not for `tool`; clear both when changing `engagement`.
+  std::vector<double> peak_chip_load_mm;
+  //! The straight cuts' peak chip loads for `tool` the plans of this path asked for (made by analyse;
+  //! null: each plan finds its own).
+  std::shared_ptr<geometry::StraightCutLoads> straight_cuts;
 };
 
 //! Computes the engagement of `tool` along `path` on `stock` at `ds_mm` (geometry::compute_engagement).

@@ -16,9 +16,11 @@
 // One object per path: plan(), the safety check, the target advice and the constant-feed baseline all
 // ask it, so the kinds are told apart in one place.
 
+#include <memory>
 #include <optional>
 
 #include "feedplan/geometry/engagement.hpp"
+#include "feedplan/geometry/straight_cut_loads.hpp"
 #include "feedplan/geometry/tool.hpp"
 #include "feedplan/model/mechanistic_model.hpp"
 #include "feedplan/model/response_surface_model.hpp"
@@ -39,13 +41,17 @@ class SampleForceModel {
  public:
   //! `surface` is always given (its fitted range describes the tests); `mechanistic`, when given, is the
   //! force model. Keeps references: `surface`, `mechanistic`, `profile` must outlive the object.
+  //! `straight_cuts`, when given, remembers the straight cuts' chip loads for `tool` across objects.
   SampleForceModel(const model::ResponseSurfaceModel& surface, const model::MechanisticModel* mechanistic,
-                   const geometry::EngagementProfile& profile, const geometry::Tool& tool);
+                   const geometry::EngagementProfile& profile, const geometry::Tool& tool,
+                   std::shared_ptr<geometry::StraightCutLoads> straight_cuts = nullptr);
 
   bool mechanistic() const { return mechanistic_ != nullptr; }
 
   //! chip_load_ratio (feed_limit.hpp) for the response surface; 0 for the mechanistic kernel (no transfer).
   double load_ratio(const geometry::EngagementSample& sample) const;
+  //! The same with the sample's peak chip load given (geometry::peak_chip_load_mm, PlanGeometry).
+  double load_ratio(const geometry::EngagementSample& sample, double peak_chip_load_mm) const;
 
   //! The feed limit at `sample` for `target_force_n` (sample_feed_limit for the response surface).
   SampleFeedLimit feed_limit(const geometry::EngagementSample& sample, double load_ratio, double target_force_n,
@@ -79,6 +85,9 @@ class SampleForceModel {
   mutable double last_solution_mm_per_min_ = 0.0;
   //! The slope of the peak in the feed at that solution, N per mm/min (0: none): the next secant step's.
   mutable double last_slope_n_per_mm_per_min_ = 0.0;
+  //! The straight cuts' peak chip loads the response surface's transfers asked for (shared with other
+  //! plans of the path when given to the constructor).
+  std::shared_ptr<geometry::StraightCutLoads> straight_cuts_;
   const model::ResponseSurfaceModel& surface_;
   const model::MechanisticModel* mechanistic_;
   const geometry::EngagementProfile& profile_;
