@@ -64,6 +64,7 @@ PeakComparison compare_peaks(const PlanResult& result, double target_force_n,
     c.revolution = revolution;
     c.error_percent = 100.0 * (revolution.peak_n - target_force_n) / target_force_n;
     bool all_force_limited = true;
+    double closest_to_limit = 0.0;  // the largest speed / force limit over the span's engaged samples
     double engagement_min = 1e300;
     double engagement_max = -1e300;
     for (std::size_t i = first_at_or_after(revolution.s_start_mm); i < samples.size() && samples[i].s_mm <= revolution.s_end_mm; ++i) {
@@ -72,10 +73,13 @@ PeakComparison compare_peaks(const PlanResult& result, double target_force_n,
       all_force_limited = all_force_limited && samples[i].limit_reason == FeedLimitReason::kForce &&
                           samples[i].within_model_range;
       c.planned_force_n = std::max(c.planned_force_n, samples[i].predicted_force_n);
+      if (samples[i].feed_limit_mm_per_min > 0.0) {
+        closest_to_limit = std::max(closest_to_limit, samples[i].feed_mm_per_min / samples[i].feed_limit_mm_per_min);
+      }
       engagement_min = std::min(engagement_min, samples[i].engagement_rad);
       engagement_max = std::max(engagement_max, samples[i].engagement_rad);
     }
-    c.held = c.in_cut && all_force_limited;
+    c.held = c.in_cut && all_force_limited && closest_to_limit >= 1.0 - kHeldFeedShortfall;
     c.steady = c.held && engagement_max - engagement_min <= kSteadyEngagementSpreadRad;
     const std::size_t middle = std::min(first_at_or_after(0.5 * (revolution.s_start_mm + revolution.s_end_mm)),
                                         samples.empty() ? 0 : samples.size() - 1);
@@ -111,7 +115,7 @@ std::string describe(const PeakComparison& c, double target_force_n) {
   char line[512];
   std::string text = largest_peak_line(c, target_force_n);
   std::snprintf(line, sizeof line,
-                "revolutions: %zu, in cut %d, held at the target (force-limited, inside the model's range) %d, "
+                "revolutions: %zu, in cut %d, held at the target (force-limited, inside the model's range, run at the limit) %d, "
                 "of them steady (constant engagement) %d\n",
                 c.revolutions.size(), c.in_cut, c.held, c.steady);
   text += line;

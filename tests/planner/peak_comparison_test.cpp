@@ -11,7 +11,8 @@ namespace feedplan::planner {
 namespace {
 
 // Samples every 1 mm over 0..30 mm: air up to 10, then force-limited at 40° inside the model's range up
-// to 20, then limited by the machine's maximum feed at a rising engagement up to 30.
+// to 20, then limited by the machine's maximum feed at a rising engagement up to 30; the machine runs at
+// every limit.
 PlanResult hand_made_plan() {
   PlanResult result;
   for (int i = 0; i <= 30; ++i) {
@@ -22,6 +23,8 @@ PlanResult hand_made_plan() {
     s.limit_reason = i < 10 ? FeedLimitReason::kAirFeed : i <= 20 ? FeedLimitReason::kForce : FeedLimitReason::kMaxFeed;
     s.within_model_range = s.engaged;
     s.predicted_force_n = s.engaged ? 100.0 : 0.0;
+    s.feed_limit_mm_per_min = 500.0;
+    s.feed_mm_per_min = 500.0;
     result.samples.push_back(s);
   }
   return result;
@@ -75,6 +78,23 @@ TEST(PeakComparison, ARevolutionAcrossAChangingEngagementIsHeldButNotSteady) {
   EXPECT_EQ(c.held, 1);
   EXPECT_EQ(c.steady, 0);
   EXPECT_EQ(c.worst_steady, -1);
+}
+
+// Where the axes cannot bring the speed up to the force limit in time, the plan itself predicts less than
+// the target: the revolution is in cut, its overshoot counts, but it is not held. Within the F words'
+// merge tolerance (a block's F at the smallest limit it spans) it is.
+TEST(PeakComparison, ARevolutionTheMachineRunsBelowItsForceLimitIsNotHeld) {
+  PlanResult plan = hand_made_plan();
+  for (auto& s : plan.samples) {
+    if (s.s_mm >= 11 && s.s_mm <= 14) s.feed_mm_per_min = 0.95 * s.feed_limit_mm_per_min;  // accelerating
+    if (s.s_mm >= 15 && s.s_mm <= 18) s.feed_mm_per_min = (s.s_mm == 16 ? 0.98 : 0.9) * s.feed_limit_mm_per_min;
+  }
+  const PeakComparison c = compare_peaks(plan, 100.0, {{11.0, 14.0, 93.0}, {15.0, 18.0, 99.0}});
+  EXPECT_EQ(c.in_cut, 2);
+  EXPECT_FALSE(c.revolutions[0].held);
+  EXPECT_TRUE(c.revolutions[1].held) << "one sample at 98 % of its limit: within the merge tolerance";
+  EXPECT_EQ(c.held, 1);
+  EXPECT_NEAR(c.max_abs_error_percent, 1.0, 1e-12);
 }
 
 }  // namespace

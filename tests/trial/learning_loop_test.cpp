@@ -88,17 +88,18 @@ class LearningLoop : public ::testing::Test {
 // Learning along the path searches the feed per place (learning/path_correction.hpp) on peaks less the
 // noise's excess (learning/peak_noise_bias.hpp) and corrected for the dynamometer's mode as its tap test
 // gives it (learning/sensor_dynamics.hpp); the program keeps its model. Measured (true peaks): cycle 3 held
-// RMS 0.68, 1.03 and 1.14 %, cycle time 24.3, 34.5 and 33.6 s against T* 23.4, 32.0 and 33.3 s (1.04, 1.08
-// and 1.01 T*; bench/learning_convergence_bench), largest revolution over the target +1.4, +2.0, +3.6 %.
-// Not yet the ±3 % largest error the product aims at: single held revolutions at loop entries still miss by
-// 6–15 % (under the target).
+// RMS 0.53, 0.77 and 1.05 %, largest held error 2.6, 4.3 and 6.0 %, cycle time 24.2, 34.6 and 33.5 s, largest
+// revolution over the target +4.5, +2.0, +3.3 %. Held revolutions are those the plan brings to the target
+// (planner/peak_comparison.hpp): the ±3 % the product aims at is met on family-02; on the other two a few
+// revolutions at loop entries stay 3–6 % under the target.
 TEST_F(LearningLoop, TrochoidOnThreeMachinesOfTheFamilyConvergesWithoutDraggingTheCycle) {
   struct Case {
     std::string machine;
     double third_rms_percent;  // bound on cycle 3's held RMS error
+    double third_max_percent;  // and on its largest held error
   };
-  for (const Case& m : {Case{"family/family-02.yaml", 1.2}, Case{"family/family-04.yaml", 2.0},
-                        Case{"family/family-09.yaml", 2.0}}) {
+  for (const Case& m : {Case{"family/family-02.yaml", 1.0, 3.0}, Case{"family/family-04.yaml", 1.5, 5.0},
+                        Case{"family/family-09.yaml", 1.5, 7.0}}) {
     SCOPED_TRACE(m.machine);
     LoopRequest request = request_on_machine("trochoid.yaml", m.machine, 400.0);
     request.cycles = 3;
@@ -112,6 +113,8 @@ TEST_F(LearningLoop, TrochoidOnThreeMachinesOfTheFamilyConvergesWithoutDraggingT
     }
     EXPECT_GT(result.cycles[0].comparison.max_overshoot_percent, 15.0);
     EXPECT_LE(result.cycles[2].comparison.rms_error_percent, m.third_rms_percent);
+    EXPECT_LE(result.cycles[2].comparison.max_abs_error_percent, m.third_max_percent);
+    EXPECT_GT(result.cycles[2].comparison.held, 600) << "most revolutions in the cut are held";
     // Cycle 2 still overshot here, so cycle 3 may be slower; by how much is bounded.
     EXPECT_LE(result.cycles[2].simulated_cycle_time_s, 1.45 * result.cycles[1].simulated_cycle_time_s);
     EXPECT_LE(result.cycles[2].comparison.max_overshoot_percent, 6.0);

@@ -5,9 +5,11 @@
 // Each revolution is placed on the path by the path length it spans. A revolution counts as
 //   - in cut when some planned sample inside its span is engaged;
 //   - held when every engaged planned sample inside its span is force-limited (FeedLimitReason::kForce)
-//     and inside the model's fitted range at the feed run (PlannedSample::within_model_range): there the
-//     plan promises the target on the model's own ground, so |peak − target| / target is the error.
-//     Elsewhere — the machine's maximum feed or an arc's centripetal limit binds, or the tool enters or
+//     and inside the model's fitted range at the feed run (PlannedSample::within_model_range), and the
+//     machine's predicted speed reaches that limit somewhere in the span within kHeldFeedShortfall: there
+//     the plan promises the target on the model's own ground, so |peak − target| / target is the error.
+//     Elsewhere — the machine's maximum feed, an arc's centripetal limit or the axes' acceleration (the
+//     feed cannot rise to the limit in time, so the plan itself predicts less) binds, or the tool enters or
 //     leaves the material, where the engagement leaves the straight-cut data the model was fitted on —
 //     the comparison reports the overshoot (peak above the target), which says how far the model is off
 //     there;
@@ -22,6 +24,11 @@
 #include "feedplan/planner/feed_plan.hpp"
 
 namespace feedplan::planner {
+
+//! How far below its force limit the speed of a held revolution may stay, as a fraction of the limit: a
+//! block's F lies up to the merge tolerance (PlanOptions, 2 %) below the limits it spans and is rounded
+//! down to the F words' step. Further below, the plan itself does not bring the force to the target there.
+inline constexpr double kHeldFeedShortfall = 0.025;
 
 //! Largest spread of the engagement angle over a revolution that still counts as steady, rad (0.5°).
 inline constexpr double kSteadyEngagementSpreadRad = 0.5 * 3.14159265358979323846 / 180.0;
