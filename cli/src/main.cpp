@@ -16,6 +16,7 @@
 #include "loop_command.hpp"
 #include "plan_command.hpp"
 #include "simulate_command.hpp"
+#include "optimize_command.hpp"
 #include "feedplan/core/input_error.hpp"
 
 namespace {
@@ -42,6 +43,8 @@ int run_command_line(int argc, char** argv) {
   feedplan::cli::add_cycle_command(app, cycle_options);
   feedplan::cli::SimulateOptions simulate_options;
   feedplan::cli::add_simulate_command(app, simulate_options);
+  feedplan::cli::OptimizeOptions optimize_options;
+  feedplan::cli::add_optimize_command(app, optimize_options);
   feedplan::cli::PlanCommandOptions plan_options;
   feedplan::cli::add_plan_command(app, plan_options);
   feedplan::cli::CalibrationOptions calibration_options;
@@ -72,6 +75,7 @@ int run_command_line(int argc, char** argv) {
     if (app.got_subcommand("cycle")) return feedplan::cli::run_cycle_command(cycle_options);
     if (app.got_subcommand("simulate")) return feedplan::cli::run_simulate_command(simulate_options);
     if (app.got_subcommand("plan")) return feedplan::cli::run_plan_command(plan_options);
+    if (app.got_subcommand("optimize")) return feedplan::cli::run_optimize_command(optimize_options);
     if (app.got_subcommand("calibrate-currents")) return feedplan::cli::run_calibration_command(calibration_options);
     if (app.got_subcommand("learn")) return feedplan::cli::run_learn_command(learn_options);
     if (app.got_subcommand("loop")) return feedplan::cli::run_loop_command(loop_options);

@@ -166,7 +166,6 @@ std::string letter_refusal(char letter) {
   switch (letter) {
     case 'A': case 'B': case 'C': return "rotary axes; the reader reads X, Y and Z only";
     case 'U': case 'V': case 'W': return "extra linear axes; the reader reads X, Y and Z only";
-    case 'K': return "K is the Z centre offset of arcs in the XZ and YZ planes (G18, G19), which are not supported";
     case 'D': return "D selects cutter radius compensation (G41, G42), which is not supported";
     case 'L': return "L is read by G10 and canned cycles, which are not supported";
     default: return "not a word the reader knows";

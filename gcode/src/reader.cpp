@@ -62,7 +62,7 @@ bool is_motion(int motion) { return motion == kG0 || motion == kG1 || is_arc(mot
 // Value words the reader reads (G, M, N and O are handled separately).
 bool is_value_letter(char letter) {
   switch (letter) {
-    case 'F': case 'H': case 'I': case 'J': case 'P': case 'Q': case 'R': case 'S': case 'T': case 'X': case 'Y': case 'Z':
+    case 'F': case 'H': case 'I': case 'J': case 'K': case 'P': case 'Q': case 'R': case 'S': case 'T': case 'X': case 'Y': case 'Z':
       return true;
     default:
       return false;
@@ -149,6 +149,7 @@ class Interpreter {
   }
 
   geometry::Program take_program() { return std::move(program_); }
+  std::vector<WrittenMove> take_written() { return std::move(written_); }
 
   // Why a tool change is refused: the path is planned for one tool (the catalog's old reason).
   static constexpr const char* kOneToolReason = "tool change: the path is planned for one tool; split the program per tool";
@@ -301,7 +302,7 @@ class Interpreter {
       break;
     }
     const std::string motion_name = motion == kNoMotion ? std::string("no motion") : detail::g_code_name(motion);
-    for (char letter : {'I', 'J', 'R'}) {
+    for (char letter : {'I', 'J', 'K', 'R'}) {
       const Word* w = block.word(letter);
       if (w != nullptr && !is_arc(motion)) {
         fail("word " + w->text + ": " + std::string(1, letter) + " is read only with G2 or G3 (" + motion_name +
@@ -576,6 +577,11 @@ class Interpreter {
     axis('X', position_mm_.x_mm, end.x_mm);
     axis('Y', position_mm_.y_mm, end.y_mm);
     axis('Z', position_mm_.z_mm, end.z_mm);
+    if (block.has('K') && !k_note_given_) {
+      note("line " + std::to_string(line) + ": K words of arcs in the XY plane are ignored, as grbl does (they offset "
+           "the centre along Z, which an XY arc does not have); LinuxCNC refuses them");
+      k_note_given_ = true;
+    }
     if (!units_set_ && !unit_note_given_) {
       note("line " + std::to_string(line) + ": no G20 or G21 before the first move; lengths are read as mm");
       unit_note_given_ = true;
@@ -610,6 +616,9 @@ class Interpreter {
     command.dwell_before_s = pending_dwell_s_;
     command.source_line = line;
     pending_dwell_s_ = 0.0;
+    written_.push_back({line, motion == kG0 ? 0 : motion == kG1 ? 1 : motion == kG2 ? 2 : 3,
+                        block.g_by_group[1].has_value(), inch_, !absolute_, absolute_arc_center_, block.has('R'),
+                        block.has('P')});
     program_.path.moves.push_back(m);
     program_.blocks.push_back(command);
     position_mm_ = end;
@@ -626,12 +635,14 @@ class Interpreter {
   const ReaderOptions& options_;
   detail::ProblemLog& problems_;
   geometry::Program program_;
+  std::vector<WrittenMove> written_;  // parallel to program_.path.moves
 
   Point3 position_mm_;  // the programmed position (LinuxCNC's current point), mm
   Point2 path_end_xy_;  // where the last move ends in XY: the programmed position, or an arc end moved onto its circle
   bool inch_ = false;
   bool units_set_ = false;
   bool unit_note_given_ = false;
+  bool k_note_given_ = false;
   bool absolute_ = true;
   bool absolute_arc_center_ = false;
   int motion_ = kNoMotion;
@@ -664,6 +675,12 @@ class Interpreter {
 }  // namespace
 
 geometry::Program read_program(const std::string& text, const std::string& source_name, const ReaderOptions& options) {
+  std::vector<WrittenMove> written;
+  return read_program(text, source_name, options, written);
+}
+
+geometry::Program read_program(const std::string& text, const std::string& source_name, const ReaderOptions& options,
+                               std::vector<WrittenMove>& written) {
   detail::ProblemLog problems(source_name, options.max_problems);
   if (!(options.arc_radius_tolerance_mm >= 0.0) || !std::isfinite(options.arc_radius_tolerance_mm)) {
     throw InputError("ReaderOptions::arc_radius_tolerance_mm",
@@ -673,6 +690,7 @@ geometry::Program read_program(const std::string& text, const std::string& sourc
   interpreter.run(text);
   problems.throw_if_any();
   geometry::Program program = interpreter.take_program();
+  written = interpreter.take_written();
   program.source_name = source_name;
   // The reader builds each move from the previous end: a defect here is a reader bug, not bad input.
   [[maybe_unused]] const std::vector<std::string> defects = geometry::consistency_defects(program.path);

@@ -151,7 +151,7 @@ const std::vector<BadProgram>& bad_programs() {
       {"arc_zero_radius.ngc", "line 2: G2 I0 J0: zero radius"},
       {"arc_without_ijr.ngc", "line 2: G2 without I, J or R"},
       {"arc_r_and_ij.ngc", "line 2: word R5: R and I/J in one arc"},
-      {"arc_k_word.ngc", "line 2: word K1: not supported"},
+      {"arc_k_word.ngc", "line 2: word K1: K is read only with G2 or G3"},
       {"arc_turns_zero.ngc", "line 2: word P0: the number of turns"},
       {"arc_turns_fraction.ngc", "line 2: word P1.5: the number of turns"},
       {"ij_without_arc.ngc", "line 2: word I5: I is read only with G2 or G3"},

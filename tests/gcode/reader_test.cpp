@@ -70,6 +70,20 @@ TEST(Reader, ClockwiseArcOfThreeQuartersWithIJ) {
   EXPECT_NEAR(arc.sweep_rad, 1.5 * kPi, kTight);
 }
 
+// grbl posts (FreeCAD's among them) write K0 on XY arcs; grbl ignores it, and so does the reader, once noted.
+TEST(Reader, AKWordOfAnXYArcIsIgnoredWithANote) {
+  const Program with_k = read("G21 F100\nG0 Y-5\nG2 X5 Y0 J5 K0\nG2 X0 Y-5 I-5 K2.5\nM2\n");
+  const Program without = read("G21 F100\nG0 Y-5\nG2 X5 Y0 J5\nG2 X0 Y-5 I-5\nM2\n");
+  ASSERT_EQ(with_k.path.moves.size(), without.path.moves.size());
+  for (std::size_t i = 0; i < with_k.path.moves.size(); ++i) {
+    EXPECT_EQ(with_k.path.moves[i].center.x_mm, without.path.moves[i].center.x_mm);
+    EXPECT_EQ(with_k.path.moves[i].center.y_mm, without.path.moves[i].center.y_mm);
+    EXPECT_EQ(with_k.path.moves[i].sweep_rad, without.path.moves[i].sweep_rad);
+  }
+  ASSERT_EQ(with_k.notes.size(), 1u);
+  EXPECT_THAT(with_k.notes[0], HasSubstr("line 3: K words of arcs in the XY plane are ignored"));
+}
+
 TEST(Reader, PositiveRGivesTheShortArcNegativeRTheLongOne) {
   // Chord (0, 0) → (10, 10), half length √50 = R / √2 for R = 10, so the centre is √50 from the
   // chord's middle (5, 5): (10, 0) on the right of the chord, (0, 10) on the left.
@@ -380,7 +394,8 @@ TEST(ReaderProblems, ArcsThatDoNotCloseOrReach) {
   EXPECT_THAT(problems_of("G21 F100\nG2 X1\nM2\n"),
               HasSubstr("test line 2: G2 without I, J or R: an arc needs its centre (I, J) or its radius (R)"));
   EXPECT_THAT(problems_of("G21 F100\nG2 X10 R5 I5\nM2\n"), HasSubstr("test line 2: word R5: R and I/J in one arc"));
-  EXPECT_THAT(problems_of("G21 F100\nG2 X10 I5 K1\nM2\n"), HasSubstr("test line 2: word K1: not supported"));
+  EXPECT_THAT(problems_of("G21 F100\nG1 X10 K1\nM2\n"),
+              HasSubstr("test line 2: word K1: K is read only with G2 or G3 (G1 in this block)"));
   EXPECT_THAT(problems_of("G21 F100\nG2 X10 I5 P0\nM2\n"),
               HasSubstr("test line 2: word P0: the number of turns of G2/G3 must be a whole number ≥ 1"));
   EXPECT_THAT(problems_of("G21 F100\nG1 X1 I5\nM2\n"),

@@ -49,7 +49,7 @@
 //   positions); G10, G52, G92 (offset changes); G5.x splines, G33 threading, G38.x probing, G73–G89
 //   canned cycles, G7, G8; a second M6 or one after the first move (the path is planned for one
 //   tool: split the program per tool), M6 with no T before it; every other G or M code; A, B, C, U,
-//   V, W axes; K (arcs outside XY) and the letters D, E, L and the like; parameters and expressions
+//   V, W axes; K outside an arc; the letters D, E, L and the like; parameters and expressions
 //   (#1, [..]); O-word subroutines and control flow; block delete `/` (whether the line runs
 //   depends on the operator's switch).
 //
@@ -119,6 +119,22 @@ struct ReaderOptions {
 //! `<source_name> line N: word Q5: not supported (…)` or `… line N: G1 before any F word: …`.
 geometry::Program read_program(const std::string& text, const std::string& source_name,
                                const ReaderOptions& options = {});
+
+//! How the line of a move was written: what rewriting the line (refeed.hpp) must keep.
+struct WrittenMove {
+  int line = 0;                      //!< 1-based text line (BlockCommand::source_line)
+  int motion = 1;                    //!< 0, 1, 2, 3: G0 G1 G2 G3
+  bool motion_word = false;          //!< the line has its own G0–G3 word (else the modal one moves)
+  bool inch = false;                 //!< G20 in effect
+  bool incremental = false;          //!< G91 in effect
+  bool absolute_arc_center = false;  //!< G90.1 in effect (I J absolute)
+  bool radius_form = false;          //!< an arc given by R
+  bool turns = false;                //!< an arc with a P word (turns)
+};
+
+//! read_program, and how each move's line was written (parallel to the program's moves).
+geometry::Program read_program(const std::string& text, const std::string& source_name, const ReaderOptions& options,
+                               std::vector<WrittenMove>& written);
 
 //! Reads the file at `path` and parses it with read_program, the path as source name. A file that
 //! does not exist, is a directory or cannot be read is an InputError naming the path.
