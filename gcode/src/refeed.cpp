@@ -37,7 +37,7 @@ std::vector<TextLine> split_lines(const std::string& text) {
       begin = text.size();
     } else {
       line.body = text.substr(begin, end - begin);
-      line.ending = "\n";
+      line.ending.assign(1, '\n');
       begin = end + 1;
     }
     if (!line.body.empty() && line.body.back() == '\r') {
@@ -89,24 +89,29 @@ std::string without_words(const std::string& body, std::string_view letters) {
   return out;
 }
 
-// `body` with `words` added after its last word, before a `;` comment.
+// `body` with `words` added right after its last word, before the comments that follow it.
 std::string with_words(const std::string& body, const std::string& words) {
   bool in_paren = false;
-  std::size_t semicolon = body.size();
+  std::size_t after_last_word = 0;  // one past the last character of a word
   for (std::size_t i = 0; i < body.size(); ++i) {
+    const char c = body[i];
     if (in_paren) {
-      in_paren = body[i] != ')';
-    } else if (body[i] == '(') {
+      in_paren = c != ')';
+    } else if (c == '(') {
       in_paren = true;
-    } else if (body[i] == ';') {
-      semicolon = i;
+    } else if (c == ';') {
       break;
+    } else if (c != ' ' && c != '\t') {
+      after_last_word = i + 1;
     }
   }
-  std::string head = body.substr(0, semicolon);
-  while (!head.empty() && (head.back() == ' ' || head.back() == '\t')) head.pop_back();
-  std::string out = head.empty() ? words : head + " " + words;
-  if (semicolon < body.size()) out += " " + body.substr(semicolon);
+  std::string out = body.substr(0, after_last_word);
+  out += after_last_word > 0 ? " " : "";
+  out += words;
+  if (after_last_word < body.size()) {
+    if (body[after_last_word] != ' ' && body[after_last_word] != '\t') out += ' ';
+    out.append(body, after_last_word, std::string::npos);
+  }
   return out;
 }
 
@@ -200,10 +205,19 @@ std::string inner_piece_words(const geometry::Move& piece, const WrittenMove& w,
   words += units.length(piece.end.x_mm);
   words += " Y";
   words += units.length(piece.end.y_mm);
-  if (piece.start.z_mm != piece.end.z_mm) words += " Z" + units.length(piece.end.z_mm);
-  if (piece.kind == geometry::MoveKind::kArc) words += " " + arc_words(piece, start, w, units);
+  if (piece.start.z_mm != piece.end.z_mm) {
+    words += " Z";
+    words += units.length(piece.end.z_mm);
+  }
+  if (piece.kind == geometry::MoveKind::kArc) {
+    words += ' ';
+    words += arc_words(piece, start, w, units);
+  }
   const std::string f = feed_word(feed_mm_per_min, units, state);
-  if (!f.empty()) words += " " + f;
+  if (!f.empty()) {
+    words += ' ';
+    words += f;
+  }
   start = {as_written(piece.end.x_mm, units), as_written(piece.end.y_mm, units)};
   return words;
 }
@@ -295,20 +309,34 @@ void rewrite_move(const TextLine& line, const WrittenMove& w, const std::vector<
   geometry::Point2 start{pieces.front()->move.start.x_mm, pieces.front()->move.start.y_mm};
   // First piece: on the move's own line, with its other words.
   std::string first = without_words(line.body, "XYZIJKRPF");
-  std::string words = w.motion_word ? "" : code + " ";
+  std::string words;
+  if (!w.motion_word) {
+    words += code;
+    words += ' ';
+  }
   words += inner_piece_words(pieces.front()->move, w, units, start, state, pieces.front()->feed_mm_per_min);
   out.push_back({with_words(first, words), line.ending});
   for (std::size_t k = 1; k + 1 < pieces.size(); ++k) {
-    out.push_back({code + " " + inner_piece_words(pieces[k]->move, w, units, start, state, pieces[k]->feed_mm_per_min),
-                   line.ending});
+    std::string middle = code;
+    middle += ' ';
+    middle += inner_piece_words(pieces[k]->move, w, units, start, state, pieces[k]->feed_mm_per_min);
+    out.push_back({middle, line.ending});
     ++result.lines_added;
   }
   // Last piece: the line's own end words.
   const geometry::Move& last = pieces.back()->move;
-  std::string tail = code + " " + end_words(line.body, 0);
-  if (last.kind == geometry::MoveKind::kArc) tail += " " + arc_words(last, start, w, units);
+  std::string tail = code;
+  tail += ' ';
+  tail += end_words(line.body, 0);
+  if (last.kind == geometry::MoveKind::kArc) {
+    tail += ' ';
+    tail += arc_words(last, start, w, units);
+  }
   const std::string f = feed_word(pieces.back()->feed_mm_per_min, units, state);
-  if (!f.empty()) tail += " " + f;
+  if (!f.empty()) {
+    tail += ' ';
+    tail += f;
+  }
   out.push_back({tail, line.ending});
   ++result.lines_added;
 }

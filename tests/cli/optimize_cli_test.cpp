@@ -1,0 +1,112 @@
+// End-to-end tests of `feedplan optimize` on a program in the style of FreeCAD's linuxcnc post
+// (tests/data/cli/optimize_slot.ngc: a G1 used as a rapid above the stock, a plunge beside the stock, a
+// slot into it, an arc and a wall), with the sample model of the Ø10 4-flute end mill in S50C and the
+// stock tests/data/cli/optimize_stock.yaml. The judge is the virtual machine (first-principles forces,
+// not the model): the input, at its F500, overshoots the target; the re-fed program does not. Bad input
+// exits 2 naming the flag, and the output is not touched.
+
+#include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "run_feedplan.hpp"
+
+namespace {
+
+using namespace feedplan::cli_test;
+
+const std::string kData = std::string(FEEDPLAN_TEST_DATA_DIR) + "/cli/";
+const std::string kTool = " --tool diameter_mm=10,flutes=4,helix_deg=30 ";
+
+class OptimizeCliTest : public CliTest {
+ protected:
+  void SetUp() override {
+    CliTest::SetUp();
+    db_ = (dir_ / "t.db").string();
+    ASSERT_EQ(run_feedplan("db init --db " + db_).exit_code, 0);
+    const RunResult r = run_feedplan("db import " + kData + "s50c_d10_model.json --db " + db_);
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+  }
+
+  std::string optimize_args(const fs::path& output) const {
+    return "optimize " + kData + "optimize_slot.ngc -o " + output.string() + kTool + "--material S50C --stock " + kData +
+           "optimize_stock.yaml --db " + db_;
+  }
+
+  // The largest per-revolution peak of `program` on the virtual machine, N.
+  double simulated_peak_n(const fs::path& program) {
+    const RunResult r = run_feedplan("simulate " + program.string() + kTool + "--material S50C --stock " + kData +
+                                     "optimize_stock.yaml --log " + (dir_ / "log.csv").string() + " --json");
+    EXPECT_EQ(r.exit_code, 0) << r.output;
+    return nlohmann::json::parse(r.output)["max_revolution_peak_n"].get<double>();
+  }
+
+  std::string db_;
+};
+
+std::vector<std::string> lines_of(const std::string& text) {
+  std::vector<std::string> lines;
+  std::stringstream in(text);
+  std::string line;
+  while (std::getline(in, line)) lines.push_back(line);
+  return lines;
+}
+
+TEST_F(OptimizeCliTest, TheReFedProgramHoldsTheTargetWhereTheInputOvershot) {
+  constexpr double kTarget = 550.0;
+  const fs::path output = dir_ / "refed.ngc";
+  const RunResult r = run_feedplan(optimize_args(output) + " --target-force 550");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("wrote " + output.string()), std::string::npos) << r.output;
+  // Every line that is not a feed move comes through; the feed moves' lines keep their words but F.
+  const std::vector<std::string> in = lines_of(read_text(kData + "optimize_slot.ngc"));
+  const std::vector<std::string> out = lines_of(read_text(output));
+  for (const std::string& line : in) {
+    if (line.rfind("G1", 0) == 0 || line.rfind("G3", 0) == 0) continue;
+    EXPECT_NE(std::find(out.begin(), out.end(), line), out.end()) << "'" << line << "' is not in the output";
+  }
+  EXPECT_NE(std::find(out.begin(), out.end(), "G1 X-10.000 Y0.000 Z2.000 F10000. (G1 as a rapid, above the stock)"),
+            out.end())
+      << "the G1 above the stock runs at the machine's largest feed";
+  const double input_peak = simulated_peak_n(kData + "optimize_slot.ngc");
+  const double refed_peak = simulated_peak_n(output);
+  std::printf("largest per-revolution peak on the virtual machine: input %.1f N, re-fed %.1f N (target %.0f N)\n",
+              input_peak, refed_peak, kTarget);
+  EXPECT_GT(input_peak, 1.05 * kTarget);
+  EXPECT_LE(refed_peak, 1.05 * kTarget);
+}
+
+TEST_F(OptimizeCliTest, BadInputExitsTwoNamingTheFlagAndLeavesTheOutput) {
+  const fs::path output = dir_ / "kept.ngc";
+  { std::ofstream(output) << "old"; }
+  struct Case {
+    std::string extra;
+    std::string expected;
+  };
+  const std::vector<Case> cases = {
+      {"", "--target-force is required"},
+      {" --target-force 0", "--target-force = 0"},
+      {" --target-force 500 --stock-box 0,0,-10,60,40,0", "give one of --stock STOCK.yaml and --stock-box"},
+      {" --target-force 500 --spindle-rpm -5", "--spindle-rpm = -5"},
+      {" --target-force 500 --tool diameter_mm=abc", "--tool"},
+  };
+  for (const Case& c : cases) {
+    const RunResult r = run_feedplan(optimize_args(output) + c.extra);
+    EXPECT_EQ(r.exit_code, 2) << c.extra << "\n" << r.output;
+    EXPECT_NE(r.output.find(c.expected), std::string::npos) << c.extra << "\n" << r.output;
+    EXPECT_EQ(read_text(output), "old") << c.extra;
+  }
+  const RunResult box = run_feedplan("optimize " + kData + "optimize_slot.ngc -o " + output.string() + kTool +
+                                     "--material S50C --stock-box 0,0,-10,60,40 --target-force 500 --db " + db_);
+  EXPECT_EQ(box.exit_code, 2) << box.output;
+  EXPECT_NE(box.output.find("--stock-box = '0,0,-10,60,40': 5 numbers; expected six"), std::string::npos) << box.output;
+  EXPECT_EQ(read_text(output), "old");
+}
+
+}  // namespace
