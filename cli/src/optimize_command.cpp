@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 #include <iostream>
+#include <optional>
 #include <sstream>
 
 #include "database_path.hpp"
@@ -114,6 +115,8 @@ OptimizeInputs read_inputs(const OptimizeOptions& o) {
   check_flag(problems, "--max-feed", o.max_feed_mm_per_min, {0.0, false}, "mm/min");
   check_flag(problems, "--min-feed", o.min_feed_mm_per_min, {0.0, false}, "mm/min");
   check_flag(problems, "--ds", o.ds_mm, {0.001, true, 1.0, true}, "mm");
+  check_flag(problems, "--feed-step", o.feed_step, {0.0, true, 0.5, true}, "a relative step between F levels (0: off)");
+  check_flag(problems, "--min-block-s", o.min_block_duration_s, {0.0, true, 10.0, true}, "s");
   if (!o.tool_text.empty()) in.tool = parse_tool(o.tool_text, problems);
   if (!o.stock_box.empty()) in.stock = stock_box(o.stock_box, problems);
   if (o.max_feed_mm_per_min) in.machine.max_feed_mm_per_min = *o.max_feed_mm_per_min;
@@ -154,6 +157,8 @@ planner::PlanSettings settings_for(const OptimizeOptions& o, const OptimizeInput
   settings.machine = in.machine;
   settings.options.ds_mm = o.ds_mm;
   settings.options.coordinate_resolution_mm = in.program.coordinate_resolution_mm;
+  settings.options.feed_step = o.feed_step;
+  settings.options.min_block_duration_s = o.min_block_duration_s;
   return settings;
 }
 
@@ -183,7 +188,8 @@ std::string seconds(double s) { return fixed_number_text(s, 2) + " s"; }
 
 void print_summary(const OptimizeOptions& o, const OptimizeInputs& in, const ChosenModel& chosen,
                    const planner::PlanGeometry& geometry, const planner::PlanSettings& settings,
-                   const planner::PlanResult& result, const gcode::RefeedResult& refed, double wall_s) {
+                   const planner::PlanResult& result, const std::optional<double>& unconstrained_s,
+                   const gcode::RefeedResult& refed, double wall_s) {
   std::printf("%s: %zu moves (%zu lines), tool %s, target %s N at S%s\n", o.program_path.c_str(),
               in.program.path.moves.size(), static_cast<std::size_t>(std::count(in.text.begin(), in.text.end(), '\n')),
               in.tool.name.c_str(), shortest_number_text(settings.target_force_n).c_str(),
@@ -199,6 +205,12 @@ void print_summary(const OptimizeOptions& o, const OptimizeInputs& in, const Cho
               fixed_number_text(result.summary.max_predicted_force_n, 1).c_str(),
               shortest_number_text(result.summary.min_feed_mm_per_min).c_str(),
               shortest_number_text(result.summary.max_feed_mm_per_min).c_str());
+  if (unconstrained_s) {
+    std::printf("controller-friendly blocks (F levels %s %% apart, at least %s s each): %+.1f %% time against the plan "
+                "with every acceleration ramp written out (%s)\n",
+                shortest_number_text(100.0 * o.feed_step).c_str(), shortest_number_text(o.min_block_duration_s).c_str(),
+                100.0 * (result.summary.cycle_time_s - *unconstrained_s) / *unconstrained_s, seconds(*unconstrained_s).c_str());
+  }
   if (const double feed = single_input_feed(in.program); feed > 0.0) {
     const planner::ConstantFeedPrediction input = planner::predict_constant_feed(geometry, settings, feed, result.summary.accel_used_mm_per_s2);
     std::printf("input: F%s on every feed move: cycle time %s, predicted peak %s N (%+.1f %% time re-fed)\n",
@@ -236,6 +248,10 @@ void add_optimize_command(CLI::App& app, OptimizeOptions& o) {
   add_number_flag(cmd, "--cautious", o.model_uncertainty,
                   "hold F̂·(1 + 2r) at the target (default: r from how far the model is borrowed)");
   add_number_flag(cmd, "--ds", o.ds_mm, "engagement sample spacing, mm (default 0.05)");
+  add_number_flag(cmd, "--feed-step", o.feed_step,
+                  "F levels this far apart, blocks cut from the feed limits (default 0.02; 0: every acceleration ramp "
+                  "written out)");
+  add_number_flag(cmd, "--min-block-s", o.min_block_duration_s, "shortest block with --feed-step, s (default 0.02)");
 }
 
 int run_optimize_command(const OptimizeOptions& o) {
@@ -253,9 +269,15 @@ int run_optimize_command(const OptimizeOptions& o) {
   const planner::PlanGeometry geometry = planner::analyse(in.program.path, in.stock, in.tool, o.ds_mm);
   const planner::PlanSettings settings = settings_for(o, in, *chosen);
   const planner::PlanResult result = planner::plan(geometry, settings);
+  std::optional<double> unconstrained_s;  // the cycle time of the plan with every ramp written out
+  if (settings.options.feed_step > 0.0) {
+    planner::PlanSettings unconstrained = settings;
+    unconstrained.options.feed_step = 0.0;
+    unconstrained_s = planner::plan(geometry, unconstrained).summary.cycle_time_s;
+  }
   const gcode::RefeedResult refed = gcode::refeed_text(in.text, in.program, in.written, feed_pieces(result));
   const double wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
-  print_summary(o, in, *chosen, geometry, settings, result, refed, wall_s);
+  print_summary(o, in, *chosen, geometry, settings, result, unconstrained_s, refed, wall_s);
   if (result.status == planner::PlanStatus::kTargetNotMet || result.status == planner::PlanStatus::kUnsafe) {
     std::printf("not written: %s\n", result.status == planner::PlanStatus::kUnsafe
                                          ? "the safety check refuses the plan (above)"

@@ -27,6 +27,8 @@ struct OptimizeOptions {
   std::optional<std::int64_t> model_id;  //!< --model-id
   std::optional<double> model_uncertainty;  //!< --cautious r
   double ds_mm = 0.05;                //!< --ds
+  double feed_step = 0.02;            //!< --feed-step: controller-friendly F levels (0: blocks follow the command profile)
+  double min_block_duration_s = 0.02; //!< --min-block-s: shortest block of the controller-friendly rule, s
 };
 
 //! Registers the subcommand.

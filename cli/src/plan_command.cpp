@@ -79,6 +79,8 @@ void check_plan_numbers(const PlanCommandOptions& o, const cycles::CycleSpec& sp
   check_flag(problems, "--air-feed", o.air_feed_mm_per_min, feed_range, machine_range + " (leave it out for the maximum)");
   check_flag(problems, "--merge-tolerance", o.merge_tolerance, {0.0, true, 0.5, true}, "a relative feed spread");
   check_flag(problems, "--feed-resolution", o.feed_resolution_mm_per_min, {0.0, false, 100.0, true}, "mm/min");
+  check_flag(problems, "--feed-step", o.feed_step, {0.0, true, 0.5, true}, "a relative step between F levels (0: off)");
+  check_flag(problems, "--min-block-s", o.min_block_duration_s, {0.0, true, 10.0, true}, "s");
   check_flag(problems, "--jerk", o.jerk_limit_mm_per_s3, {0.0, false}, "mm/s³ (leave it out for no jerk limit)");
   check_flag(problems, "--ds", o.ds_mm, {0.001, true, spec.tool.radius_mm(), true}, "mm, at most the tool radius");
   check_flag(problems, "--constant-feed", o.constant_feed_mm_per_min, feed_range, machine_range);
@@ -236,6 +238,8 @@ planner::PlanSettings plan_settings(const PlanCommandOptions& o, const PlanInput
   settings.options.air_feed_mm_per_min = o.air_feed_mm_per_min.value_or(0.0);  // 0: the machine's maximum
   settings.options.merge_tolerance = o.merge_tolerance;
   settings.options.feed_resolution_mm_per_min = o.feed_resolution_mm_per_min;
+  settings.options.feed_step = o.feed_step;
+  settings.options.min_block_duration_s = o.min_block_duration_s;
   settings.options.jerk_limit_mm_per_s3 = o.jerk_limit_mm_per_s3.value_or(0.0);  // 0: none
   settings.options.ds_mm = o.ds_mm;
   settings.options.coordinate_resolution_mm = std::pow(10.0, -o.decimals);  // what the writer rounds to
@@ -417,6 +421,11 @@ void add_plan_command(CLI::App& app, PlanCommandOptions& options) {
   cmd->add_option("--mode", options.mode, "safe (F never above any limit inside its block) or regulate (default safe)");
   add_number_flag(cmd, "--air-feed", options.air_feed_mm_per_min, "Feed through air, mm/min (default: the machine's maximum)");
   add_number_flag(cmd, "--merge-tolerance", options.merge_tolerance, "Relative feed spread merged into one block (default 0.02)");
+  add_number_flag(cmd, "--feed-step", options.feed_step,
+                  "Controller-friendly blocks: F on levels this far apart (e.g. 0.05), cut from the feed limits, each "
+                  "lasting at least --min-block-s (default 0: off)");
+  add_number_flag(cmd, "--min-block-s", options.min_block_duration_s,
+                  "Shortest block with --feed-step, s (default 0.1: at most 10 F changes a second)");
   add_number_flag(cmd, "--feed-resolution", options.feed_resolution_mm_per_min, "F resolution, mm/min (default 1)");
   add_number_flag(cmd, "--jerk", options.jerk_limit_mm_per_s3, "Path jerk limit, mm/s³ (default: none)");
   add_number_flag(cmd, "--ds", options.ds_mm, "Engagement sample spacing, mm (default 0.05)");

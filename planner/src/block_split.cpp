@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cassert>
 #include <cmath>
+#include <limits>
 
 namespace feedplan::planner::detail {
 namespace {
@@ -88,6 +89,72 @@ void split_move(int move_index, int a, int b, const std::vector<double>& s, cons
   }
 }
 
+// Longest block the least-time cut considers, in samples (longer stretches become several blocks of the
+// same F, joined afterwards).
+constexpr int kLeastTimeWindow = 400;
+
+// The least-time cut of the feed move spanning nodes [a, b] (the controller-friendly rule): blocks whose F
+// is the profile's smallest value inside, each lasting at least the block time, with the least total time
+// — dynamic programming over the block ends; ties go to fewer blocks. Neighbouring blocks of one F are
+// joined.
+void split_move_least_time(int move_index, int a, int b, const std::vector<double>& s, const std::vector<double>& c,
+                           const BlockSplitSettings& settings, std::vector<PlannedBlock>& out, int& short_blocks) {
+  const auto at = [](const std::vector<double>& v, int i) { return v[static_cast<std::size_t>(i)]; };
+  const auto feed = [&](double v) { return round_down(v, settings); };
+  const int n = b - a;
+  constexpr double kBlockPenaltyS = 1e-9;  // prefers fewer blocks among cuts of equal time
+  std::vector<double> best(static_cast<std::size_t>(n) + 1, std::numeric_limits<double>::infinity());
+  std::vector<int> from(static_cast<std::size_t>(n) + 1, -1);
+  best[0] = 0.0;
+  for (int j = 1; j <= n; ++j) {
+    double lo = at(c, a + j);
+    for (int i = j - 1; i >= 0 && i >= j - kLeastTimeWindow; --i) {
+      lo = std::min(lo, at(c, a + i));
+      if (!std::isfinite(best[static_cast<std::size_t>(i)])) continue;
+      const double duration_s = (at(s, a + j) - at(s, a + i)) / (feed(lo) / 60.0);
+      const bool whole_move = i == 0 && j == n;
+      if (duration_s < settings.block_time_min_s && !whole_move) continue;
+      const double total = best[static_cast<std::size_t>(i)] + duration_s + kBlockPenaltyS;
+      if (total < best[static_cast<std::size_t>(j)]) {
+        best[static_cast<std::size_t>(j)] = total;
+        from[static_cast<std::size_t>(j)] = i;
+      }
+    }
+  }
+  std::vector<int> ends;
+  for (int j = n; j > 0; j = from[static_cast<std::size_t>(j)]) {
+    if (from[static_cast<std::size_t>(j)] < 0) {  // no cut within the window: one block for the move
+      ends = {n};
+      break;
+    }
+    ends.push_back(j);
+  }
+  std::reverse(ends.begin(), ends.end());
+  int first = 0;
+  for (const int end : ends) {
+    double lo = at(c, a + first);
+    for (int i = first; i <= end; ++i) lo = std::min(lo, at(c, a + i));
+    const double f = feed(lo);
+    if (!out.empty() && out.back().move_index == move_index && out.back().feed_mm_per_min == f &&
+        out.back().last_sample == a + first) {
+      out.back().last_sample = a + end;
+      out.back().length_mm = at(s, a + end) - at(s, out.back().first_sample);
+    } else {
+      PlannedBlock block;
+      block.move_index = move_index;
+      block.first_sample = a + first;
+      block.last_sample = a + end;
+      block.length_mm = at(s, a + end) - at(s, a + first);
+      block.feed_mm_per_min = f;
+      out.push_back(block);
+    }
+    first = end;
+  }
+  for (std::size_t k = out.size(); k-- > 0 && out[k].move_index == move_index;) {
+    if (out[k].length_mm / (out[k].feed_mm_per_min / 60.0) < settings.block_time_min_s) ++short_blocks;
+  }
+}
+
 // Lowers F so that every change between neighbouring feed blocks fits inside the faster block at the
 // acceleration limit: v_{k+1}² ≤ v_k² + 2 a L_{k+1} (accelerating at the start of block k+1) and
 // v_k² ≤ v_{k+1}² + 2 a L_k (decelerating at the end of block k). Rounding down after each change keeps
@@ -144,7 +211,11 @@ std::vector<PlannedBlock> split_blocks(const geometry::ToolPath& path, const std
       run_begin = blocks.size();
       continue;
     }
-    split_move(static_cast<int>(m), a, b, s_mm, command_mm_per_min, settings, blocks, short_blocks);
+    if (settings.least_time) {
+      split_move_least_time(static_cast<int>(m), a, b, s_mm, command_mm_per_min, settings, blocks, short_blocks);
+    } else {
+      split_move(static_cast<int>(m), a, b, s_mm, command_mm_per_min, settings, blocks, short_blocks);
+    }
   }
   limit_steps(blocks, run_begin, blocks.size(), settings);
   return blocks;

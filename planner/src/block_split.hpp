@@ -15,6 +15,10 @@ struct BlockSplitSettings {
   double block_time_min_s = 0.002;          //!< shortest block, s (whole moves may be shorter)
   double min_feed_mm_per_min = 10.0;        //!< no F below this, mm/min
   double accel_mm_per_s2 = 6500.0;          //!< for the pass over neighbouring blocks, mm/s²
+  //! The controller-friendly rule (PlanOptions::feed_step > 0): each move cut into the blocks of least time
+  //! under the profile among those whose blocks all last at least block_time_min_s (a move that lasts
+  //! less is one block), instead of the merge-tolerance rule.
+  bool least_time = false;
 };
 
 //! Splits every move into blocks. `s_mm` and `command_mm_per_min` have one value per sample (node);

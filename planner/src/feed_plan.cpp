@@ -178,6 +178,13 @@ std::vector<InputProblem> validate(const PlanSettings& settings, const geometry:
   if (!(std::isfinite(o.merge_tolerance) && o.merge_tolerance >= 0.0 && o.merge_tolerance <= 0.5)) {
     problems.push_back({"options.merge_tolerance", "= " + num(o.merge_tolerance) + ": must be in [0, 0.5]"});
   }
+  if (!(std::isfinite(o.feed_step) && o.feed_step >= 0.0 && o.feed_step <= 0.5)) {
+    problems.push_back({"options.feed_step", "= " + num(o.feed_step) + ": must be in [0, 0.5] (0: blocks follow the "
+                                             "command profile)"});
+  }
+  if (!(std::isfinite(o.min_block_duration_s) && o.min_block_duration_s >= 0.0 && o.min_block_duration_s <= 10.0)) {
+    problems.push_back({"options.min_block_duration_s", "= " + num(o.min_block_duration_s) + ": must be in [0, 10] s"});
+  }
   if (!(std::isfinite(o.feed_resolution_mm_per_min) && o.feed_resolution_mm_per_min > 0.0 &&
         o.feed_resolution_mm_per_min <= 100.0)) {
     problems.push_back({"options.feed_resolution_mm_per_min",
@@ -449,7 +456,25 @@ CommandProfile plan_command_profile(const PlanContext& c, const FeedLimits& limi
 }
 
 // Step 3. Blocks.
-void split_into_blocks(const PlanContext& c, const CommandProfile& command, PlanResult& result) {
+// The feed limits rounded down onto the grid max_feed·(1 + step)^−k (the controller-friendly rule's profile):
+// the machine's largest feed, the air feed's usual value, is a level.
+std::vector<double> feed_levels(const std::vector<double>& limits_mm_per_min, double max_feed_mm_per_min, double step) {
+  const double log_ratio = std::log1p(step);
+  std::vector<double> levels(limits_mm_per_min.size());
+  for (std::size_t i = 0; i < levels.size(); ++i) {
+    const double v = limits_mm_per_min[i];
+    if (!(v > 0.0) || v >= max_feed_mm_per_min) {
+      levels[i] = std::min(v, max_feed_mm_per_min);
+      continue;
+    }
+    const double k = std::ceil(std::log(max_feed_mm_per_min / v) / log_ratio - 1e-9);
+    levels[i] = std::min(v, max_feed_mm_per_min * std::exp(-k * log_ratio));
+  }
+  return levels;
+}
+
+void split_into_blocks(const PlanContext& c, const CommandProfile& command, const FeedLimits& limits,
+                       PlanResult& result) {
   const PlanOptions& options = c.settings.options;
   const auto& machine = c.settings.machine;
   detail::BlockSplitSettings split;
@@ -459,6 +484,14 @@ void split_into_blocks(const PlanContext& c, const CommandProfile& command, Plan
   split.block_time_min_s = machine.block_time_min_s;
   split.min_feed_mm_per_min = machine.min_feed_mm_per_min;
   split.accel_mm_per_s2 = command.accel_mm_per_s2;
+  if (options.feed_step > 0.0) {
+    // Controller-friendly: blocks of one level of the limits each, lasting at least the shortest duration.
+    split.least_time = true;
+    split.block_time_min_s = std::max(machine.block_time_min_s, options.min_block_duration_s);
+    const std::vector<double> levels = feed_levels(limits.mm_per_min, machine.max_feed_mm_per_min, options.feed_step);
+    result.blocks = detail::split_blocks(c.path, c.s, levels, c.move_first, split, result.summary.short_blocks);
+    return;
+  }
   result.blocks =
       detail::split_blocks(c.path, c.s, command.mm_per_min, c.move_first, split, result.summary.short_blocks);
 }
@@ -741,7 +774,7 @@ bool hold_check_allowances(const PlanContext& c, const SafetyCheck& check, FeedL
 SafetyCheck plan_checked_program(const PlanContext& c, const PlanGeometry& geometry, const FeedLimits& limits,
                                  CommandProfile& command, PlanResult& result) {
   command = plan_command_profile(c, limits, result);
-  split_into_blocks(c, command, result);
+  split_into_blocks(c, command, limits, result);
   result.program = {};
   write_program(c, result);
   return check_program(c, geometry, result);

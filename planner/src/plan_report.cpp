@@ -282,7 +282,11 @@ void read_settings(const Node& root, const Node& model, PlanSettings& settings) 
   settings.options.feed_resolution_mm_per_min = options.number("feed_resolution_mm_per_min");
   settings.options.jerk_limit_mm_per_s3 = options.number("jerk_limit_mm_per_s3");
   settings.options.ds_mm = options.number("ds_mm");
-  // Reports written before the field: the planner's default (3 decimals).
+  // Reports written before the fields: the planner's defaults (3 decimals; blocks from the command profile).
+  if (options.member("feed_step", JsonPresence::kOptional)) settings.options.feed_step = options.number("feed_step");
+  if (options.member("min_block_duration_s", JsonPresence::kOptional)) {
+    settings.options.min_block_duration_s = options.number("min_block_duration_s");
+  }
   if (options.member("coordinate_resolution_mm", JsonPresence::kOptional)) {
     settings.options.coordinate_resolution_mm = options.number("coordinate_resolution_mm");
   }
@@ -483,7 +487,9 @@ std::string plan_report_json(const PlanResult& result, const PlanSettings& setti
                          {"feed_resolution_mm_per_min", json_number(options.feed_resolution_mm_per_min)},
                          {"jerk_limit_mm_per_s3", json_number(options.jerk_limit_mm_per_s3)},
                          {"ds_mm", json_number(options.ds_mm)},
-                         {"coordinate_resolution_mm", json_number(options.coordinate_resolution_mm)}};
+                         {"coordinate_resolution_mm", json_number(options.coordinate_resolution_mm)},
+                         {"feed_step", json_number(options.feed_step)},
+                         {"min_block_duration_s", json_number(options.min_block_duration_s)}};
   if (!settings.force_correction.empty()) {
     Json correction = Json::array();
     for (double c : settings.force_correction) correction.push_back(json_number(c));

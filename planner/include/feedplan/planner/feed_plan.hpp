@@ -75,6 +75,16 @@ struct PlanOptions {
   double air_feed_mm_per_min = 0.0;
   double merge_tolerance = 0.02;        //!< relative spread of the command profile merged into one block, in [0, 0.5]
   double feed_resolution_mm_per_min = 1.0;  //!< F is rounded down to a multiple of this, mm/min, in (0, 100]
+  //! Controller-friendly blocks, in [0, 0.5]; 0: off. Above 0, step 3 cuts the blocks from the feed limits
+  //! of step 1 instead of the command profile — the acceleration ramps are the controller's look-ahead's
+  //! to make, not F words — with every F rounded DOWN onto the geometric grid max_feed·(1 + feed_step)^−k
+  //! (a few levels, so small changes of the limit change no F), and each block lasting at least
+  //! min_block_duration_s (whole moves may be shorter): fewer, longer blocks, every F still at most the
+  //! smallest limit inside its block.
+  double feed_step = 0.0;
+  //! Shortest block of the controller-friendly rule, s (at most 1 / this many F changes per second); the
+  //! machine's block time when larger. In [0, 10].
+  double min_block_duration_s = 0.1;
   //! Path jerk limit, mm/s³; 0: none. Heuristic (documented in feed_plan.cpp): the passes use the
   //! acceleration a_eff = a·Δv/(Δv + a²/J) that an S-curve reaches over a speed change Δv, taken for the
   //! largest speed change of the plan — conservative for that change, approximate for smaller ones.
