@@ -524,6 +524,21 @@ class Interpreter {
     }
   }
 
+  // The last digit of an inch program with 4 decimals, mm.
+  static constexpr double kInchProgramDigitMm = 0.0001 * 25.4;
+
+  // The largest last digit of the block's X Y I J words written with decimals, mm (0 when none has any).
+  double coarsest_digit_mm(const Block& block) const {
+    double coarsest = 0.0;
+    for (const char letter : {'X', 'Y', 'I', 'J'}) {
+      const Word* w = block.word(letter);
+      const std::size_t point = w != nullptr ? w->text.find('.') : std::string::npos;
+      if (point == std::string::npos || point + 1 == w->text.size()) continue;
+      coarsest = std::max(coarsest, std::pow(10.0, -static_cast<double>(w->text.size() - point - 1)) * unit_mm());
+    }
+    return coarsest;
+  }
+
   // Makes `m` (start and programmed end set) the arc of a G2/G3 block: its circle from R or from I J
   // (arc_geometry.hpp), its end moved onto the circle when that moves less than the centre would.
   // False, with the problem logged, when the words give no arc.
@@ -549,8 +564,12 @@ class Interpreter {
       const Point2 programmed_start = geometry::xy(position_mm_);
       const Point2 center = absolute_arc_center_ ? Point2{i_mm, j_mm}
                                                  : Point2{programmed_start.x_mm + i_mm, programmed_start.y_mm + j_mm};
-      arc = detail::arc_from_center(programmed_start, start_xy, end_xy, center, ccw, turns,
-                                    options_.arc_radius_tolerance_mm);
+      // Each of start, end and centre is within half a last digit per axis of where its writer meant it,
+      // so the radii of an arc written exactly can differ by about two last digits of the block's words —
+      // up to those of an inch program with 4 decimals (coarser words are taken as meant).
+      const double digit_mm = std::min(coarsest_digit_mm(block), kInchProgramDigitMm);
+      const double tolerance_mm = std::max(options_.arc_radius_tolerance_mm, 2.0 * digit_mm);
+      arc = detail::arc_from_center(programmed_start, start_xy, end_xy, center, ccw, turns, tolerance_mm);
     }
     if (!arc.problem.empty()) {
       problems_.add(block.line, subject + ": " + arc.problem);

@@ -12,6 +12,11 @@ namespace {
 constexpr double kMinLossS = 1e-3;
 
 double round_down(double feed_mm_per_min, const BlockSplitSettings& settings) {
+  if (settings.level_step > 0.0 && feed_mm_per_min > 0.0 && feed_mm_per_min < settings.level_top_mm_per_min) {
+    const double log_ratio = std::log1p(settings.level_step);
+    const double k = std::ceil(std::log(settings.level_top_mm_per_min / feed_mm_per_min) / log_ratio - 1e-9);
+    feed_mm_per_min = std::min(feed_mm_per_min, settings.level_top_mm_per_min * std::exp(-k * log_ratio));
+  }
   const double r = settings.feed_resolution_mm_per_min;
   // A hair of slack so that a feed already on the grid (1200 − 1e-12) is not pushed one step down.
   const double floored = std::floor(feed_mm_per_min / r + 1e-9) * r;

@@ -19,6 +19,10 @@ struct BlockSplitSettings {
   //! under the profile among those whose blocks all last at least block_time_min_s (a move that lasts
   //! less is one block), instead of the merge-tolerance rule.
   bool least_time = false;
+  //! With least_time: every F (after the acceleration pass too) rounded down onto the levels
+  //! level_top_mm_per_min·(1 + level_step)^−k; 0: the feed resolution only.
+  double level_step = 0.0;
+  double level_top_mm_per_min = 0.0;
 };
 
 //! Splits every move into blocks. `s_mm` and `command_mm_per_min` have one value per sample (node);

@@ -487,6 +487,8 @@ void split_into_blocks(const PlanContext& c, const CommandProfile& command, cons
   if (options.feed_step > 0.0) {
     // Controller-friendly: blocks of one level of the limits each, lasting at least the shortest duration.
     split.least_time = true;
+    split.level_step = options.feed_step;
+    split.level_top_mm_per_min = machine.max_feed_mm_per_min;
     split.block_time_min_s = std::max(machine.block_time_min_s, options.min_block_duration_s);
     const std::vector<double> levels = feed_levels(limits.mm_per_min, machine.max_feed_mm_per_min, options.feed_step);
     result.blocks = detail::split_blocks(c.path, c.s, levels, c.move_first, split, result.summary.short_blocks);

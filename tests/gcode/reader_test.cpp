@@ -308,6 +308,17 @@ TEST(Reader, ArcToleranceIsAnOption) {
   EXPECT_THAT(problems_of("G21 F100\nM2\n", options), HasSubstr("ReaderOptions::arc_radius_tolerance_mm = -1"));
 }
 
+// An inch post with 4 decimals rounds start, end and centre to 2.54 µm: radii that differ by a digit or
+// two are its rounding (FreeCAD's mach3 post writes such arcs), not a wrong arc.
+TEST(Reader, AnInchArcsToleranceCoversTwoOfItsLastDigits) {
+  EXPECT_EQ(problems_of("G20\nF10\nG0 X1.0000 Y0.0000\nG3 X0.0000 Y1.0001 I-1.0000 J0.0000\nM2\n"), "(accepted)");
+  EXPECT_EQ(problems_of("G20\nF10\nG0 X1.0000 Y0.0000\nG3 X0.0000 Y1.0002 I-1.0000 J0.0000\nM2\n"), "(accepted)");
+  EXPECT_THAT(problems_of("G20\nF10\nG0 X1.0000 Y0.0000\nG3 X0.0000 Y1.0003 I-1.0000 J0.0000\nM2\n"),
+              HasSubstr("end point is 0.00762 mm off the circle"));
+  EXPECT_THAT(problems_of("G20\nF10\nG0 X1 Y0\nG3 X0 Y1.001 I-1.\nM2\n"), HasSubstr("off the circle"))
+      << "coarser words are taken as meant";
+}
+
 TEST(Reader, OneToolChangeBeforeTheFirstMoveIsReadAndNoted) {
   // T in the M6 block or before it; G43 with the tool's H in a rapid's block, or without H.
   for (const std::string head : {"T3 M6\nG43 H3\n", "T3\nM6\nG0 G43 H3 Z5\n", "T3 M6 G43\n", "T3 M6 G43 H3\n"}) {

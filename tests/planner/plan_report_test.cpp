@@ -57,6 +57,8 @@ const CornerPlan& corner_plan() {
     p.settings.options.mode = PlanMode::kRegulate;
     p.settings.options.air_feed_mm_per_min = 3000.0;
     p.settings.options.merge_tolerance = 0.03;
+    p.settings.options.feed_step = 0.04;
+    p.settings.options.min_block_duration_s = 0.05;
     p.settings.options.feed_resolution_mm_per_min = 5.0;
     p.settings.options.jerk_limit_mm_per_s3 = 0.0;
     p.settings.options.ds_mm = 0.1;
@@ -143,7 +145,8 @@ TEST(PlanReportJson, HoldsEveryDocumentedFieldWithThePlansValues) {
   EXPECT_EQ(json["options"], (nlohmann::json{{"mode", "regulate"}, {"air_feed_mm_per_min", 3000.0},
                                              {"merge_tolerance", 0.03}, {"feed_resolution_mm_per_min", 5.0},
                                              {"jerk_limit_mm_per_s3", 0.0}, {"ds_mm", 0.1},
-                                             {"coordinate_resolution_mm", 0.001}}));
+                                             {"coordinate_resolution_mm", 0.001}, {"feed_step", 0.04},
+                                             {"min_block_duration_s", 0.05}}));
 
   const nlohmann::json& summary = json["summary"];
   EXPECT_EQ(keys_of(summary),
@@ -263,6 +266,8 @@ TEST(PlanReportRoundTrip, WriteThenReadGivesTheSameSettingsContextAndBlocks) {
   EXPECT_EQ(s.options.mode, PlanMode::kRegulate);
   EXPECT_EQ(s.options.air_feed_mm_per_min, 3000.0);
   EXPECT_EQ(s.options.merge_tolerance, 0.03);
+  EXPECT_EQ(s.options.feed_step, 0.04);
+  EXPECT_EQ(s.options.min_block_duration_s, 0.05);
   EXPECT_EQ(s.options.feed_resolution_mm_per_min, 5.0);
   EXPECT_EQ(s.options.jerk_limit_mm_per_s3, 0.0);
   EXPECT_EQ(s.options.ds_mm, 0.1);

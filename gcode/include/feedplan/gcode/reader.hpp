@@ -91,7 +91,9 @@ struct ReaderOptions {
   //! by half the mismatch), or the end along its ray onto the circle about the programmed centre
   //! (short arcs, whose bisector lies far from the centre; the next move starts there, and an end
   //! moves by at most this tolerance). R arcs short of half the chord are taken as the half circle. A
-  //! note counts moves of more than 1 µm.
+  //! note counts moves of more than 1 µm. An I/J arc whose words have a coarser last digit gets two of
+  //! those digits instead (start, end and centre are each rounded to half a digit per axis), up to
+  //! 5.08 µm, two digits of an inch program with 4 decimals.
   double arc_radius_tolerance_mm = 0.002;
   geometry::Point3 initial_position{0.0, 0.0, 0.0};  //!< where the tool tip is before the first move, mm
   bool require_program_end = true;  //!< the text must end the program with M2, M30 or a closing %
