@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 #include <iostream>
+#include <map>
 #include <optional>
 #include <sstream>
 
@@ -63,23 +64,31 @@ geometry::Stock stock_box(const std::string& text, std::vector<InputProblem>& pr
   return stock;
 }
 
+// The moves [first, end) of the program one tool makes, between its tool changes.
+struct ToolRun {
+  std::size_t first = 0, end = 0;
+  int number = -1;          // T number (−1: none named)
+  geometry::Tool tool;
+  double spindle_rpm = 0.0;
+};
+
 // What the user gave, checked before anything is planned or written.
 struct OptimizeInputs {
   std::string text;                           // the program as read
   geometry::Program program;                  // its moves
   std::vector<gcode::WrittenMove> written;    // how each move's line was written
-  geometry::Tool tool;
+  std::vector<ToolRun> runs;                  // in program order
   geometry::Stock stock;
-  double spindle_rpm = 0.0;
   geometry::MachineLimits machine;
 };
 
-// The spindle speed the feeds are planned for: --spindle-rpm, else the one S of the program's feed moves.
-double spindle_speed(const OptimizeOptions& o, const geometry::Program& program, std::vector<InputProblem>& problems) {
+// The spindle speed run's feeds are planned for: --spindle-rpm, else the one S of its feed moves.
+double spindle_speed(const OptimizeOptions& o, const geometry::Program& program, const ToolRun& run,
+                     std::vector<InputProblem>& problems) {
   if (o.spindle_rpm) return *o.spindle_rpm;
   double rpm = 0.0;
   int line = 0;
-  for (std::size_t i = 0; i < program.path.moves.size(); ++i) {
+  for (std::size_t i = run.first; i < run.end; ++i) {
     if (program.path.moves[i].kind == geometry::MoveKind::kRapid) continue;
     const geometry::BlockCommand& b = program.blocks[i];
     if (rpm == 0.0) {
@@ -88,22 +97,64 @@ double spindle_speed(const OptimizeOptions& o, const geometry::Program& program,
     } else if (b.spindle_rpm != rpm) {
       problems.push_back({"PROGRAM", "line " + std::to_string(b.source_line) + " runs S" + shortest_number_text(b.spindle_rpm) +
                                          ", line " + std::to_string(line) + " S" + shortest_number_text(rpm) +
-                                         ": the feeds are planned for one spindle speed; split the program where S "
-                                         "changes, or give --spindle-rpm"});
+                                         " with the same tool: the feeds are planned for one spindle speed per tool; "
+                                         "split the program where S changes, or give --spindle-rpm"});
       return rpm;
     }
   }
-  if (!(rpm > 0.0)) {
-    problems.push_back({"PROGRAM", "sets no spindle speed (S) for its feed moves: give --spindle-rpm"});
+  if (!(rpm > 0.0) && line > 0) {
+    problems.push_back({"PROGRAM", "sets no spindle speed (S) for the feed moves from line " + std::to_string(line) +
+                                       ": give --spindle-rpm"});
   }
   return rpm;
+}
+
+// The program's moves by the tool that makes them (WrittenMove::tool), each with its end mill: from
+// --tools by T number, else --tool for a program of one tool.
+std::vector<ToolRun> tool_runs(const OptimizeOptions& o, const OptimizeInputs& in, const std::optional<geometry::Tool>& tool,
+                               const std::map<int, geometry::Tool>& library, std::vector<InputProblem>& problems) {
+  std::vector<ToolRun> runs;
+  for (std::size_t m = 0; m < in.written.size(); ++m) {
+    if (runs.empty() || in.written[m].tool != runs.back().number) runs.push_back({m, m, in.written[m].tool, {}, 0.0});
+    runs.back().end = m + 1;
+  }
+  std::map<int, int> first_line;  // T number → the line of its first move
+  for (const ToolRun& run : runs) first_line.emplace(run.number, in.written[run.first].line);
+  if (library.empty() && first_line.size() > 1) {
+    std::string which;
+    for (const auto& [number, line] : first_line) {
+      which += (which.empty() ? "" : ", ") + (number < 0 ? std::string("no tool") : "T" + std::to_string(number)) +
+               " from line " + std::to_string(line);
+    }
+    problems.push_back({"--tools", "is required: the program changes tools (" + which +
+                                       "); give --tools TOOLS.yaml with the end mill of each T number"});
+    return runs;
+  }
+  for (ToolRun& run : runs) {
+    if (library.empty()) {
+      if (tool) run.tool = *tool;
+    } else if (const auto it = library.find(run.number); it != library.end()) {
+      run.tool = it->second;
+    } else {
+      std::string known;
+      for (const auto& [number, t] : library) known += (known.empty() ? "T" : ", T") + std::to_string(number);
+      problems.push_back({"--tools", "= " + o.tools_path + ": has no " +
+                                         (run.number < 0 ? std::string("tool for the moves before any tool change")
+                                                         : "T" + std::to_string(run.number)) +
+                                         " (line " + std::to_string(in.written[run.first].line) + "); it has " + known});
+    }
+  }
+  return runs;
 }
 
 OptimizeInputs read_inputs(const OptimizeOptions& o) {
   OptimizeInputs in;
   std::vector<InputProblem> problems;
   if (o.output_path.empty()) problems.push_back({"-o", "is required: the re-fed program to write"});
-  if (o.tool_text.empty()) problems.push_back({"--tool", "is required, e.g. --tool diameter_mm=6,flutes=3,helix_deg=35"});
+  if (o.tool_text.empty() == o.tools_path.empty()) {
+    problems.push_back({"--tool", "give one of --tool diameter_mm=6,flutes=3,helix_deg=35 (a program of one tool) and "
+                                  "--tools TOOLS.yaml (the end mill of each T number)"});
+  }
   if (o.material.empty()) problems.push_back({"--material", "is required to choose a force model, e.g. --material Al7075-T6"});
   if (!o.target_force_n) problems.push_back({"--target-force", "is required: the per-revolution peak force to hold, N"});
   if (o.stock_path.empty() == o.stock_box.empty()) {
@@ -117,7 +168,8 @@ OptimizeInputs read_inputs(const OptimizeOptions& o) {
   check_flag(problems, "--ds", o.ds_mm, {0.001, true, 1.0, true}, "mm");
   check_flag(problems, "--feed-step", o.feed_step, {0.0, true, 0.5, true}, "a relative step between F levels (0: off)");
   check_flag(problems, "--min-block-s", o.min_block_duration_s, {0.0, true, 10.0, true}, "s");
-  if (!o.tool_text.empty()) in.tool = parse_tool(o.tool_text, problems);
+  std::optional<geometry::Tool> tool;
+  if (!o.tool_text.empty()) tool = parse_tool(o.tool_text, problems);
   if (!o.stock_box.empty()) in.stock = stock_box(o.stock_box, problems);
   if (o.max_feed_mm_per_min) in.machine.max_feed_mm_per_min = *o.max_feed_mm_per_min;
   if (o.min_feed_mm_per_min) in.machine.min_feed_mm_per_min = *o.min_feed_mm_per_min;
@@ -127,21 +179,28 @@ OptimizeInputs read_inputs(const OptimizeOptions& o) {
                                                                      : problem.field;
     problems.push_back(problem);
   }
-  check_outputs({{"PROGRAM", o.program_path}, {"--db", database_path(o.db_path)}, {"--stock", o.stock_path}},
+  check_outputs({{"PROGRAM", o.program_path}, {"--db", database_path(o.db_path)}, {"--stock", o.stock_path},
+                 {"--tools", o.tools_path}},
                 {{"-o", o.output_path}}, problems);
   if (!problems.empty()) throw InputError(std::move(problems));
   gcode::ReaderOptions reader;
+  reader.tool_changes = true;  // each tool's moves are planned on their own
   in.text = read_input_file(o.program_path, {"a G-code program of a milling job", reader.max_file_bytes,
                                              "ReaderOptions::max_file_bytes"});
   in.program = gcode::read_program(in.text, o.program_path, reader, in.written);
   if (!o.stock_path.empty()) in.stock = cycles::load_stock_spec(o.stock_path);
-  in.spindle_rpm = spindle_speed(o, in.program, problems);
+  const std::map<int, geometry::Tool> library =
+      o.tools_path.empty() ? std::map<int, geometry::Tool>{} : cycles::load_tool_library(o.tools_path);
+  in.runs = tool_runs(o, in, tool, library, problems);
+  for (ToolRun& run : in.runs) run.spindle_rpm = spindle_speed(o, in.program, run, problems);
   if (!problems.empty()) throw InputError(std::move(problems));
   return in;
 }
 
 // The plan's settings: the model, the cautious bound when it is borrowed (or --cautious).
-planner::PlanSettings settings_for(const OptimizeOptions& o, const OptimizeInputs& in, const ChosenModel& chosen) {
+// The plan's settings for one tool's moves: the model, the cautious bound when it is borrowed (or --cautious).
+planner::PlanSettings settings_for(const OptimizeOptions& o, const OptimizeInputs& in, const ToolRun& run,
+                                   const ChosenModel& chosen) {
   planner::PlanSettings settings;
   settings.model = chosen.record.model;
   const double r = planning_uncertainty(chosen, o.model_uncertainty);
@@ -153,7 +212,7 @@ planner::PlanSettings settings_for(const OptimizeOptions& o, const OptimizeInput
     settings.uncertainty = uncertainty;
   }
   settings.target_force_n = *o.target_force_n;
-  settings.spindle_rpm = in.spindle_rpm;
+  settings.spindle_rpm = run.spindle_rpm;
   settings.machine = in.machine;
   settings.options.ds_mm = o.ds_mm;
   settings.options.coordinate_resolution_mm = in.program.coordinate_resolution_mm;
@@ -162,21 +221,59 @@ planner::PlanSettings settings_for(const OptimizeOptions& o, const OptimizeInput
   return settings;
 }
 
-// The planner's blocks of feed moves as pieces of the program's moves.
-std::vector<gcode::FeedPiece> feed_pieces(const planner::PlanResult& result) {
-  std::vector<gcode::FeedPiece> pieces;
+// One tool's moves planned: the model, the plan, and the plan with every ramp written out for comparison.
+struct PlannedRun {
+  ChosenModel chosen;
+  planner::PlanGeometry geometry;
+  planner::PlanSettings settings;
+  planner::PlanResult result;
+  std::optional<double> unconstrained_s;  // the cycle time of the plan with every ramp written out
+};
+
+// The moves [run.first, run.end) as a path of their own.
+geometry::ToolPath run_path(const geometry::Program& program, const ToolRun& run) {
+  geometry::ToolPath path;
+  path.part_names = program.path.part_names;
+  path.moves.assign(program.path.moves.begin() + static_cast<long>(run.first),
+                    program.path.moves.begin() + static_cast<long>(run.end));
+  return path;
+}
+
+// Plans one tool's moves on `stock` (the material the earlier tools left). Nothing when the database has
+// no model for the tool (after saying why).
+std::optional<PlannedRun> plan_run(const OptimizeOptions& o, const OptimizeInputs& in, const ToolRun& run,
+                                   const model_db::Store& store, const geometry::Stock& stock) {
+  cycles::CycleSpec spec;  // what the model choice reads: the tool and the material
+  spec.tool = run.tool;
+  spec.material = o.material;
+  spec.spindle_rpm = run.spindle_rpm;
+  spec.machine = in.machine;
+  std::optional<ChosenModel> chosen = choose_model(store, spec, o.model_id);
+  if (!chosen) return std::nullopt;
+  PlannedRun planned{std::move(*chosen), planner::analyse(run_path(in.program, run), stock, run.tool, o.ds_mm), {}, {}, {}};
+  planned.settings = settings_for(o, in, run, planned.chosen);
+  planned.result = planner::plan(planned.geometry, planned.settings);
+  if (planned.settings.options.feed_step > 0.0) {
+    planner::PlanSettings unconstrained = planned.settings;
+    unconstrained.options.feed_step = 0.0;
+    planned.unconstrained_s = planner::plan(planned.geometry, unconstrained).summary.cycle_time_s;
+  }
+  return planned;
+}
+
+// The planner's blocks of feed moves as pieces of the program's moves (the run starting at `first`).
+void add_feed_pieces(const planner::PlanResult& result, std::size_t first, std::vector<gcode::FeedPiece>& pieces) {
   for (std::size_t k = 0; k < result.blocks.size(); ++k) {
     const planner::PlannedBlock& block = result.blocks[k];
     if (!(block.feed_mm_per_min > 0.0)) continue;
-    pieces.push_back({block.move_index, result.program.path.moves[k], block.feed_mm_per_min});
+    pieces.push_back({block.move_index + static_cast<int>(first), result.program.path.moves[k], block.feed_mm_per_min});
   }
-  return pieces;
 }
 
-// The one F of every feed move of the input, or 0 when they differ.
-double single_input_feed(const geometry::Program& program) {
+// The one F of every feed move of `run`, or 0 when they differ.
+double single_input_feed(const geometry::Program& program, const ToolRun& run) {
   double feed = 0.0;
-  for (std::size_t i = 0; i < program.path.moves.size(); ++i) {
+  for (std::size_t i = run.first; i < run.end; ++i) {
     if (program.path.moves[i].kind == geometry::MoveKind::kRapid) continue;
     if (feed == 0.0) feed = program.blocks[i].feed_mm_per_min;
     if (program.blocks[i].feed_mm_per_min != feed) return 0.0;
@@ -186,45 +283,40 @@ double single_input_feed(const geometry::Program& program) {
 
 std::string seconds(double s) { return fixed_number_text(s, 2) + " s"; }
 
-void print_summary(const OptimizeOptions& o, const OptimizeInputs& in, const ChosenModel& chosen,
-                   const planner::PlanGeometry& geometry, const planner::PlanSettings& settings,
-                   const planner::PlanResult& result, const std::optional<double>& unconstrained_s,
-                   const gcode::RefeedResult& refed, double wall_s) {
-  std::printf("%s: %zu moves (%zu lines), tool %s, target %s N at S%s\n", o.program_path.c_str(),
-              in.program.path.moves.size(), static_cast<std::size_t>(std::count(in.text.begin(), in.text.end(), '\n')),
-              in.tool.name.c_str(), shortest_number_text(settings.target_force_n).c_str(),
-              shortest_number_text(in.spindle_rpm).c_str());
-  for (const std::string& note : in.program.notes) std::printf("note: %s\n", note.c_str());
-  for (const std::string& warning : geometry.engagement.warnings) std::printf("warning: %s\n", warning.c_str());
-  std::printf("model: id %lld v%d (%s in %s) — %s\n", static_cast<long long>(chosen.record.id), chosen.record.version,
-              chosen.record.tool_name.c_str(), chosen.record.material_name.c_str(), chosen.explanation.c_str());
-  std::printf("status: %s\n", planner::to_string(result.status).c_str());
-  for (const std::string& message : result.messages) std::printf("  %s\n", message.c_str());
-  std::printf("planned: cycle time %s (cutting %s), predicted peak %s N, F %s–%s mm/min\n",
+void print_run(const OptimizeOptions& o, const OptimizeInputs& in, const ToolRun& run, const PlannedRun& p) {
+  const planner::PlanResult& result = p.result;
+  std::printf("%s, lines %d–%d: %s (D%s, %d flutes) at S%s\n",
+              run.number < 0 ? "moves" : ("T" + std::to_string(run.number)).c_str(), in.written[run.first].line,
+              in.written[run.end - 1].line, run.tool.name.c_str(), shortest_number_text(run.tool.diameter_mm).c_str(),
+              run.tool.flutes, shortest_number_text(run.spindle_rpm).c_str());
+  for (const std::string& warning : p.geometry.engagement.warnings) std::printf("  warning: %s\n", warning.c_str());
+  std::printf("  model: id %lld v%d (%s in %s) — %s\n", static_cast<long long>(p.chosen.record.id), p.chosen.record.version,
+              p.chosen.record.tool_name.c_str(), p.chosen.record.material_name.c_str(), p.chosen.explanation.c_str());
+  std::printf("  status: %s\n", planner::to_string(result.status).c_str());
+  for (const std::string& message : result.messages) std::printf("    %s\n", message.c_str());
+  std::printf("  planned: cycle time %s (cutting %s), predicted peak %s N, F %s–%s mm/min\n",
               seconds(result.summary.cycle_time_s).c_str(), seconds(result.summary.cutting_time_s).c_str(),
               fixed_number_text(result.summary.max_predicted_force_n, 1).c_str(),
               shortest_number_text(result.summary.min_feed_mm_per_min).c_str(),
               shortest_number_text(result.summary.max_feed_mm_per_min).c_str());
-  if (unconstrained_s) {
-    std::printf("controller-friendly blocks (F levels %s %% apart, at least %s s each): %+.1f %% time against the plan "
-                "with every acceleration ramp written out (%s)\n",
+  if (p.unconstrained_s) {
+    std::printf("  controller-friendly blocks (F levels %s %% apart, at least %s s each): %+.1f %% time against the "
+                "plan with every acceleration ramp written out (%s)\n",
                 shortest_number_text(100.0 * o.feed_step).c_str(), shortest_number_text(o.min_block_duration_s).c_str(),
-                100.0 * (result.summary.cycle_time_s - *unconstrained_s) / *unconstrained_s, seconds(*unconstrained_s).c_str());
+                100.0 * (result.summary.cycle_time_s - *p.unconstrained_s) / *p.unconstrained_s,
+                seconds(*p.unconstrained_s).c_str());
   }
-  if (const double feed = single_input_feed(in.program); feed > 0.0) {
-    const planner::ConstantFeedPrediction input = planner::predict_constant_feed(geometry, settings, feed, result.summary.accel_used_mm_per_s2);
-    std::printf("input: F%s on every feed move: cycle time %s, predicted peak %s N (%+.1f %% time re-fed)\n",
+  if (const double feed = single_input_feed(in.program, run); feed > 0.0) {
+    const planner::ConstantFeedPrediction input =
+        planner::predict_constant_feed(p.geometry, p.settings, feed, result.summary.accel_used_mm_per_s2);
+    std::printf("  input: F%s on every feed move: cycle time %s, predicted peak %s N (%+.1f %% time re-fed)\n",
                 shortest_number_text(std::round(feed * 10) / 10).c_str(), seconds(input.cycle_time_s).c_str(),
                 fixed_number_text(input.peak_force_n, 1).c_str(),
                 100.0 * (result.summary.cycle_time_s - input.cycle_time_s) / input.cycle_time_s);
   } else {
-    std::printf("input: several F words (its cycle time is not predicted here; run both programs with feedplan "
+    std::printf("  input: several F words (its cycle time is not predicted here; run both programs with feedplan "
                 "simulate to compare)\n");
   }
-  std::printf("re-fed: %d lines changed, %d lines added (%d moves split where their feed changes), %d moves at "
-              "their lowest feed (not split: incremental or multi-turn)\n",
-              refed.lines_changed, refed.lines_added, refed.moves_split, refed.moves_at_lowest_feed);
-  std::printf("planned in %.2f s\n", wall_s);
 }
 
 }  // namespace
@@ -235,7 +327,9 @@ void add_optimize_command(CLI::App& app, OptimizeOptions& o) {
                   "every feed move planned to hold the target force on the engagement its moves cut");
   cmd->add_option("PROGRAM", o.program_path, "the G-code program (RS274/NGC)")->required();
   cmd->add_option("-o", o.output_path, "the re-fed program to write");
-  cmd->add_option("--tool", o.tool_text, "the end mill: diameter_mm=…,flutes=…,helix_deg=…[,name=…]");
+  cmd->add_option("--tool", o.tool_text, "the end mill of a program of one tool: diameter_mm=…,flutes=…,helix_deg=…[,name=…]");
+  cmd->add_option("--tools", o.tools_path,
+                  "the end mill of each T number (tools: {2: {diameter_mm: 6.35, flutes: 2, helix_deg: 30}, ...})");
   cmd->add_option("--material", o.material, "workpiece material (a name or alias in the model database)");
   cmd->add_option("--stock", o.stock_path, "the stock: a stock YAML, or a cycle spec whose stock is used");
   cmd->add_option("--stock-box", o.stock_box, "the stock as a block: X0,Y0,Z0,X1,Y1,Z1 in mm");
@@ -257,31 +351,34 @@ void add_optimize_command(CLI::App& app, OptimizeOptions& o) {
 int run_optimize_command(const OptimizeOptions& o) {
   const auto started = std::chrono::steady_clock::now();
   const OptimizeInputs in = read_inputs(o);
-  const std::string db_path = database_path(o.db_path);
-  const mdb::Store store = mdb::Store::open(db_path, mdb::OpenMode::kReadOnly);
-  cycles::CycleSpec spec;  // what the model choice reads: the tool and the material
-  spec.tool = in.tool;
-  spec.material = o.material;
-  spec.spindle_rpm = in.spindle_rpm;
-  spec.machine = in.machine;
-  const std::optional<ChosenModel> chosen = choose_model(store, spec, o.model_id);
-  if (!chosen) return kExitFailed;
-  const planner::PlanGeometry geometry = planner::analyse(in.program.path, in.stock, in.tool, o.ds_mm);
-  const planner::PlanSettings settings = settings_for(o, in, *chosen);
-  const planner::PlanResult result = planner::plan(geometry, settings);
-  std::optional<double> unconstrained_s;  // the cycle time of the plan with every ramp written out
-  if (settings.options.feed_step > 0.0) {
-    planner::PlanSettings unconstrained = settings;
-    unconstrained.options.feed_step = 0.0;
-    unconstrained_s = planner::plan(geometry, unconstrained).summary.cycle_time_s;
+  const mdb::Store store = mdb::Store::open(database_path(o.db_path), mdb::OpenMode::kReadOnly);
+  std::printf("%s: %zu moves (%zu lines), target %s N, %zu tool%s\n", o.program_path.c_str(), in.program.path.moves.size(),
+              static_cast<std::size_t>(std::count(in.text.begin(), in.text.end(), '\n')),
+              shortest_number_text(*o.target_force_n).c_str(), in.runs.size(), in.runs.size() == 1 ? "" : " runs");
+  for (const std::string& note : in.program.notes) std::printf("note: %s\n", note.c_str());
+  // Each tool's moves on the material the tools before it left.
+  geometry::Stock stock = in.stock;
+  std::vector<gcode::FeedPiece> pieces;
+  double cycle_time_s = 0.0;
+  bool refused = false;
+  for (const ToolRun& run : in.runs) {
+    const std::optional<PlannedRun> planned = plan_run(o, in, run, store, stock);
+    if (!planned) return kExitFailed;
+    print_run(o, in, run, *planned);
+    add_feed_pieces(planned->result, run.first, pieces);
+    cycle_time_s += planned->result.summary.cycle_time_s;
+    refused = refused || planned->result.status == planner::PlanStatus::kTargetNotMet ||
+              planned->result.status == planner::PlanStatus::kUnsafe;
+    stock = geometry::after_cutting(stock, planned->geometry.path, run.tool.radius_mm());
   }
-  const gcode::RefeedResult refed = gcode::refeed_text(in.text, in.program, in.written, feed_pieces(result));
+  const gcode::RefeedResult refed = gcode::refeed_text(in.text, in.program, in.written, pieces);
   const double wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
-  print_summary(o, in, *chosen, geometry, settings, result, unconstrained_s, refed, wall_s);
-  if (result.status == planner::PlanStatus::kTargetNotMet || result.status == planner::PlanStatus::kUnsafe) {
-    std::printf("not written: %s\n", result.status == planner::PlanStatus::kUnsafe
-                                         ? "the safety check refuses the plan (above)"
-                                         : "the target cannot be met everywhere (above)");
+  std::printf("planned cycle time %s; re-fed: %d lines changed, %d lines added (%d moves split where their feed "
+              "changes), %d moves at their lowest feed (not split: incremental or multi-turn); %.2f s\n",
+              seconds(cycle_time_s).c_str(), refed.lines_changed, refed.lines_added, refed.moves_split,
+              refed.moves_at_lowest_feed, wall_s);
+  if (refused) {
+    std::printf("not written: the target cannot be met everywhere, or the safety check refuses a plan (above)\n");
     return kExitFailed;
   }
   OutputFiles outputs;

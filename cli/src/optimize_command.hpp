@@ -15,7 +15,8 @@ namespace feedplan::cli {
 struct OptimizeOptions {
   std::string program_path;           //!< the G-code program to re-feed
   std::string output_path;            //!< -o: the re-fed program
-  std::string tool_text;              //!< --tool diameter_mm=…,flutes=…,helix_deg=…[,name=…]
+  std::string tool_text;              //!< --tool diameter_mm=…,flutes=…,helix_deg=…[,name=…] (one tool)
+  std::string tools_path;             //!< --tools: the end mill of each T number (cycles/spec_reader.hpp)
   std::string material;               //!< --material: name or alias in the model database
   std::string stock_path;             //!< --stock: stock YAML (or a cycle spec, whose stock is used)
   std::string stock_box;              //!< --stock-box X0,Y0,Z0,X1,Y1,Z1 in mm

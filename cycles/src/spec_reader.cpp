@@ -324,22 +324,28 @@ bool read_cycle_name(SpecReader& in, const YAML::Node& root, CycleSpec& spec) {
   return cycle_known;
 }
 
+// A tool section (`tool` of a spec, or an entry of a tool library) at `path`; a malformed one leaves the
+// diameter NaN.
+void read_tool_section(SpecReader& in, const YAML::Node& tool, const std::string& path, geometry::Tool& tool_spec) {
+  if (in.mapping(tool, path, {"diameter_mm", "flutes", "helix_deg", "max_plunge_feed_per_tooth_mm", "name"})) {
+    tool_spec.diameter_mm = in.number(tool, path, "diameter_mm", true, kNaN, "cutting diameter of the end mill in mm");
+    tool_spec.flutes = in.integer(tool, path, "flutes", true, 4, "number of teeth");
+    tool_spec.helix_deg = in.number(tool, path, "helix_deg", false, 30.0, "helix angle in deg");
+    // Absent: 0, the default of geometry::Tool. Given, it is checked here, where a given 0 is still
+    // told apart from an absent field.
+    tool_spec.max_plunge_feed_per_tooth_mm =
+        in.in_range_if_given(tool, path, "max_plunge_feed_per_tooth_mm",
+                             detail::plunge_feed_per_tooth_range(tool_spec), detail::kPlungeFeedPerToothMeaning);
+    tool_spec.name = in.text(tool, path, "name", false, "free text shown in reports");
+  } else {
+    tool_spec.diameter_mm = kNaN;
+  }
+}
+
 // The tool section; a missing or malformed one leaves the diameter NaN.
 void read_tool(SpecReader& in, const YAML::Node& root, geometry::Tool& tool_spec) {
   if (const YAML::Node tool = root["tool"]) {
-    if (in.mapping(tool, "tool", {"diameter_mm", "flutes", "helix_deg", "max_plunge_feed_per_tooth_mm", "name"})) {
-      tool_spec.diameter_mm = in.number(tool, "tool", "diameter_mm", true, kNaN, "cutting diameter of the end mill in mm");
-      tool_spec.flutes = in.integer(tool, "tool", "flutes", true, 4, "number of teeth");
-      tool_spec.helix_deg = in.number(tool, "tool", "helix_deg", false, 30.0, "helix angle in deg");
-      // Absent: 0, the default of geometry::Tool. Given, it is checked here, where a given 0 is still
-      // told apart from an absent field.
-      tool_spec.max_plunge_feed_per_tooth_mm =
-          in.in_range_if_given(tool, "tool", "max_plunge_feed_per_tooth_mm",
-                               detail::plunge_feed_per_tooth_range(tool_spec), detail::kPlungeFeedPerToothMeaning);
-      tool_spec.name = in.text(tool, "tool", "name", false, "free text shown in reports");
-    } else {
-      tool_spec.diameter_mm = kNaN;
-    }
+    read_tool_section(in, tool, "tool", tool_spec);
   } else {
     in.text(root, "", "tool", true, "the end mill: {diameter_mm, flutes, helix_deg, max_plunge_feed_per_tooth_mm, name}");
     tool_spec.diameter_mm = kNaN;
@@ -549,6 +555,52 @@ geometry::Stock read_stock_spec(const std::string& yaml_text, const std::string&
 
 geometry::Stock load_stock_spec(const std::filesystem::path& path) {
   return read_stock_spec(read_text_file(path, "a stock spec"), path.string());
+}
+
+std::map<int, geometry::Tool> read_tool_library(const std::string& yaml_text, const std::string& source_name) {
+  const YAML::Node loaded = load_yaml(yaml_text, source_name);
+  const YAML::Node& root = loaded;
+  if (!root || !root.IsMap()) {
+    throw InputError(source_name, "is not a YAML mapping: expected tools: {<T number>: {diameter_mm, flutes, "
+                                  "helix_deg, name}, ...}");
+  }
+  SpecReader in;
+  in.mapping(root, "", {"tools"});
+  std::map<int, geometry::Tool> tools;
+  const YAML::Node list = root["tools"];
+  if (!list) {
+    in.text(root, "", "tools", true, "the end mills by T number: {2: {diameter_mm: 6.35, flutes: 2}, ...}");
+  } else if (!list.IsMap() || list.size() == 0) {
+    in.add("tools", yaml_line(list), "= " + yaml_value_text(list) +
+                                         ": must be a mapping of T numbers to tools, e.g. {2: {diameter_mm: 6.35, flutes: 2}}");
+  } else {
+    for (const auto& entry : list) {
+      const std::string key = yaml_key_text(entry.first);
+      const std::string path = "tools." + key;
+      char* end = nullptr;
+      const long number = std::strtol(key.c_str(), &end, 10);
+      if (key.empty() || *end != '\0' || number < 0 || number > 1000000) {
+        in.add(path, yaml_line(entry.first), "is not a T number: the keys of tools are whole numbers ≥ 0");
+        continue;
+      }
+      geometry::Tool tool;
+      read_tool_section(in, entry.second, path, tool);
+      if (std::isfinite(tool.diameter_mm)) {
+        for (InputProblem problem : validate_tool(tool, path)) {
+          problem.field = with_yaml_line(problem.field, yaml_line(entry.second));
+          in.problems.push_back(std::move(problem));
+        }
+      }
+      if (tool.name.empty()) tool.name = "T" + key;
+      tools[static_cast<int>(number)] = tool;
+    }
+  }
+  if (!in.problems.empty()) throw InputError(std::move(in.problems));
+  return tools;
+}
+
+std::map<int, geometry::Tool> load_tool_library(const std::filesystem::path& path) {
+  return read_tool_library(read_text_file(path, "a tool library"), path.string());
 }
 
 }  // namespace feedplan::cycles

@@ -375,14 +375,14 @@ class Interpreter {
     std::optional<int> tool = tool_in_spindle_;
     if (block.has_m(6, 6)) {
       const std::optional<int> selected = block.has('T') ? tool_of(block.word('T')) : selected_tool_;
-      if (moved_) {
+      if (moved_ && !options_.tool_changes) {
         fail(std::string("word M6: not supported after the first move (") + kOneToolReason + ")");
-      } else if (tool_in_spindle_) {
+      } else if (tool_in_spindle_ && !options_.tool_changes) {
         fail("word M6: a second tool change (T" + std::to_string(*tool_in_spindle_) + " M6 on line " +
              std::to_string(tool_line_) + ") is not supported (" + kOneToolReason + ")");
       } else if (!selected) {
         if (!block.has('T')) fail("word M6: no tool selected: a T word must come before M6 or with it");
-      } else if (g43_tool_ && *g43_tool_ != *selected) {
+      } else if (g43_tool_ && *g43_tool_ != *selected && !options_.tool_changes) {
         fail("word M6: G43 H" + std::to_string(*g43_tool_) + " (line " + std::to_string(g43_line_) +
              ") stays in effect after the change, the length offset of another tool; switch it on after M6");
       } else {
@@ -436,8 +436,14 @@ class Interpreter {
     if (block.has_m(6, 6)) {
       tool_in_spindle_ = selected_tool_;
       tool_line_ = line;
-      note("line " + std::to_string(line) + ": T" + std::to_string(*tool_in_spindle_) + " M6: the program is for tool " +
-           std::to_string(*tool_in_spindle_));
+      if (options_.tool_changes) {
+        g43_tool_.reset();  // the old tool's length offset: G43 H<new tool> switches the new one on
+        note("line " + std::to_string(line) + ": T" + std::to_string(*tool_in_spindle_) + " M6: tool " +
+             std::to_string(*tool_in_spindle_) + " from here");
+      } else {
+        note("line " + std::to_string(line) + ": T" + std::to_string(*tool_in_spindle_) + " M6: the program is for tool " +
+             std::to_string(*tool_in_spindle_));
+      }
     }
     if (block.has_m(3, 7)) spindle_ = SpindleDirection::kClockwise;
     if (block.has_m(4, 7)) spindle_ = SpindleDirection::kCounterClockwise;
@@ -637,7 +643,7 @@ class Interpreter {
     pending_dwell_s_ = 0.0;
     written_.push_back({line, motion == kG0 ? 0 : motion == kG1 ? 1 : motion == kG2 ? 2 : 3,
                         block.g_by_group[1].has_value(), inch_, !absolute_, absolute_arc_center_, block.has('R'),
-                        block.has('P')});
+                        block.has('P'), tool_in_spindle_ ? *tool_in_spindle_ : g43_tool_ ? *g43_tool_ : -1});
     program_.path.moves.push_back(m);
     program_.blocks.push_back(command);
     position_mm_ = end;

@@ -82,6 +82,36 @@ TEST_F(OptimizeCliTest, TheReFedProgramHoldsTheTargetWhereTheInputOvershot) {
   EXPECT_LE(refed_peak, 1.05 * kTarget);
 }
 
+// A program of two tools (tests/data/cli/optimize_two_tools.ngc): each tool's moves are planned on the
+// material the tools before it left, so the second tool, re-cutting the first one's slot, runs in air at the
+// machine's largest feed. Without --tools the program's tools are named with their lines.
+TEST_F(OptimizeCliTest, EachToolIsPlannedOnWhatTheToolsBeforeItLeft) {
+  const fs::path output = dir_ / "two.ngc";
+  const std::string args = "optimize " + kData + "optimize_two_tools.ngc -o " + output.string() +
+                           " --material S50C --stock " + kData + "optimize_stock.yaml --target-force 550 --db " + db_;
+  const RunResult r = run_feedplan(args + " --tools " + kData + "optimize_tools.yaml");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("T1, lines 8–12: SC EM D10 Z4"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("T2, lines 18–21"), std::string::npos) << r.output;
+  const std::vector<std::string> out = lines_of(read_text(output));
+  for (const char* kept : {"M6 T1", "G43 H1", "M6 T2", "G43 H2", "M5"}) {
+    EXPECT_NE(std::find(out.begin(), out.end(), kept), out.end()) << kept;
+  }
+  // The second tool's slot: after its tool change, its moves run at F10000 (in air).
+  const auto change = std::find(out.begin(), out.end(), "M6 T2");
+  ASSERT_NE(change, out.end());
+  bool second_slot_in_air = false;
+  for (auto it = change; it != out.end(); ++it) {
+    if (it->rfind("G1 X-10.000 Y0.000 Z-5.000", 0) == 0) second_slot_in_air = it->find("F10000") != std::string::npos;
+  }
+  EXPECT_TRUE(second_slot_in_air) << read_text(output);
+  const RunResult without = run_feedplan(args + " --tool diameter_mm=10,flutes=4");
+  EXPECT_EQ(without.exit_code, 2) << without.output;
+  EXPECT_NE(without.output.find("--tools is required: the program changes tools (T1 from line 8, T2 from line 18)"),
+            std::string::npos)
+      << without.output;
+}
+
 TEST_F(OptimizeCliTest, BadInputExitsTwoNamingTheFlagAndLeavesTheOutput) {
   const fs::path output = dir_ / "kept.ngc";
   { std::ofstream(output) << "old"; }
@@ -95,6 +125,7 @@ TEST_F(OptimizeCliTest, BadInputExitsTwoNamingTheFlagAndLeavesTheOutput) {
       {" --target-force 500 --stock-box 0,0,-10,60,40,0", "give one of --stock STOCK.yaml and --stock-box"},
       {" --target-force 500 --spindle-rpm -5", "--spindle-rpm = -5"},
       {" --target-force 500 --tool diameter_mm=abc", "--tool"},
+      {" --target-force 500 --tools " + kData + "optimize_tools.yaml", "give one of --tool"},
   };
   for (const Case& c : cases) {
     const RunResult r = run_feedplan(optimize_args(output) + c.extra);

@@ -319,6 +319,25 @@ TEST(Reader, AnInchArcsToleranceCoversTwoOfItsLastDigits) {
       << "coarser words are taken as meant";
 }
 
+// A program of two tools (FreeCAD's `M6 T3` then `G43 H3`): refused by default, read when the caller plans
+// each tool's moves on its own, every move knowing the tool that makes it.
+TEST(Reader, ToolChangesAnywhereWhenAskedEachMoveKnowsItsTool) {
+  const std::string text =
+      "G21\nM6 T2\nG43 H2\nM3 S10000\nG0 X0 Y0 Z5\nG1 Z-1 F100\nG1 X10\nG0 Z5\n"
+      "M6 T3\nG43 H3\nG0 X20\nG1 Z-1\nG1 X30\nM2\n";
+  EXPECT_THAT(problems_of(text), HasSubstr("line 9: word M6: not supported after the first move"));
+  ReaderOptions options;
+  options.tool_changes = true;
+  std::vector<WrittenMove> written;
+  const Program p = read_program(text, "test", options, written);
+  ASSERT_EQ(written.size(), p.path.moves.size());
+  std::vector<int> tools;
+  for (const WrittenMove& w : written) tools.push_back(w.tool);
+  EXPECT_EQ(tools, (std::vector<int>{2, 2, 2, 2, 3, 3, 3}));
+  EXPECT_EQ(written[4].line, 11);
+  EXPECT_THAT(p.notes.back(), HasSubstr("line 9: T3 M6: tool 3 from here"));
+}
+
 TEST(Reader, OneToolChangeBeforeTheFirstMoveIsReadAndNoted) {
   // T in the M6 block or before it; G43 with the tool's H in a rapid's block, or without H.
   for (const std::string head : {"T3 M6\nG43 H3\n", "T3\nM6\nG0 G43 H3 Z5\n", "T3 M6 G43\n", "T3 M6 G43 H3\n"}) {

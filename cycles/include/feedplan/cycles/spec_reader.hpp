@@ -2,6 +2,7 @@
 // Reading a cycle spec from YAML (docs/method.md §4) with every problem reported at once.
 
 #include <filesystem>
+#include <map>
 #include <string>
 
 #include "feedplan/cycles/spec.hpp"
@@ -34,5 +35,15 @@ geometry::Stock read_stock_spec(const std::string& yaml_text, const std::string&
 
 //! Reads the file at `path` with read_stock_spec; an unreadable file is an InputError naming it.
 geometry::Stock load_stock_spec(const std::filesystem::path& path);
+
+//! Parses a tool library: the end mill of every T number a program uses, each written as a cycle spec's
+//! `tool` section (same fields, same checks):
+//!   tools:
+//!     2: {diameter_mm: 6.35, flutes: 2, helix_deg: 30, name: "1/4 in 2-flute"}
+//! A tool without a name is named "T<number>". Every problem at once, in one InputError.
+std::map<int, geometry::Tool> read_tool_library(const std::string& yaml_text, const std::string& source_name);
+
+//! Reads the file at `path` with read_tool_library.
+std::map<int, geometry::Tool> load_tool_library(const std::filesystem::path& path);
 
 }  // namespace feedplan::cycles

@@ -26,7 +26,8 @@
 //                     0, so a feed move needs an F after it (in the same block or later)
 //   F S               feed (per minute, in the length unit in effect when F is read) and spindle rpm
 //   T, M6             tool selection and change (`T1 M6`, T in the same or an earlier block): once,
-//                     before the first move; a note records the tool number
+//                     before the first move (anywhere with ReaderOptions::tool_changes); a note
+//                     records the tool number
 //   G43 H             tool length offset on: the programmed Z is the tool tip, which is what the reader
 //                     assumes anyway; H must be the tool in the spindle (without H: that tool). Other
 //                     words may share the block (`G43 H1 Z5`). G43 with no M6 before it is taken to name
@@ -99,6 +100,10 @@ struct ReaderOptions {
   bool require_program_end = true;  //!< the text must end the program with M2, M30 or a closing %
                                     //!< (LinuxCNC's rule; catches truncated files); false accepts snippets
   int max_problems = 50;            //!< problems collected before the reader stops looking for more
+  //! Tool changes anywhere (M6 after moves, more than one): for a caller that plans each tool's moves on
+  //! their own (WrittenMove::tool says which tool made a move). M6 switches the old tool's length offset
+  //! off; G43 H<new tool> switches the new one on. False: one M6, before the first move.
+  bool tool_changes = false;
   //! Most turns of one G2/G3 (its P word): a deep helical bore takes a few hundred; a million turns
   //! is one move that the planner and the virtual machine sample into gigabytes.
   int max_arc_turns = 1000;
@@ -132,6 +137,7 @@ struct WrittenMove {
   bool absolute_arc_center = false;  //!< G90.1 in effect (I J absolute)
   bool radius_form = false;          //!< an arc given by R
   bool turns = false;                //!< an arc with a P word (turns)
+  int tool = -1;                     //!< the tool in the spindle (T M6, or G43 H without one); −1: none named
 };
 
 //! read_program, and how each move's line was written (parallel to the program's moves).
