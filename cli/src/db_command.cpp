@@ -472,24 +472,28 @@ int run_fit(const DbOptions& o) {
   std::vector<std::string> notes;
   std::vector<mdb::ModelRecord> records;
   json per_test;
-  if (!kind || *kind == mdb::ModelKind::kResponseSurface) {
+  // Which kinds to fit, decided once from the flag's text.
+  const bool one_kind = o.kind != "both";
+  const bool fit_surface = !one_kind || mdb::parse_model_kind(o.kind) == mdb::ModelKind::kResponseSurface;
+  const bool fit_mechanistic = !one_kind || mdb::parse_model_kind(o.kind) == mdb::ModelKind::kMechanistic;
+  if (fit_surface) {
     std::string refusal;
     if (auto record = fit_response_surface(o, tests, notes, refusal)) {
       records.push_back(std::move(*record));
-    } else if (kind) {
+    } else if (one_kind) {
       std::cerr << "feedplan: no model stored: " << refusal << "\n";
       return 1;
     } else {
       notes.push_back("response surface: not fitted: " + refusal);
     }
   }
-  if (!kind || *kind == mdb::ModelKind::kMechanistic) {
+  if (fit_mechanistic) {
     const bool has_signal = std::any_of(tests.begin(), tests.end(),
                                         [](const auto& t) { return !t.test.synchronous_fx_n.empty(); });
-    if (!kind && !has_signal) {
+    if (!one_kind && !has_signal) {
       notes.push_back("mechanistic: not identified: no stored test holds the force over a revolution (tests imported "
                       "before this feedplan kept it: import their logs again with feedplan db import-test)");
-    } else if (kind) {
+    } else if (one_kind) {
       records.push_back(fit_mechanistic_version(o, tool, tests, notes, per_test));
     } else {
       try {

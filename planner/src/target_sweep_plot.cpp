@@ -55,7 +55,10 @@ void append_panel(std::string& svg, const std::vector<TargetSweepRow>& rows, dou
   }
   svg += "<polyline class=\"" + series_class + "\" fill=\"none\" stroke=\"#1565c0\" stroke-width=\"1.5\" points=\"";
   for (std::size_t i = 0; i < rows.size(); ++i) {
-    svg += (i ? " " : "") + px(area.to_x(rows[i].target_n)) + "," + px(area.to_y(value(rows[i])));
+    if (i > 0) svg += ' ';
+    svg += px(area.to_x(rows[i].target_n));
+    svg += ',';
+    svg += px(area.to_y(value(rows[i])));
   }
   svg += "\"/>\n";
   for (const TargetSweepRow& r : rows) {

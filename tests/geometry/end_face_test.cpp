@@ -69,7 +69,9 @@ TEST(EndFace, ClimbingBackUpIsNotAPlunge) {
   path.moves.push_back(up);
   const auto profile = compute_engagement(path, island(), 5.0, {.ds_mm = 0.25});
   for (const auto& s : profile.samples) {
-    if (s.move_index == 1) EXPECT_FALSE(s.end_face_in_material) << "z " << s.position.z_mm;
+    if (s.move_index == 1) {
+      EXPECT_FALSE(s.end_face_in_material) << "z " << s.position.z_mm;
+    }
   }
 }
 
