@@ -16,10 +16,12 @@
 #include <vector>
 
 #include "run_feedplan.hpp"
+#include "text_lines.hpp"
 
 namespace {
 
 using namespace feedplan::cli_test;
+using feedplan::test_support::lines_of;
 
 const std::string kData = std::string(FEEDPLAN_TEST_DATA_DIR) + "/cli/";
 const std::string kTool = " --tool diameter_mm=10,flutes=4,helix_deg=30 ";
@@ -49,14 +51,6 @@ class OptimizeCliTest : public CliTest {
 
   std::string db_;
 };
-
-std::vector<std::string> lines_of(const std::string& text) {
-  std::vector<std::string> lines;
-  std::stringstream in(text);
-  std::string line;
-  while (std::getline(in, line)) lines.push_back(line);
-  return lines;
-}
 
 TEST_F(OptimizeCliTest, TheReFedProgramHoldsTheTargetWhereTheInputOvershot) {
   constexpr double kTarget = 550.0;

@@ -10,27 +10,12 @@
 #include <vector>
 
 #include "feedplan/core/parallel_tasks.hpp"
+#include "threads_setting.hpp"
 
 namespace feedplan {
 namespace {
 
-class ThreadsSetting {
- public:
-  explicit ThreadsSetting(const char* value) {
-    if (const char* old = std::getenv("FEEDPLAN_THREADS")) old_ = old;
-    setenv("FEEDPLAN_THREADS", value, 1);
-  }
-  ~ThreadsSetting() {
-    if (old_.empty()) {
-      unsetenv("FEEDPLAN_THREADS");
-    } else {
-      setenv("FEEDPLAN_THREADS", old_.c_str(), 1);
-    }
-  }
-
- private:
-  std::string old_;
-};
+using test_support::ThreadsSetting;
 
 TEST(RunTasks, EveryTaskRunsOnceOnAnyNumberOfThreads) {
   for (const char* threads : {"1", "2", "5", "64"}) {

@@ -17,11 +17,13 @@
 #include "feedplan/gcode/refeed.hpp"
 #include "feedplan/geometry/tool_path.hpp"
 #include "rs274_runner.hpp"
+#include "text_lines.hpp"
 
 namespace feedplan::gcode {
 namespace {
 
 using oracle::OracleMove;
+using test_support::lines_of;
 
 // The paths must agree to 1 µm; rs274 prints 4 decimals in the program's unit, which in inches is
 // 2.54 µm, so a point it prints lies up to half of that per axis from where it is.
@@ -50,14 +52,6 @@ std::vector<FeedPiece> made_up_pieces(const geometry::Program& program) {
     }
   }
   return pieces;
-}
-
-std::vector<std::string> lines_of(const std::string& text) {
-  std::vector<std::string> lines;
-  std::stringstream in(text);
-  std::string line;
-  while (std::getline(in, line)) lines.push_back(line);
-  return lines;
 }
 
 double tolerance_mm = kPathToleranceMm;

@@ -22,6 +22,7 @@
 #include "feedplan/gcode/dialect.hpp"
 #include "feedplan/gcode/reader.hpp"
 #include "program_builder.hpp"
+#include "text_lines.hpp"
 
 namespace feedplan::gcode {
 namespace {
@@ -33,16 +34,9 @@ using testing_support::kPi;
 using testing_support::ProgramBuilder;
 using ::testing::HasSubstr;
 using ::testing::Not;
+using test_support::lines_of;
 
 constexpr double kNan = std::numeric_limits<double>::quiet_NaN();
-
-std::vector<std::string> lines_of(const std::string& text) {
-  std::vector<std::string> lines;
-  std::stringstream in(text);
-  std::string line;
-  while (std::getline(in, line)) lines.push_back(line);
-  return lines;
-}
 
 // The lines that hold blocks: not comments, not '%', not the O line.
 std::vector<std::string> block_lines(const std::string& text) {

@@ -9,28 +9,12 @@
 #include "feedplan/cycles/cycle.hpp"
 #include "feedplan/cycles/spec_reader.hpp"
 #include "feedplan/geometry/engagement.hpp"
+#include "threads_setting.hpp"
 
 namespace feedplan::geometry {
 namespace {
 
-// Sets FEEDPLAN_THREADS for one scope, restoring what was there.
-class ThreadsSetting {
- public:
-  explicit ThreadsSetting(const char* value) {
-    if (const char* old = std::getenv("FEEDPLAN_THREADS")) old_ = old;
-    setenv("FEEDPLAN_THREADS", value, 1);
-  }
-  ~ThreadsSetting() {
-    if (old_.empty()) {
-      unsetenv("FEEDPLAN_THREADS");
-    } else {
-      setenv("FEEDPLAN_THREADS", old_.c_str(), 1);
-    }
-  }
-
- private:
-  std::string old_;
-};
+using test_support::ThreadsSetting;
 
 void expect_same(const EngagementProfile& a, const EngagementProfile& b) {
   ASSERT_EQ(a.samples.size(), b.samples.size());
