@@ -201,13 +201,7 @@ void require_learnable(const model_db::Store& store, const model_db::ModelRecord
 // the plan command takes it from the database.
 planner::PlanSettings settings_as_planned(const planner::PlanReport& report, const model_db::ModelRecord& before) {
   planner::PlanSettings settings = report.settings;
-  if (report.context.model_relative_uncertainty > 0.0) {
-    planner::ForceUncertainty uncertainty;
-    uncertainty.covariance = before.fit.covariance;
-    uncertainty.sigmas = kBorrowedModelSigmas;
-    uncertainty.relative = report.context.model_relative_uncertainty;
-    settings.uncertainty = uncertainty;
-  }
+  if (const auto bound = cautious_bound(before, report.context.model_relative_uncertainty)) settings.uncertainty = bound;
   return settings;
 }
 

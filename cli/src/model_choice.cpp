@@ -73,4 +73,13 @@ double planning_uncertainty(const ChosenModel& chosen, std::optional<double> req
   return requested ? *requested : chosen.borrowing.borrowed_fraction / kBorrowedModelSigmas;
 }
 
+std::optional<planner::ForceUncertainty> cautious_bound(const model_db::ModelRecord& record, double r) {
+  if (!(r > 0.0)) return std::nullopt;
+  planner::ForceUncertainty uncertainty;
+  uncertainty.covariance = record.fit.covariance;
+  uncertainty.sigmas = kBorrowedModelSigmas;
+  uncertainty.relative = r;
+  return uncertainty;
+}
+
 }  // namespace feedplan::cli

@@ -10,6 +10,7 @@
 #include "feedplan/model_db/model_borrowing.hpp"
 #include "feedplan/model_db/store.hpp"
 #include "feedplan/model_db/store_records.hpp"
+#include "feedplan/planner/force_bound.hpp"
 
 namespace feedplan::cli {
 
@@ -29,6 +30,10 @@ std::optional<ChosenModel> choose_model(const model_db::Store& store, const cycl
 
 //! z of the cautious bound F̂ + z·σ a borrowed model is planned on.
 inline constexpr double kBorrowedModelSigmas = 2.0;
+
+//! The cautious bound of a model `record` planned with relative uncertainty r > 0: F̂ + z·σ with its fit's
+//! covariance and z = kBorrowedModelSigmas (planner/force_bound.hpp); nothing for r = 0.
+std::optional<planner::ForceUncertainty> cautious_bound(const model_db::ModelRecord& record, double r);
 
 //! The relative uncertainty r a plan holds F̂ + z·σ at the target with (planner/force_bound.hpp, z =
 //! kBorrowedModelSigmas): `requested` (--cautious) when given, else δ / z with δ the fraction

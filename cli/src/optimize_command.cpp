@@ -203,14 +203,7 @@ planner::PlanSettings settings_for(const OptimizeOptions& o, const OptimizeInput
                                    const ChosenModel& chosen) {
   planner::PlanSettings settings;
   settings.model = chosen.record.model;
-  const double r = planning_uncertainty(chosen, o.model_uncertainty);
-  if (r > 0.0) {
-    planner::ForceUncertainty uncertainty;
-    uncertainty.covariance = chosen.record.fit.covariance;
-    uncertainty.sigmas = kBorrowedModelSigmas;
-    uncertainty.relative = r;
-    settings.uncertainty = uncertainty;
-  }
+  settings.uncertainty = cautious_bound(chosen.record, planning_uncertainty(chosen, o.model_uncertainty));
   settings.target_force_n = *o.target_force_n;
   settings.spindle_rpm = run.spindle_rpm;
   settings.machine = in.machine;

@@ -224,13 +224,7 @@ planner::PlanSettings plan_settings(const PlanCommandOptions& o, const PlanInput
   planner::PlanSettings settings;
   settings.model = chosen.record.model;
   if (model.mechanistic) settings.mechanistic = model.mechanistic->mechanistic->model;
-  if (model.relative_uncertainty > 0.0) {
-    planner::ForceUncertainty uncertainty;
-    uncertainty.covariance = chosen.record.fit.covariance;
-    uncertainty.sigmas = kBorrowedModelSigmas;
-    uncertainty.relative = model.relative_uncertainty;
-    settings.uncertainty = uncertainty;
-  }
+  settings.uncertainty = cautious_bound(chosen.record, model.relative_uncertainty);
   settings.target_force_n = in.target_force_n;
   settings.spindle_rpm = in.spec.spindle_rpm;
   settings.machine = in.spec.machine;

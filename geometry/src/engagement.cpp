@@ -446,12 +446,17 @@ void warn_of_contact_in_air(Sampler& sampler, const MoveSampling& m, const Engag
   }
 }
 
+// Steps a move is sampled in: every ds_mm or less.
+int sample_steps(const Move& move, double ds_mm) {
+  return std::max(1, static_cast<int>(std::ceil(length_mm(move) / ds_mm - 1e-9)));
+}
+
 // The samples of move i, every ds_mm or less; its end point is the next move's first sample (the
 // last move's is its own).
 void sample_move(Sampler& sampler, std::size_t i, double s_start_mm) {
   const Move& move = sampler.path.moves[i];
   const double move_length = length_mm(move);
-  const int steps = std::max(1, static_cast<int>(std::ceil(move_length / sampler.options.ds_mm - 1e-9)));
+  const int steps = sample_steps(move, sampler.options.ds_mm);
   const int last_step = i + 1 == sampler.path.moves.size() ? steps : steps - 1;
   const MoveSampling m{i, move, s_start_mm, move_length, xy_length_mm(move),
                        move.cutting && move.kind != MoveKind::kRapid, MoveFrame(move)};
@@ -479,7 +484,7 @@ double direction_before(const ToolPath& path, std::size_t first, double ds_mm) {
   for (std::size_t j = first; j-- > 0;) {
     const Move& move = path.moves[j];
     if (!(xy_length_mm(move) > 0.0)) continue;
-    const int steps = std::max(1, static_cast<int>(std::ceil(length_mm(move) / ds_mm - 1e-9)));
+    const int steps = sample_steps(move, ds_mm);
     const int last_step = j + 1 == path.moves.size() ? steps : steps - 1;
     const MoveFrame frame(move);
     Point3 position;
@@ -500,7 +505,7 @@ constexpr double kMinStretchSamples = 400.0;
 std::vector<std::size_t> stretch_bounds(const ToolPath& path, double ds_mm) {
   const std::size_t n = path.moves.size();
   std::vector<double> samples_before(n + 1, 0.0);
-  for (std::size_t i = 0; i < n; ++i) samples_before[i + 1] = samples_before[i] + std::ceil(length_mm(path.moves[i]) / ds_mm);
+  for (std::size_t i = 0; i < n; ++i) samples_before[i + 1] = samples_before[i] + sample_steps(path.moves[i], ds_mm);
   const double total = samples_before[n];
   const int workers = worker_count();
   const int stretches = workers <= 1 ? 1

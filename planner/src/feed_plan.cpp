@@ -456,23 +456,6 @@ CommandProfile plan_command_profile(const PlanContext& c, const FeedLimits& limi
 }
 
 // Step 3. Blocks.
-// The feed limits rounded down onto the grid max_feed·(1 + step)^−k (the controller-friendly rule's profile):
-// the machine's largest feed, the air feed's usual value, is a level.
-std::vector<double> feed_levels(const std::vector<double>& limits_mm_per_min, double max_feed_mm_per_min, double step) {
-  const double log_ratio = std::log1p(step);
-  std::vector<double> levels(limits_mm_per_min.size());
-  for (std::size_t i = 0; i < levels.size(); ++i) {
-    const double v = limits_mm_per_min[i];
-    if (!(v > 0.0) || v >= max_feed_mm_per_min) {
-      levels[i] = std::min(v, max_feed_mm_per_min);
-      continue;
-    }
-    const double k = std::ceil(std::log(max_feed_mm_per_min / v) / log_ratio - 1e-9);
-    levels[i] = std::min(v, max_feed_mm_per_min * std::exp(-k * log_ratio));
-  }
-  return levels;
-}
-
 void split_into_blocks(const PlanContext& c, const CommandProfile& command, const FeedLimits& limits,
                        PlanResult& result) {
   const PlanOptions& options = c.settings.options;
@@ -485,13 +468,14 @@ void split_into_blocks(const PlanContext& c, const CommandProfile& command, cons
   split.min_feed_mm_per_min = machine.min_feed_mm_per_min;
   split.accel_mm_per_s2 = command.accel_mm_per_s2;
   if (options.feed_step > 0.0) {
-    // Controller-friendly: blocks of one level of the limits each, lasting at least the shortest duration.
+    // Controller-friendly: least-time blocks under the limits, each lasting at least the shortest duration,
+    // their F rounded down onto the levels (block_split.hpp).
     split.least_time = true;
     split.level_step = options.feed_step;
     split.level_top_mm_per_min = machine.max_feed_mm_per_min;
     split.block_time_min_s = std::max(machine.block_time_min_s, options.min_block_duration_s);
-    const std::vector<double> levels = feed_levels(limits.mm_per_min, machine.max_feed_mm_per_min, options.feed_step);
-    result.blocks = detail::split_blocks(c.path, c.s, levels, c.move_first, split, result.summary.short_blocks);
+    result.blocks =
+        detail::split_blocks(c.path, c.s, limits.mm_per_min, c.move_first, split, result.summary.short_blocks);
     return;
   }
   result.blocks =
