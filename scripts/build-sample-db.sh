@@ -88,6 +88,12 @@ for t in "${tools[@]}"; do
   done
 done
 
+# The cutting mechanics of the small cutter in aluminium, fitted last so that the versions above keep their
+# ids: the kind `optimize` plans CAM programs with where they slot or plunge (outside every response
+# surface's fitted engagement), transferred to end mills of other diameters and flute counts.
+"$feedplan" db fit --db "$db" --tool "SC EM D6 Z3" --material Al7075-T6 --kind mechanistic \
+    --note "sample: virtual cutting tests, a_p = D" > /dev/null
+
 mkdir -p "$(dirname "$out")"
 mv "$db" "$out.tmp" && mv "$out.tmp" "$out"
 echo "sample database written to $out"

@@ -11,6 +11,7 @@
 
 #include "database_path.hpp"
 #include "model_choice.hpp"
+#include "model_kind_choice.hpp"
 #include "number_flag.hpp"
 #include "output_files.hpp"
 #include "output_path.hpp"
@@ -197,13 +198,14 @@ OptimizeInputs read_inputs(const OptimizeOptions& o) {
   return in;
 }
 
-// The plan's settings: the model, the cautious bound when it is borrowed (or --cautious).
 // The plan's settings for one tool's moves: the model, the cautious bound when it is borrowed (or --cautious).
 planner::PlanSettings settings_for(const OptimizeOptions& o, const OptimizeInputs& in, const ToolRun& run,
-                                   const ChosenModel& chosen) {
+                                   const ChosenModel& chosen, const ModelKindChoice& kind) {
   planner::PlanSettings settings;
   settings.model = chosen.record.model;
-  settings.uncertainty = cautious_bound(chosen.record, planning_uncertainty(chosen, o.model_uncertainty));
+  if (kind.mechanistic) settings.mechanistic = kind.mechanistic->mechanistic->model;
+  settings.options.max_chip_thickness_mm = kind.max_chip_thickness_mm;
+  settings.uncertainty = cautious_bound(chosen.record, planning_uncertainty(kind, o.model_uncertainty));
   settings.target_force_n = *o.target_force_n;
   settings.spindle_rpm = run.spindle_rpm;
   settings.machine = in.machine;
@@ -217,6 +219,7 @@ planner::PlanSettings settings_for(const OptimizeOptions& o, const OptimizeInput
 // One tool's moves planned: the model, the plan, and the plan with every ramp written out for comparison.
 struct PlannedRun {
   ChosenModel chosen;
+  ModelKindChoice kind;
   planner::PlanGeometry geometry;
   planner::PlanSettings settings;
   planner::PlanResult result;
@@ -243,8 +246,10 @@ std::optional<PlannedRun> plan_run(const OptimizeOptions& o, const OptimizeInput
   spec.machine = in.machine;
   std::optional<ChosenModel> chosen = choose_model(store, spec, o.model_id);
   if (!chosen) return std::nullopt;
-  PlannedRun planned{std::move(*chosen), planner::analyse(run_path(in.program, run), stock, run.tool, o.ds_mm), {}, {}, {}};
-  planned.settings = settings_for(o, in, run, planned.chosen);
+  PlannedRun planned{std::move(*chosen), {}, planner::analyse(run_path(in.program, run), stock, run.tool, o.ds_mm), {}, {}, {}};
+  planned.kind = choose_model_kind(store, planned.chosen, run.tool, o.model_kind,
+                                   extrapolated_contact_share(planned.chosen.record.model, planned.geometry.engagement));
+  planned.settings = settings_for(o, in, run, planned.chosen, planned.kind);
   planned.result = planner::plan(planned.geometry, planned.settings);
   if (planned.settings.options.feed_step > 0.0) {
     planner::PlanSettings unconstrained = planned.settings;
@@ -285,6 +290,7 @@ void print_run(const OptimizeOptions& o, const OptimizeInputs& in, const ToolRun
   for (const std::string& warning : p.geometry.engagement.warnings) std::printf("  warning: %s\n", warning.c_str());
   std::printf("  model: id %lld v%d (%s in %s) — %s\n", static_cast<long long>(p.chosen.record.id), p.chosen.record.version,
               p.chosen.record.tool_name.c_str(), p.chosen.record.material_name.c_str(), p.chosen.explanation.c_str());
+  std::printf("  kind: %s\n", p.kind.reason.c_str());
   std::printf("  status: %s\n", planner::to_string(result.status).c_str());
   for (const std::string& message : result.messages) std::printf("    %s\n", message.c_str());
   std::printf("  planned: cycle time %s (cutting %s), predicted peak %s N, F %s–%s mm/min\n",
@@ -332,6 +338,9 @@ void add_optimize_command(CLI::App& app, OptimizeOptions& o) {
   add_number_flag(cmd, "--min-feed", o.min_feed_mm_per_min, "the lowest feed to write, mm/min (default 10)");
   cmd->add_option("--db", o.db_path, "model database (default: $FEEDPLAN_DB, else the sample database)");
   add_integer_flag(cmd, "--model-id", o.model_id, "plan with this stored model version (see feedplan db list)");
+  cmd->add_option("--model-kind", o.model_kind,
+                  "mechanistic or response-surface (default: mechanistic where the path leaves the response "
+                  "surface's fitted engagement, else the kind that predicted untested engagements better)");
   add_number_flag(cmd, "--cautious", o.model_uncertainty,
                   "hold F̂·(1 + 2r) at the target (default: r from how far the model is borrowed)");
   add_number_flag(cmd, "--ds", o.ds_mm, "engagement sample spacing, mm (default 0.05)");

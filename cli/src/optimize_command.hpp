@@ -26,6 +26,7 @@ struct OptimizeOptions {
   std::optional<double> min_feed_mm_per_min;  //!< --min-feed; unset: the machine default
   std::string db_path;                //!< --db; empty: $FEEDPLAN_DB, else the sample database
   std::optional<std::int64_t> model_id;  //!< --model-id
+  std::string model_kind;                //!< --model-kind mechanistic|response-surface (empty: model_kind_choice.hpp)
   std::optional<double> model_uncertainty;  //!< --cautious r
   double ds_mm = 0.05;                //!< --ds
   double feed_step = 0.02;            //!< --feed-step: controller-friendly F levels (0: blocks follow the command profile)

@@ -13,6 +13,7 @@
 #include "data_path.hpp"
 #include "database_path.hpp"
 #include "model_choice.hpp"
+#include "model_kind_choice.hpp"
 #include "number_flag.hpp"
 #include "output_files.hpp"
 #include "output_path.hpp"
@@ -132,62 +133,6 @@ PlanInputs read_plan_inputs(const PlanCommandOptions& o) {
   return in;
 }
 
-// The kind that plans: --model-kind, else the kind with the lower leave-one-engagement-out error on the pair's
-// own cutting tests (model_db/engagement_groups.hpp, computed when the versions were fitted), the reason giving
-// both; the response surface when there is no mechanistic version of the chosen response surface's tool and
-// material that fits the spec's cutter (its runout has one value per flute), or when a version lacks the error.
-void choose_model_kind(const PlanCommandOptions& o, const mdb::Store& store, const cycles::CycleSpec& spec,
-                       PlanModel& model) {
-  const mdb::ModelRecord& surface = model.chosen.record;
-  std::optional<mdb::ModelRecord> mechanistic =
-      store.active_model(surface.tool_name, surface.material_name, mdb::ModelKind::kMechanistic);
-  if (mechanistic && !mechanistic->mechanistic->model.runout_mm.empty() &&
-      mechanistic->mechanistic->model.runout_mm.size() != static_cast<std::size_t>(spec.tool.flutes)) {
-    mechanistic.reset();  // a runout of another cutter
-  }
-  if (!o.model_kind.empty() && o.model_kind != "mechanistic" && o.model_kind != "response-surface") {
-    throw InputError("--model-kind", "= '" + o.model_kind + "': must be mechanistic or response-surface");
-  }
-  if (o.model_kind == "response-surface") {
-    model.kind_reason = "response surface, as asked (--model-kind)";
-    return;
-  }
-  if (o.model_kind == "mechanistic") {
-    if (!mechanistic) {
-      throw InputError("--model-kind", "= mechanistic: " + surface.tool_name + " in " + surface.material_name +
-                                           " has no mechanistic version for a " + std::to_string(spec.tool.flutes) +
-                                           "-flute cutter (fit one: feedplan db fit --kind mechanistic)");
-    }
-    model.kind_reason = "mechanistic v" + std::to_string(mechanistic->version) + ", as asked (--model-kind)";
-    model.mechanistic = std::move(mechanistic);
-    return;
-  }
-  if (!mechanistic) {
-    model.kind_reason = "response surface: the pair has no mechanistic version";
-    return;
-  }
-  const auto n = [](double v) { return shortest_number_text(std::round(v * 10) / 10); };
-  const double surface_n = surface.fit.engagement_cv_rmse_n, mechanistic_n = mechanistic->fit.engagement_cv_rmse_n;
-  const std::string versions = " (response surface v" + std::to_string(surface.version) + ", mechanistic v" +
-                               std::to_string(mechanistic->version) + ")";
-  if (!(surface_n > 0.0 && mechanistic_n > 0.0)) {
-    model.kind_reason = "response surface: the versions" + versions + " have no leave-one-engagement-out error to "
-                        "compare the kinds by (fitted on fewer than " +
-                        std::to_string(mdb::kMinCrossValidationEngagements) + " radial depths, or before feedplan "
-                        "computed it: refit with feedplan db fit); --model-kind mechanistic plans with the cutting "
-                        "mechanics";
-    return;
-  }
-  const std::string figures = "leave-one-engagement-out error on the cutting tests " + n(mechanistic_n) +
-                              " N mechanistic, " + n(surface_n) + " N response surface" + versions;
-  if (mechanistic_n < surface_n) {
-    model.kind_reason = "mechanistic, which predicts engagements it was not fitted on better: " + figures;
-    model.mechanistic = std::move(mechanistic);
-    return;
-  }
-  model.kind_reason = "response surface, which predicts engagements it was not fitted on better: " + figures;
-}
-
 // --target-sweep: the plan at every target of `range`, printed (and drawn with --plot). Returns 0, or 1 when
 // the plot cannot be written.
 int run_target_sweep(const PlanCommandOptions& o, const PlanInputs& in, const PlanModel& model,
@@ -214,7 +159,11 @@ std::optional<PlanModel> choose_plan_model(const PlanCommandOptions& o, const cy
   if (!chosen) return std::nullopt;
   const double r = planning_uncertainty(*chosen, o.model_uncertainty);
   PlanModel model{stored_path(db_path), std::move(*chosen), r, o.model_uncertainty.has_value(), std::nullopt, ""};
-  choose_model_kind(o, store, spec, model);
+  ModelKindChoice kind = choose_model_kind(store, model.chosen, spec.tool, o.model_kind, std::nullopt);
+  model.relative_uncertainty = planning_uncertainty(kind, o.model_uncertainty);
+  model.max_chip_thickness_mm = kind.max_chip_thickness_mm;
+  model.mechanistic = std::move(kind.mechanistic);
+  model.kind_reason = std::move(kind.reason);
   return model;
 }
 
@@ -237,6 +186,7 @@ planner::PlanSettings plan_settings(const PlanCommandOptions& o, const PlanInput
   settings.options.jerk_limit_mm_per_s3 = o.jerk_limit_mm_per_s3.value_or(0.0);  // 0: none
   settings.options.ds_mm = o.ds_mm;
   settings.options.coordinate_resolution_mm = std::pow(10.0, -o.decimals);  // what the writer rounds to
+  settings.options.max_chip_thickness_mm = model.max_chip_thickness_mm;
   return settings;
 }
 

@@ -38,6 +38,7 @@ struct PlanModel {
   //! The mechanistic version planned with instead of the response surface (same tool and material).
   std::optional<model_db::ModelRecord> mechanistic;
   std::string kind_reason;  //!< which kind plans, and why, for people
+  double max_chip_thickness_mm = 0.0;  //!< PlanOptions::max_chip_thickness_mm (model_kind_choice.hpp)
 };
 
 //! The cycle, its plan and how long engagement and planning took.

@@ -434,10 +434,14 @@ void engage_layers(Sampler& sampler, const MoveSampling& m, double f, Engagement
   sample.axial_depth_mm = sample.material_height_mm;
 }
 
-// A rapid or air move that meets material: one warning, at its first such sample.
-void warn_of_contact_in_air(Sampler& sampler, const MoveSampling& m, const EngagementSample& sample) {
+// A rapid or air move that meets material: one warning, at its first such sample. Its first sample (step 0)
+// is where the move before it ended, so contact there is the earlier move's; and a straight retract (up,
+// without XY travel) moves the tool out of the hole it stands in: at the end of a slot half its circle lies
+// on the slot's end wall, touching the material without moving into it.
+void warn_of_contact_in_air(Sampler& sampler, const MoveSampling& m, const EngagementSample& sample, int step) {
   const std::size_t i = m.index;
-  if (!m.cutting && sample.engagement_rad > kAirContactRad && !sampler.warned[i]) {
+  const bool retract = m.xy_length_mm <= 0.0 && m.move.end.z_mm > m.move.start.z_mm;
+  if (step > 0 && !retract && !m.cutting && sample.engagement_rad > kAirContactRad && !sampler.warned[i]) {
     sampler.warned[i] = true;
     std::ostringstream out;
     out << describe(m.move, i, sampler.path.part_names) << " meets material at s = " << sample.s_mm
@@ -473,7 +477,7 @@ void sample_move(Sampler& sampler, std::size_t i, double s_start_mm) {
       engage_layers(sampler, m, f, sample);
       if (sample.engagement_rad <= 0.0) sample.end_face_in_material = end_face_in_material(sampler, m, f, sample);
     }
-    warn_of_contact_in_air(sampler, m, sample);
+    warn_of_contact_in_air(sampler, m, sample, k);
     profile.samples.push_back(sample);
   }
 }

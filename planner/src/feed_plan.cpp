@@ -190,6 +190,10 @@ std::vector<InputProblem> validate(const PlanSettings& settings, const geometry:
     problems.push_back({"options.feed_resolution_mm_per_min",
                         "= " + num(o.feed_resolution_mm_per_min) + ": must be in (0, 100] mm/min"});
   }
+  if (!(std::isfinite(o.max_chip_thickness_mm) && o.max_chip_thickness_mm >= 0.0)) {
+    problems.push_back({"options.max_chip_thickness_mm",
+                        "= " + num(o.max_chip_thickness_mm) + ": must be a finite number ≥ 0 mm (0: no limit)"});
+  }
   if (!(std::isfinite(o.coordinate_resolution_mm) && o.coordinate_resolution_mm >= 0.0 &&
         o.coordinate_resolution_mm <= 0.1)) {
     problems.push_back({"options.coordinate_resolution_mm",
@@ -328,6 +332,13 @@ double feed_limit_at(const PlanContext& c, const std::vector<double>& centripeta
                                                     c.air_feed, c.uncertainty);
   double feed = limit.feed_mm_per_min;
   FeedLimitReason reason = limit.reason;
+  if (const double max_chip_mm = c.settings.options.max_chip_thickness_mm; max_chip_mm > 0.0 && is_engaged(sample)) {
+    const double chip_mm = chip_thickness_mm(sample, feed, c.flutes, c.rpm);
+    if (chip_mm > max_chip_mm) {
+      feed *= max_chip_mm / chip_mm;
+      reason = FeedLimitReason::kModelRange;
+    }
+  }
   if (meets_material(sample)) {
     const double plunge =
         plunge_feed_limit_mm_per_min(move, c.tool, c.rpm, c.settings.options.coordinate_resolution_mm);
@@ -530,6 +541,7 @@ void time_blocks(const ControllerRun& run, const std::vector<double>& limit_mm_p
 struct FirstProblems {
   const geometry::EngagementSample* over = nullptr;          // predicted above the target
   const geometry::EngagementSample* extrapolated = nullptr;  // the model extrapolates and sets the feed
+  double max_upper_force_n = 0.0;                            // largest cautious bound (PlannedSample::upper_force_n)
 };
 
 // Every sample's speed, time, chip and forces as the machine runs the blocks; the summary's counts.
@@ -556,6 +568,7 @@ FirstProblems predict_samples(const PlanContext& c, const ControllerRun& run, Pl
     planned.within_model_range = planned.engaged && !model::chip_outside(settings.model.range, planned.chip_thickness_mm) &&
                                  !model::contact_length_outside(settings.model.range, planned.contact_length_mm);
     summary.max_predicted_force_n = std::max(summary.max_predicted_force_n, planned.predicted_force_n);
+    first.max_upper_force_n = std::max(first.max_upper_force_n, planned.upper_force_n);
     if (planned.engaged) ++summary.engaged_samples;
     if (planned.limit_reason == FeedLimitReason::kForce) ++summary.force_limited_samples;
     if (planned.extrapolated) {
@@ -672,7 +685,10 @@ std::string target_not_met_message(const PlanContext& c, const FeedLimits& limit
          (limits.target_below_model > 0 ? "the model predicts more than the target even as the feed goes to 0"
                                         : "the target needs less than the machine's minimum feed " +
                                               num(settings.machine.min_feed_mm_per_min) + " mm/min") +
-         "; planned at the minimum feed, predicted up to " + fixed(summary.max_predicted_force_n, 1) + " N";
+         "; planned at the minimum feed, predicted up to " + fixed(summary.max_predicted_force_n, 1) + " N" +
+         (c.uncertainty && first.max_upper_force_n > summary.max_predicted_force_n
+              ? " (" + fixed(first.max_upper_force_n, 1) + " N with the cautious bound held at the target)"
+              : "");
 }
 
 std::string extrapolation_message(const PlanContext& c, const FirstProblems& first, const PlanSummary& summary) {
@@ -700,9 +716,12 @@ void report_outcome(const PlanContext& c, const FeedLimits& limits, const FirstP
   int range_limited = 0;
   for (const PlannedSample& planned : result.samples) range_limited += planned.limit_reason == FeedLimitReason::kModelRange;
   if (range_limited > 0) {
-    result.messages.push_back("the model's fitted chip range (t_m ≤ " + fixed(settings.model.range.chip_max_mm, 4) +
-                              " mm) limits the feed at " + std::to_string(range_limited) +
-                              " samples: the force there stays below the target rather than extrapolate");
+    const double max_chip_mm = settings.options.max_chip_thickness_mm;
+    result.messages.push_back(
+        (max_chip_mm > 0.0 ? "the largest chip the cutting tests saw (t_m ≤ " + fixed(max_chip_mm, 4) + " mm for this cutter)"
+                           : "the model's fitted chip range (t_m ≤ " + fixed(settings.model.range.chip_max_mm, 4) + " mm)") +
+        " limits the feed at " + std::to_string(range_limited) +
+        " samples: the force there stays below the target rather than extrapolate");
   }
   if (summary.short_blocks > 0) {
     result.messages.push_back(std::to_string(summary.short_blocks) +

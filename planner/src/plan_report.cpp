@@ -290,6 +290,9 @@ void read_settings(const Node& root, const Node& model, PlanSettings& settings) 
   if (options.member("coordinate_resolution_mm", JsonPresence::kOptional)) {
     settings.options.coordinate_resolution_mm = options.number("coordinate_resolution_mm");
   }
+  if (options.member("max_chip_thickness_mm", JsonPresence::kOptional)) {
+    settings.options.max_chip_thickness_mm = options.number("max_chip_thickness_mm");
+  }
   settings.force_correction = root.numbers("force_correction", JsonPresence::kOptional);
 }
 
@@ -490,6 +493,9 @@ std::string plan_report_json(const PlanResult& result, const PlanSettings& setti
                          {"coordinate_resolution_mm", json_number(options.coordinate_resolution_mm)},
                          {"feed_step", json_number(options.feed_step)},
                          {"min_block_duration_s", json_number(options.min_block_duration_s)}};
+  if (options.max_chip_thickness_mm > 0.0) {
+    root["options"]["max_chip_thickness_mm"] = json_number(options.max_chip_thickness_mm);
+  }
   if (!settings.force_correction.empty()) {
     Json correction = Json::array();
     for (double c : settings.force_correction) correction.push_back(json_number(c));

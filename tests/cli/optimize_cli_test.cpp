@@ -106,6 +106,49 @@ TEST_F(OptimizeCliTest, EachToolIsPlannedOnWhatTheToolsBeforeItLeft) {
       << without.output;
 }
 
+// Full-width slots of a 4 mm two-flute cutter in Al7075-T6 (tests/data/cli/optimize_al_slot.ngc), with only
+// the Ø6 three-flute cutter's models in the database (tests/data/cli/al7075_d6_models.json: its response
+// surface, fitted on side cuts of 26–66°, and its cutting mechanics). The slots leave the response surface's
+// fitted contact lengths, so optimize plans with the cutting mechanics on this cutter's geometry. The judge
+// is a virtual machine whose physics differ from the model in shape (data/machines/aluminium-two-flute.yaml:
+// less edge force, a size effect, 5 µm runout, a helix 4° off, a 1 kHz dynamometer with noise): the input
+// overshoots the target there, the re-fed program does not.
+TEST_F(OptimizeCliTest, SlotsOutsideTheResponseSurfacePlanWithTheCuttingMechanicsOfAnotherCutter) {
+  constexpr double kTarget = 130.0;
+  const std::string al_db = (dir_ / "al.db").string();
+  ASSERT_EQ(run_feedplan("db init --db " + al_db).exit_code, 0);
+  const RunResult imported = run_feedplan("db import " + kData + "al7075_d6_models.json --db " + al_db);
+  ASSERT_EQ(imported.exit_code, 0) << imported.output;
+  const std::string tool = " --tool diameter_mm=4,flutes=2,helix_deg=30 ";
+  const std::string stock = " --stock " + kData + "optimize_stock.yaml ";
+  const fs::path output = dir_ / "al_refed.ngc";
+  const RunResult r = run_feedplan("optimize " + kData + "optimize_al_slot.ngc -o " + output.string() + tool +
+                                   "--material Al7075-T6" + stock + "--target-force 130 --db " + al_db);
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("kind: mechanistic: the path's contact lengths leave the response surface's fitted"),
+            std::string::npos)
+      << r.output;
+  EXPECT_NE(r.output.find("identified on SC EM D6 Z3: its cutting and edge coefficients, with this cutter's helix 30°"),
+            std::string::npos)
+      << r.output;
+  EXPECT_EQ(r.output.find("meets material"), std::string::npos) << "the retract from the slot's end is no collision\n"
+                                                                  << r.output;
+  const auto peak_on_machine = [&](const std::string& program) {
+    const RunResult run = run_feedplan("simulate " + program + tool + "--machine " + std::string(FEEDPLAN_SAMPLES_DIR) +
+                                       "/../data/machines/aluminium-two-flute.yaml" + stock + "--log " +
+                                       (dir_ / "al_log.csv").string() + " --json");
+    EXPECT_EQ(run.exit_code, 0) << run.output;
+    const auto summary = nlohmann::json::parse(run.output.substr(run.output.find('{')));
+    return std::make_pair(summary["max_revolution_peak_n"].get<double>(), summary["cycle_time_s"].get<double>());
+  };
+  const auto [input_peak, input_s] = peak_on_machine(kData + "optimize_al_slot.ngc");
+  const auto [refed_peak, refed_s] = peak_on_machine(output.string());
+  std::printf("aluminium-two-flute machine: input %.1f N in %.2f s, re-fed %.1f N in %.2f s (target %.0f N)\n",
+              input_peak, input_s, refed_peak, refed_s, kTarget);
+  EXPECT_GT(input_peak, 1.05 * kTarget);
+  EXPECT_LE(refed_peak, 1.05 * kTarget);
+}
+
 TEST_F(OptimizeCliTest, BadInputExitsTwoNamingTheFlagAndLeavesTheOutput) {
   const fs::path output = dir_ / "kept.ngc";
   { std::ofstream(output) << "old"; }

@@ -96,6 +96,11 @@ struct PlanOptions {
   //! move can steepen a short descent by up to this much, so the plunge limit is held for the descent
   //! plus it (feed_limit.hpp); 0: the program is run as planned, unrounded. In [0, 0.1].
   double coordinate_resolution_mm = 0.001;
+  //! Largest chip thickness t_m a feed may cut, mm; 0: none. A model predicts forces, not whether an edge
+  //! chips or a flute packs: beyond the chips its cutting tests saw the planner does not go, whatever the
+  //! force. Held like the response surface's fitted chip range (FeedLimitReason::kModelRange); callers
+  //! planning with the mechanistic kind set it (the response surface holds its own range).
+  double max_chip_thickness_mm = 0.0;
 };
 
 //! Everything about the path that does not depend on the feed: computed once, planned many times.
