@@ -138,6 +138,12 @@ struct WrittenMove {
   bool radius_form = false;          //!< an arc given by R
   bool turns = false;                //!< an arc with a P word (turns)
   int tool = -1;                     //!< the tool in the spindle (T M6, or G43 H without one); −1: none named
+  //! The line must not be split: its moves are not the line's words alone (a compensated move, a plane
+  //! arc written as straight pieces, a canned cycle's moves). refeed_text changes only its F.
+  bool keep_whole = false;
+  //! The move's feed is the one written and must not change (a drilling cycle's moves: the cycle's F is
+  //! the drill's, not a milling feed); callers give such moves no pieces.
+  bool fixed_feed = false;
 };
 
 //! read_program, and how each move's line was written (parallel to the program's moves).
