@@ -16,8 +16,8 @@ constexpr const char* kCannedReason = "canned cycles: program their moves explic
 constexpr const char* kOffsetReason = "it changes coordinate offsets, which the reader does not keep";
 constexpr const char* kHomeReason = "it moves to stored machine positions, which the reader does not know";
 constexpr const char* kCompReason =
-    "cutter radius compensation: the controller would offset the path by the tool radius; program the "
-    "tool-centre path instead";
+    "cutter radius compensation by a diameter in the D word: use G41/G42 D<tool> with the tool's diameter given "
+    "to the reader";
 constexpr const char* kLengthReason =
     "dynamic or added tool length offsets: Z would no longer be the programmed tool tip; use G43 H<tool>";
 constexpr const char* kPathControlReason =
@@ -57,10 +57,10 @@ const std::map<int, CodeInfo>& g_codes() {
       {383, {1, "motion", kR, "probing moves"}},
       {384, {1, "motion", kR, "probing moves"}},
       {385, {1, "motion", kR, "probing moves"}},
-      {400, {7, "cutter compensation", kI, "cutter compensation off is the state of a program without G41/G42"}},
-      {410, {7, "cutter compensation", kR, kCompReason}},
+      {400, {7, "cutter compensation", kS, ""}},
+      {410, {7, "cutter compensation", kS, ""}},
       {411, {7, "cutter compensation", kR, kCompReason}},
-      {420, {7, "cutter compensation", kR, kCompReason}},
+      {420, {7, "cutter compensation", kS, ""}},
       {421, {7, "cutter compensation", kR, kCompReason}},
       {430, {8, "tool length offset", kS, ""}},
       {431, {8, "tool length offset", kR, kLengthReason}},
@@ -166,7 +166,6 @@ std::string letter_refusal(char letter) {
   switch (letter) {
     case 'A': case 'B': case 'C': return "rotary axes; the reader reads X, Y and Z only";
     case 'U': case 'V': case 'W': return "extra linear axes; the reader reads X, Y and Z only";
-    case 'D': return "D selects cutter radius compensation (G41, G42), which is not supported";
     case 'L': return "L is read by G10 and canned cycles, which are not supported";
     default: return "not a word the reader knows";
   }

@@ -13,6 +13,7 @@
 
 #include "arc_geometry.hpp"
 #include "code_catalog.hpp"
+#include "cutter_compensation.hpp"
 #include "feedplan/core/bounded_read.hpp"
 #include "feedplan/core/input_error.hpp"
 #include "feedplan/core/number_text.hpp"
@@ -45,6 +46,9 @@ constexpr int kG2 = 20;
 constexpr int kG3 = 30;
 constexpr int kG4 = 40;
 constexpr int kG20 = 200;
+constexpr int kG40 = 400;
+constexpr int kG41 = 410;
+constexpr int kG42 = 420;
 constexpr int kG43 = 430;
 constexpr int kG49 = 490;
 constexpr int kG64 = 640;
@@ -62,7 +66,7 @@ bool is_motion(int motion) { return motion == kG0 || motion == kG1 || is_arc(mot
 // Value words the reader reads (G, M, N and O are handled separately).
 bool is_value_letter(char letter) {
   switch (letter) {
-    case 'F': case 'H': case 'I': case 'J': case 'K': case 'P': case 'Q': case 'R': case 'S': case 'T': case 'X': case 'Y': case 'Z':
+    case 'D': case 'F': case 'H': case 'I': case 'J': case 'K': case 'P': case 'Q': case 'R': case 'S': case 'T': case 'X': case 'Y': case 'Z':
       return true;
     default:
       return false;
@@ -129,6 +133,7 @@ class Interpreter {
       if (end == text.size()) break;
       begin = end + 1;
     }
+    finish_compensation();
     if (!ended_ && options_.require_program_end && !problems_.full()) {
       problems_.add(std::max(last_content_line_, 1),
                     "end of text: the program ends without M2, M30 or a closing %, so the file may be truncated "
@@ -156,6 +161,7 @@ class Interpreter {
 
  private:
   void end_program(int line, const char* how) {
+    finish_compensation();
     ended_ = true;
     end_line_ = line;
     end_word_ = how;
@@ -354,6 +360,67 @@ class Interpreter {
            " changes the units (LinuxCNC reads this F in the previous unit); put F in a later block");
     }
     if (!check_tool_words(block)) ok = false;
+    if (!check_compensation_words(block)) ok = false;
+    return ok;
+  }
+
+  // The tool whose diameter a G41/G42 block compensates for: its D word (a tool number, as in LinuxCNC),
+  // else the tool in the spindle. nullopt when neither names one.
+  std::optional<int> compensation_tool(const Block& block) const {
+    if (const Word* d = block.word('D')) return static_cast<int>(d->value);
+    if (block.has_m(6, 6) && block.has('T')) return tool_of(block.word('T'));
+    if (tool_in_spindle_) return tool_in_spindle_;
+    return g43_tool_;
+  }
+
+  // D only with G41/G42, a whole tool number whose diameter the options give; no second G41/G42, no tool
+  // change while compensation is on (LinuxCNC refuses both too).
+  bool check_compensation_words(const Block& block) {
+    bool ok = true;
+    auto fail = [&](const std::string& message) {
+      problems_.add(block.line, message);
+      ok = false;
+    };
+    const std::optional<int> comp = block.g_by_group[7];
+    const bool turns_on = comp && (*comp == kG41 || *comp == kG42);
+    const Word* d = block.word('D');
+    if (d != nullptr && !turns_on) {
+      fail("word " + d->text + ": D is read only with G41 or G42 (the tool whose diameter compensation uses)");
+      return false;
+    }
+    if (comp_on_ && block.has_m(6, 6) && (!comp || *comp != kG40)) {
+      fail("word M6: a tool change while cutter compensation is on (G" + std::to_string(comp_code_ / 10) + " on line " +
+           std::to_string(comp_line_) + "); G40 first (LinuxCNC refuses it too)");
+    }
+    if (!turns_on) return ok;
+    const std::string code = detail::g_code_name(*comp);
+    if (comp_on_) {
+      fail("word " + code + ": cutter compensation is already on (G" + std::to_string(comp_code_ / 10) + " on line " +
+           std::to_string(comp_line_) + "); turn it off with G40 first (LinuxCNC refuses it too)");
+      return false;
+    }
+    if (d != nullptr && (d->value < 0.0 || d->value != std::floor(d->value) || d->value > 1e6)) {
+      fail("word " + d->text + ": D must be a whole tool number ≥ 0 (LinuxCNC: the tool whose diameter is used)");
+      return false;
+    }
+    const std::optional<int> tool = compensation_tool(block);
+    if (!tool) {
+      fail("word " + code + ": no D word and no tool in the spindle (T M6 or G43 H before it): the reader cannot tell "
+           "which tool's radius to compensate for; write " + code + " D<tool>");
+      return false;
+    }
+    const auto diameter = options_.tool_diameters_mm.find(*tool);
+    if (diameter == options_.tool_diameters_mm.end()) {
+      const std::string subject = d != nullptr ? "word " + d->text : "word " + code;
+      fail(subject + ": cutter compensation needs the diameter of tool " + std::to_string(*tool) +
+           ", which is not given: give the diameter of tool " + std::to_string(*tool) +
+           " (ReaderOptions::tool_diameters_mm; feedplan optimize --tools)");
+      return false;
+    }
+    if (!std::isfinite(diameter->second)) {
+      fail("word " + code + ": the diameter given for tool " + std::to_string(*tool) + " is not a finite number");
+      return false;
+    }
     return ok;
   }
 
@@ -453,6 +520,7 @@ class Interpreter {
       inch_ = *units == kG20;
       units_set_ = true;
     }
+    if (const std::optional<int> comp = block.g_by_group[7]) set_compensation(block, *comp);
     if (const std::optional<int> offset = block.g_by_group[12]) work_offset_ = *offset;
     if (block.has_g(kG43, 8)) {
       g43_tool_ = block.has('H') ? static_cast<int>(block.word('H')->value) : *tool_in_spindle_;
@@ -621,6 +689,17 @@ class Interpreter {
       go_to(end);
       return;
     }
+    if (is_arc(motion) && after_compensation_line_ != 0) {
+      problems_.add(line, detail::g_code_name(motion) + ": the move just after G40 (line " +
+                              std::to_string(after_compensation_line_) +
+                              ") must be straight, not an arc (LinuxCNC refuses it too)");
+      go_to(end);
+      return;
+    }
+    if (compensation_) {
+      compensated_move(block, motion, end);
+      return;
+    }
     if (!is_arc(motion)) {
       if (end.x_mm == position_mm_.x_mm && end.y_mm == position_mm_.y_mm && end.z_mm == position_mm_.z_mm) return;
       if (end.x_mm == m.start.x_mm && end.y_mm == m.start.y_mm && end.z_mm == m.start.z_mm) {
@@ -633,22 +712,128 @@ class Interpreter {
       return;
     }
     if (!room_for_move(line)) return;
-    m.cutting = feed;
+    WrittenMove written = written_move(block, motion);
+    written.keep_whole = after_compensation_line_ != 0;  // the exit move starts off the programmed path
+    after_compensation_line_ = 0;
+    add_move(m, block_command(line, motion), written);
+    position_mm_ = end;
+    path_end_xy_ = geometry::xy(m.end);
+  }
+
+  // The command of a move of `motion` read on `line` (takes the pending dwell).
+  geometry::BlockCommand block_command(int line, int motion) {
     geometry::BlockCommand command;
-    command.feed_mm_per_min = feed ? feed_mm_per_min_ : 0.0;
+    command.feed_mm_per_min = motion != kG0 ? feed_mm_per_min_ : 0.0;
     command.spindle_rpm = spindle_rpm_;
     command.spindle = spindle_;
     command.dwell_before_s = pending_dwell_s_;
     command.source_line = line;
     pending_dwell_s_ = 0.0;
-    written_.push_back({line, motion == kG0 ? 0 : motion == kG1 ? 1 : motion == kG2 ? 2 : 3,
-                        block.g_by_group[1].has_value(), inch_, !absolute_, absolute_arc_center_, block.has('R'),
-                        block.has('P'), tool_in_spindle_ ? *tool_in_spindle_ : g43_tool_ ? *g43_tool_ : -1});
+    return command;
+  }
+
+  WrittenMove written_move(const Block& block, int motion) const {
+    return {block.line, motion == kG0 ? 0 : motion == kG1 ? 1 : motion == kG2 ? 2 : 3,
+            block.g_by_group[1].has_value(), inch_, !absolute_, absolute_arc_center_, block.has('R'),
+            block.has('P'), tool_in_spindle_ ? *tool_in_spindle_ : g43_tool_ ? *g43_tool_ : -1};
+  }
+
+  void add_move(Move m, const geometry::BlockCommand& command, const WrittenMove& written) {
+    m.part = 0;
+    m.cutting = m.kind != MoveKind::kRapid;
+    written_.push_back(written);
     program_.path.moves.push_back(m);
     program_.blocks.push_back(command);
-    position_mm_ = end;
-    path_end_xy_ = geometry::xy(m.end);
     moved_ = true;
+  }
+
+  // G40, G41, G42 (LinuxCNC: after units, before the tool length offset). check_compensation_words made
+  // sure a G41/G42 has its tool's diameter.
+  void set_compensation(const Block& block, int code) {
+    if (code == kG40) {
+      if (compensation_) after_compensation_line_ = block.line;
+      finish_compensation();
+      comp_on_ = false;
+      return;
+    }
+    const double diameter_mm = options_.tool_diameters_mm.at(*compensation_tool(block));
+    detail::CompSide side = code == kG41 ? detail::CompSide::kLeft : detail::CompSide::kRight;
+    if (diameter_mm < 0.0) {  // LinuxCNC: a negative diameter compensates on the other side
+      side = side == detail::CompSide::kLeft ? detail::CompSide::kRight : detail::CompSide::kLeft;
+    }
+    comp_on_ = true;
+    comp_code_ = code;
+    comp_line_ = block.line;
+    ++compensated_blocks_;
+    if (diameter_mm != 0.0) {  // a zero radius compensates nothing (LinuxCNC)
+      compensation_.emplace(side, std::abs(diameter_mm) / 2.0, Point3{path_end_xy_.x_mm, path_end_xy_.y_mm, position_mm_.z_mm},
+                            position_mm_);
+    }
+  }
+
+  // A move under G41/G42: the tool-centre moves compensation makes of it (cutter_compensation.hpp), each
+  // kept whole on the line of the block the controller makes it for.
+  void compensated_move(const Block& block, int motion, const Point3& end) {
+    const int line = block.line;
+    const int tag = static_cast<int>(compensation_blocks_.size());
+    std::vector<detail::CompMove> done;
+    std::string problem;
+    if (is_arc(motion)) {
+      Move programmed;
+      programmed.start = position_mm_;
+      programmed.end = end;
+      if (!make_arc(block, motion, programmed)) {
+        go_to(end);
+        return;
+      }
+      const int turns = block.has('P') ? static_cast<int>(block.word('P')->value) : 1;
+      problem = compensation_->arc({programmed.center, programmed.end, motion == kG3, turns}, tag, done);
+    } else {
+      problem = compensation_->straight(motion == kG0, end, tag, done);
+    }
+    if (!problem.empty()) {
+      problems_.add(line, detail::g_code_name(motion) + " under cutter compensation (G" + std::to_string(comp_code_ / 10) +
+                              " on line " + std::to_string(comp_line_) + "): " + problem);
+      compensation_.reset();  // the rest is read uncompensated: one problem, not a cascade
+      go_to(end);
+      return;
+    }
+    WrittenMove written = written_move(block, motion);
+    written.keep_whole = true;
+    compensation_blocks_.push_back({block_command(line, motion), written});
+    add_compensated(done);
+    position_mm_ = compensation_->programmed_position();
+    path_end_xy_ = geometry::xy(compensation_->tool_position());
+  }
+
+  // Moves whose compensated end is final, each with the command of the block that made it.
+  void add_compensated(const std::vector<detail::CompMove>& done) {
+    for (const detail::CompMove& c : done) {
+      const Move& m = c.move;
+      if (m.kind != MoveKind::kArc && m.start.x_mm == m.end.x_mm && m.start.y_mm == m.end.y_mm &&
+          m.start.z_mm == m.end.z_mm) {
+        continue;
+      }
+      if (!room_for_move(compensation_blocks_[static_cast<std::size_t>(c.tag)].command.source_line)) return;
+      const CompensatedBlock& block = compensation_blocks_[static_cast<std::size_t>(c.tag)];
+      geometry::BlockCommand command = block.command;
+      if (m.kind == MoveKind::kRapid) command.feed_mm_per_min = 0.0;
+      add_move(m, command, block.written);
+      compensation_blocks_[static_cast<std::size_t>(c.tag)].command.dwell_before_s = 0.0;
+    }
+  }
+
+  // G40 or the program end: the moves compensation holds back keep their ends; the tool is where the last
+  // one ends, the programmed position where it was programmed.
+  void finish_compensation() {
+    if (!compensation_) return;
+    std::vector<detail::CompMove> done;
+    compensation_->finish(done);
+    add_compensated(done);
+    path_end_xy_ = geometry::xy(compensation_->tool_position());
+    position_mm_ = compensation_->programmed_position();
+    compensation_.reset();
+    compensation_blocks_.clear();
   }
 
   // The programmed position and the path both at `end` (after a block that adds no move).
@@ -657,8 +842,21 @@ class Interpreter {
     path_end_xy_ = geometry::xy(end);
   }
 
+  // The command and the written form of a block whose moves compensation may still hold back.
+  struct CompensatedBlock {
+    geometry::BlockCommand command;
+    WrittenMove written;
+  };
+
   const ReaderOptions& options_;
   detail::ProblemLog& problems_;
+  bool comp_on_ = false;         // G41/G42 in effect (possibly with a zero radius)
+  int comp_code_ = kG40;         // the G41 or G42 in effect
+  int comp_line_ = 0;            // its line
+  int compensated_blocks_ = 0;   // G41/G42 words read
+  std::optional<detail::CutterCompensation> compensation_;  // on, with a radius
+  std::vector<CompensatedBlock> compensation_blocks_;       // by tag, while compensation_ is on
+  int after_compensation_line_ = 0;  // the G40 line while the move after it is still to come
   geometry::Program program_;
   std::vector<WrittenMove> written_;  // parallel to program_.path.moves
 

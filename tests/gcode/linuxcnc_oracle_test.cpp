@@ -182,7 +182,7 @@ const std::vector<BadProgram>& bad_programs() {
       {"tool_change.ngc", "line 3: word M6: not supported after the first move (tool change: the path is planned "
                           "for one tool", false},
       {"tool_change_second.ngc", "line 3: word M6: a second tool change (T1 M6 on line 2) is not supported", false},
-      {"cutter_compensation.ngc", "line 2: word G41: not supported (cutter radius compensation", false},
+      {"cutter_compensation.ngc", "line 2: word G41: no D word and no tool in the spindle", false},
       {"plane_g18.ngc", "line 2: word G18: not supported (arcs are read in the XY plane", false},
       {"tool_length_offset.ngc", "line 3: word H2: G43 H2 is the length offset of tool 2, but tool 1 is in the "
                                  "spindle", false},

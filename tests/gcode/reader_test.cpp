@@ -369,7 +369,8 @@ TEST(ReaderProblems, UnknownWordsAndCodes) {
               HasSubstr("test line 2: word G12: not supported (not a G code the reader knows)"));
   EXPECT_THAT(problems_of("G21 F100\nM100\nM2\n"),
               HasSubstr("test line 2: word M100: not supported (not an M code the reader knows)"));
-  EXPECT_THAT(problems_of("G21 F100\nG41 D1\nM2\n"), HasSubstr("test line 2: word G41: not supported (cutter radius"));
+  EXPECT_THAT(problems_of("G21 F100\nG41 D1\nM2\n"), HasSubstr("test line 2: word D1: cutter compensation needs the diameter of tool 1, which is not given: give "
+                                                              "the diameter of tool 1 (ReaderOptions::tool_diameters_mm; feedplan optimize --tools)"));
   EXPECT_THAT(problems_of("G21 F100\nG1 X1 A3\nM2\n"), HasSubstr("test line 2: word A3: not supported (rotary axes"));
   EXPECT_THAT(problems_of("G21 F100\nG1 X1 E3\nM2\n"), HasSubstr("test line 2: word E3: not supported"));
   EXPECT_THAT(problems_of("G21 F100\nG18\nM2\n"), HasSubstr("test line 2: word G18: not supported (arcs are read in the XY plane"));

@@ -75,6 +75,7 @@
 
 #include <cstddef>
 #include <filesystem>
+#include <map>
 #include <string>
 
 #include "feedplan/geometry/point.hpp"
@@ -104,6 +105,10 @@ struct ReaderOptions {
   //! their own (WrittenMove::tool says which tool made a move). M6 switches the old tool's length offset
   //! off; G43 H<new tool> switches the new one on. False: one M6, before the first move.
   bool tool_changes = false;
+  //! Tool diameters by tool number, mm, for cutter radius compensation (G41/G42): the D word names the tool
+  //! (LinuxCNC: D is a tool number whose tool-table diameter is used; Haas' D01 is tool 1), or without D
+  //! the tool in the spindle. A negative diameter compensates on the other side, 0 not at all (LinuxCNC).
+  std::map<int, double> tool_diameters_mm;
   //! Most turns of one G2/G3 (its P word): a deep helical bore takes a few hundred; a million turns
   //! is one move that the planner and the virtual machine sample into gigabytes.
   int max_arc_turns = 1000;
