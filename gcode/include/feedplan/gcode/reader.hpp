@@ -5,8 +5,8 @@
 // by line and word — a skipped word could change the path the force model is computed on.
 //
 // What the reader does with each word (LinuxCNC's order of execution within a block: G94, F, S, T,
-// M6, M3/M4/M5, coolant, G4, plane, units, tool length offset, work offset, distance modes, motion,
-// M0/M1, M2/M30):
+// M6, M3/M4/M5, coolant, G4, plane, units, cutter compensation, tool length offset, work offset,
+// distance modes, motion, M0/M1, M2/M30):
 //
 // Supported
 //   G0, G1            rapid and straight feed moves
@@ -28,6 +28,17 @@
 //   T, M6             tool selection and change (`T1 M6`, T in the same or an earlier block): once,
 //                     before the first move (anywhere with ReaderOptions::tool_changes); a note
 //                     records the tool number
+//   G41, G42 [D]      cutter radius compensation left / right of the programmed path, as LinuxCNC computes
+//                     it (the moves are the tool centre's): D is a tool number (Haas' D01: tool 1) whose
+//                     diameter ReaderOptions::tool_diameters_mm gives; without D the tool in the spindle.
+//                     The first straight move after G41/G42 enters (it must be longer than the radius);
+//                     convex corners get an arc of the tool radius about the programmed corner (a G0: a
+//                     straight rapid to the same point), concave ones are trimmed where the offset lines
+//                     and arcs meet; moves without XY motion (plunges) and helical arcs are kept. Moves
+//                     compensation makes belong to the line of the block the controller makes them for (a
+//                     corner arc: the block after the corner), marked WrittenMove::keep_whole
+//   G40               compensation off: the next move (straight) runs from where the tool is to its
+//                     programmed end, marked keep_whole
 //   G43 H             tool length offset on: the programmed Z is the tool tip, which is what the reader
 //                     assumes anyway; H must be the tool in the spindle (without H: that tool). Other
 //                     words may share the block (`G43 H1 Z5`). G43 with no M6 before it is taken to name
@@ -38,19 +49,23 @@
 //   %                 alone on the first line opens the program, alone on a later line ends it
 //   ( ) and ;         comments; blank lines; lowercase letters; spaces inside words
 // Ignored: accepted, with no effect on the path, feeds or spindle
-//   G40 (cutter compensation off) and G49 (tool length offset off): the state a program without
-//   G41/G42 is in, and the reader's Z is the tool tip either way; G97 (constant rpm): the default;
+//   G49 (tool length offset off): the reader's Z is the tool tip either way; G97 (constant rpm): the default;
 //   G61, G61.1, G64 [P Q] (path control): how the controller blends corners, the programmed path
 //   stays the same; G98, G99 (canned-cycle retract): canned cycles are refused anyway; M0, M1
 //   (program pause); M7, M8, M9 (coolant); T without M6 (tool preparation).
 // Refused, by line and word
-//   G18, G19 and other planes; G41, G42 cutter compensation; G43.1, G43.2 (dynamic and added tool
+//   G18, G19 and other planes; G41.1, G42.1 (compensation by a diameter in D); G41/G42 without a diameter
+//   for its tool in ReaderOptions::tool_diameters_mm (the message names the tool) or with no D and no tool
+//   in the spindle; what LinuxCNC refuses under compensation: an entry move no longer than the tool radius,
+//   an inside arc whose radius is not larger than the tool's, a concave corner the tool cannot reach
+//   without gouging, G41/G42 while it is on, an arc right after G40, M6 while it is on; an arc as the
+//   entry move (LinuxCNC accepts it; the reader needs a straight entry); G43.1, G43.2 (dynamic and added tool
 //   length offsets), G43 with an H that is not the tool in the spindle, H without G43; G93 inverse
 //   time and G95 feed per revolution; G96 constant surface speed; G28, G30, G53 (machine
 //   positions); G10, G52, G92 (offset changes); G5.x splines, G33 threading, G38.x probing, G73–G89
 //   canned cycles, G7, G8; a second M6 or one after the first move (the path is planned for one
 //   tool: split the program per tool), M6 with no T before it; every other G or M code; A, B, C, U,
-//   V, W axes; K outside an arc; the letters D, E, L and the like; parameters and expressions
+//   V, W axes; K outside an arc; D outside a G41/G42 block; the letters E, L and the like; parameters and expressions
 //   (#1, [..]); O-word subroutines and control flow; block delete `/` (whether the line runs
 //   depends on the operator's switch).
 //
