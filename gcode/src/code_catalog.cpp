@@ -11,7 +11,7 @@ constexpr CodeUse kS = CodeUse::kSupported;
 constexpr CodeUse kI = CodeUse::kIgnored;
 constexpr CodeUse kR = CodeUse::kRefused;
 
-constexpr const char* kPlaneReason = "arcs are read in the XY plane (G17) only";
+constexpr const char* kPlaneReason = "arcs are read in the XY, XZ and YZ planes (G17, G18, G19) only";
 constexpr const char* kCannedReason = "canned cycles: program their moves explicitly";
 constexpr const char* kOffsetReason = "it changes coordinate offsets, which the reader does not keep";
 constexpr const char* kHomeReason = "it moves to stored machine positions, which the reader does not know";
@@ -41,9 +41,9 @@ const std::map<int, CodeInfo>& g_codes() {
       {100, {0, "non-modal", kR, kOffsetReason}},
       {170, {2, "plane", kS, ""}},
       {171, {2, "plane", kR, kPlaneReason}},
-      {180, {2, "plane", kR, kPlaneReason}},
+      {180, {2, "plane", kS, ""}},
       {181, {2, "plane", kR, kPlaneReason}},
-      {190, {2, "plane", kR, kPlaneReason}},
+      {190, {2, "plane", kS, ""}},
       {191, {2, "plane", kR, kPlaneReason}},
       {200, {6, "units", kS, ""}},
       {210, {6, "units", kS, ""}},

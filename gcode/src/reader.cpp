@@ -19,6 +19,7 @@
 #include "feedplan/core/number_text.hpp"
 #include "feedplan/geometry/tool_path.hpp"
 #include "line_lexer.hpp"
+#include "plane_arc.hpp"
 #include "problem_log.hpp"
 
 namespace feedplan::gcode {
@@ -45,6 +46,9 @@ constexpr int kG1 = 10;
 constexpr int kG2 = 20;
 constexpr int kG3 = 30;
 constexpr int kG4 = 40;
+constexpr int kG17 = 170;
+constexpr int kG18 = 180;
+constexpr int kG19 = 190;
 constexpr int kG20 = 200;
 constexpr int kG40 = 400;
 constexpr int kG41 = 410;
@@ -140,6 +144,11 @@ class Interpreter {
                     "(ReaderOptions::require_program_end = false accepts it)");
     }
     program_.dwell_at_end_s = pending_dwell_s_;
+    if (plane_arcs_ > 0) {
+      note(std::to_string(plane_arcs_) + (plane_arcs_ == 1 ? " arc" : " arcs") +
+           " in the XZ or YZ plane (G18, G19) became " + std::to_string(plane_arc_pieces_) +
+           " straight feed moves along the arc (chords within 1 µm of it, at most 5° each), kept on their lines");
+    }
     if (moved_centres_.count > 0) {
       note(moved_centres_.text(" arc centre was", " arc centres were") +
            " moved so that start and end lie on one circle (their radii differed within "
@@ -315,11 +324,29 @@ class Interpreter {
              " in this block)");
       }
     }
-    if (is_arc(motion) && block.has('R') && (block.has('I') || block.has('J'))) {
-      fail("word " + block.word('R')->text + ": R and I/J in one arc; use one format");
+    const int plane = block.g_by_group[2].value_or(plane_);
+    const std::string centre_letters = plane == kG17 ? "IJ" : plane == kG18 ? "IK" : "JK";
+    const std::string centre_names = plane == kG17 ? "I, J" : plane == kG18 ? "I, K" : "J, K";
+    const bool centre_words = block.has(centre_letters[0]) || block.has(centre_letters[1]);
+    if (is_arc(motion) && block.has('R') && (block.has('I') || block.has('J') || (plane != kG17 && block.has('K')))) {
+      fail("word " + block.word('R')->text + ": R and " + (plane == kG17 ? "I/J" : plane == kG18 ? "I/K" : "J/K") +
+           " in one arc; use one format");
     }
-    if (is_arc(motion) && !block.has('R') && !block.has('I') && !block.has('J')) {
-      fail(detail::g_code_name(motion) + " without I, J or R: an arc needs its centre (I, J) or its radius (R)");
+    if (is_arc(motion) && !block.has('R') && !centre_words) {
+      fail(detail::g_code_name(motion) + " without " + centre_names + " or R: an arc needs its centre (" + centre_names +
+           ") or its radius (R)");
+    }
+    if (is_arc(motion) && plane != kG17) {
+      const char off_plane = plane == kG18 ? 'J' : 'I';
+      if (const Word* w = block.word(off_plane)) {
+        fail("word " + w->text + ": " + std::string(1, off_plane) + " is not read in the " +
+             (plane == kG18 ? "XZ plane (G18), whose arc centre is I (X) and K (Z)" : "YZ plane (G19), whose arc centre is J (Y) and K (Z)") +
+             " (LinuxCNC refuses it too)");
+      }
+    }
+    if (const std::optional<int> new_plane = block.g_by_group[2]; new_plane && *new_plane != kG17 && comp_on_) {
+      fail("word " + detail::g_code_name(*new_plane) + ": cutter compensation (G" + std::to_string(comp_code_ / 10) +
+           " on line " + std::to_string(comp_line_) + ") is read in the XY plane (G17) only; G40 first");
     }
     if (const Word* p = block.word('P')) {
       if (dwell && (is_arc(motion) || blend)) {
@@ -394,6 +421,10 @@ class Interpreter {
     }
     if (!turns_on) return ok;
     const std::string code = detail::g_code_name(*comp);
+    if (block.g_by_group[2].value_or(plane_) != kG17) {
+      fail("word " + code + ": cutter compensation is read in the XY plane (G17) only");
+      return false;
+    }
     if (comp_on_) {
       fail("word " + code + ": cutter compensation is already on (G" + std::to_string(comp_code_ / 10) + " on line " +
            std::to_string(comp_line_) + "); turn it off with G40 first (LinuxCNC refuses it too)");
@@ -516,6 +547,7 @@ class Interpreter {
     if (block.has_m(4, 7)) spindle_ = SpindleDirection::kCounterClockwise;
     if (block.has_m(5, 7)) spindle_ = SpindleDirection::kOff;
     if (block.has_g(kG4, 0)) pending_dwell_s_ += block.word('P')->value;
+    if (const std::optional<int> plane = block.g_by_group[2]) plane_ = *plane;
     if (const std::optional<int> units = block.g_by_group[6]) {
       inch_ = *units == kG20;
       units_set_ = true;
@@ -588,7 +620,8 @@ class Interpreter {
 
   // The program's coordinate grid: the finest last digit of the block's X Y Z I J R words.
   void note_resolution(const Block& block) {
-    for (const char letter : {'X', 'Y', 'Z', 'I', 'J', 'R'}) {
+    for (const char letter : {'X', 'Y', 'Z', 'I', 'J', 'K', 'R'}) {
+      if (letter == 'K' && plane_ == kG17) continue;  // ignored in XY arcs
       const Word* w = block.word(letter);
       const std::size_t point = w != nullptr ? w->text.find('.') : std::string::npos;
       if (point == std::string::npos || point + 1 == w->text.size()) continue;  // a whole number: exact
@@ -602,9 +635,10 @@ class Interpreter {
   static constexpr double kInchProgramDigitMm = 0.0001 * 25.4;
 
   // The largest last digit of the block's X Y I J words written with decimals, mm (0 when none has any).
-  double coarsest_digit_mm(const Block& block) const {
+  double coarsest_digit_mm(const Block& block, const char* letters = "XYIJ") const {
     double coarsest = 0.0;
-    for (const char letter : {'X', 'Y', 'I', 'J'}) {
+    for (const char* letter_at = letters; *letter_at != '\0'; ++letter_at) {
+      const char letter = *letter_at;
       const Word* w = block.word(letter);
       const std::size_t point = w != nullptr ? w->text.find('.') : std::string::npos;
       if (point == std::string::npos || point + 1 == w->text.size()) continue;
@@ -670,6 +704,10 @@ class Interpreter {
     axis('X', position_mm_.x_mm, end.x_mm);
     axis('Y', position_mm_.y_mm, end.y_mm);
     axis('Z', position_mm_.z_mm, end.z_mm);
+    if (is_arc(motion) && plane_ != kG17) {
+      plane_arc_move(block, motion, end);
+      return;
+    }
     if (block.has('K') && !k_note_given_) {
       note("line " + std::to_string(line) + ": K words of arcs in the XY plane are ignored, as grbl does (they offset "
            "the centre along Z, which an XY arc does not have); LinuxCNC refuses them");
@@ -836,6 +874,65 @@ class Interpreter {
     compensation_blocks_.clear();
   }
 
+  // A G2/G3 in the XZ (G18) or YZ (G19) plane: its circle from R or from the plane's centre words, as
+  // LinuxCNC reads them (plane_arc.hpp), as straight feed moves along it, all on the block's line and kept
+  // whole.
+  void plane_arc_move(const Block& block, int motion, const Point3& end) {
+    const detail::ArcPlane plane = plane_ == kG18 ? detail::ArcPlane::kXZ : detail::ArcPlane::kYZ;
+    const bool ccw = motion == kG3;
+    const int turns = block.has('P') ? static_cast<int>(block.word('P')->value) : 1;
+    const Point3 start{path_end_xy_.x_mm, path_end_xy_.y_mm, position_mm_.z_mm};
+    const Point2 start_2 = detail::in_plane(plane, start);
+    const Point2 end_2 = detail::in_plane(plane, end);
+    detail::ArcCircle arc;
+    std::string subject = detail::g_code_name(motion);
+    if (const Word* r = block.word('R')) {
+      subject += " " + r->text;
+      arc = detail::arc_from_radius(start_2, end_2, r->value * unit_mm(), ccw, turns, options_.arc_radius_tolerance_mm);
+    } else {
+      // The plane's centre words: G18 K (Z) then I (X); G19 J (Y) then K (Z), as LinuxCNC pairs them.
+      const char first = plane == detail::ArcPlane::kXZ ? 'K' : 'J';
+      const char second = plane == detail::ArcPlane::kXZ ? 'I' : 'K';
+      double offset[2] = {0.0, 0.0};
+      int k = 0;
+      for (const char letter : {first, second}) {
+        if (const Word* w = block.word(letter)) {
+          subject += " " + w->text;
+          offset[k] = w->value * unit_mm();
+        }
+        ++k;
+      }
+      const Point2 programmed_start = detail::in_plane(plane, position_mm_);
+      const Point2 center = absolute_arc_center_ ? Point2{offset[0], offset[1]}
+                                                 : Point2{programmed_start.x_mm + offset[0], programmed_start.y_mm + offset[1]};
+      const double digit_mm = std::min(coarsest_digit_mm(block, plane == detail::ArcPlane::kXZ ? "XZIK" : "YZJK"),
+                                       kInchProgramDigitMm);
+      const double tolerance_mm = std::max(options_.arc_radius_tolerance_mm, 2.0 * digit_mm);
+      arc = detail::arc_from_center(programmed_start, start_2, end_2, center, ccw, turns, tolerance_mm);
+    }
+    if (!arc.problem.empty()) {
+      problems_.add(block.line, subject + ": " + arc.problem);
+      go_to(end);
+      return;
+    }
+    const std::vector<Point3> points = detail::plane_arc_points(plane, start, end, arc.center, ccw, arc.sweep_rad);
+    WrittenMove written = written_move(block, motion);
+    written.keep_whole = true;
+    Point3 from = start;
+    for (const Point3& to : points) {
+      if (!room_for_move(block.line)) return;
+      Move m;
+      m.kind = MoveKind::kLine;
+      m.start = from;
+      m.end = to;
+      add_move(m, block_command(block.line, motion), written);
+      from = to;
+    }
+    ++plane_arcs_;
+    plane_arc_pieces_ += static_cast<int>(points.size());
+    go_to(end);
+  }
+
   // The programmed position and the path both at `end` (after a block that adds no move).
   void go_to(const Point3& end) {
     position_mm_ = end;
@@ -866,6 +963,9 @@ class Interpreter {
   bool units_set_ = false;
   bool unit_note_given_ = false;
   bool k_note_given_ = false;
+  int plane_ = kG17;           // G17, G18 or G19 in effect
+  int plane_arcs_ = 0;         // arcs in G18/G19 read as straight pieces
+  int plane_arc_pieces_ = 0;   // their pieces
   bool absolute_ = true;
   bool absolute_arc_center_ = false;
   int motion_ = kNoMotion;

@@ -373,7 +373,7 @@ TEST(ReaderProblems, UnknownWordsAndCodes) {
                                                               "the diameter of tool 1 (ReaderOptions::tool_diameters_mm; feedplan optimize --tools)"));
   EXPECT_THAT(problems_of("G21 F100\nG1 X1 A3\nM2\n"), HasSubstr("test line 2: word A3: not supported (rotary axes"));
   EXPECT_THAT(problems_of("G21 F100\nG1 X1 E3\nM2\n"), HasSubstr("test line 2: word E3: not supported"));
-  EXPECT_THAT(problems_of("G21 F100\nG18\nM2\n"), HasSubstr("test line 2: word G18: not supported (arcs are read in the XY plane"));
+  EXPECT_THAT(problems_of("G21 F100\nG18.1\nM2\n"), HasSubstr("test line 2: word G18.1: not supported (arcs are read in the XY, XZ and YZ"));
 }
 
 TEST(ReaderProblems, ToolChangesAndLengthOffsets) {

@@ -14,7 +14,15 @@
 //                     start; absolute under G90.1) or R (negative R: the arc of more than 180°); a Z
 //                     word makes a helix; start == end with I J is a full circle; P n adds n − 1 turns
 //   G4 P              dwell, P in seconds; it runs before the motion of its block
-//   G17               XY plane (the only one)
+//   G17               XY plane
+//   G18, G19          XZ and YZ planes for G2/G3 (G0/G1 are unaffected): as in LinuxCNC, G18 takes Z as the
+//                     first axis and X as the second (centre K I from the start, or R; Y moves along as a
+//                     helix), G19 Y then Z (J K; X along), G3 turning from the first axis towards the
+//                     second. A Move is an XY circle, so such an arc becomes straight feed moves along the
+//                     exact arc: equal angular pieces, as many as keep every chord within 1 µm of the arc
+//                     and every piece within 5°, whichever needs more (a radius that differs within the
+//                     tolerance at the end: a spiral, as LinuxCNC drives it); all on the arc's line,
+//                     marked WrittenMove::keep_whole; a note counts them. I (G19) or J (G18) is refused
 //   G20, G21          inch / mm input; everything is converted to mm
 //   G90, G91          absolute / incremental X Y Z
 //   G90.1, G91.1      absolute / incremental I J (G91.1, incremental, is LinuxCNC's default)
@@ -54,7 +62,7 @@
 //   stays the same; G98, G99 (canned-cycle retract): canned cycles are refused anyway; M0, M1
 //   (program pause); M7, M8, M9 (coolant); T without M6 (tool preparation).
 // Refused, by line and word
-//   G18, G19 and other planes; G41.1, G42.1 (compensation by a diameter in D); G41/G42 without a diameter
+//   G17.1, G18.1, G19.1 (UVW planes); G18/G19 while cutter compensation is on; G41.1, G42.1 (compensation by a diameter in D); G41/G42 without a diameter
 //   for its tool in ReaderOptions::tool_diameters_mm (the message names the tool) or with no D and no tool
 //   in the spindle; what LinuxCNC refuses under compensation: an entry move no longer than the tool radius,
 //   an inside arc whose radius is not larger than the tool's, a concave corner the tool cannot reach
