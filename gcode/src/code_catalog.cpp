@@ -12,7 +12,6 @@ constexpr CodeUse kI = CodeUse::kIgnored;
 constexpr CodeUse kR = CodeUse::kRefused;
 
 constexpr const char* kPlaneReason = "arcs are read in the XY, XZ and YZ planes (G17, G18, G19) only";
-constexpr const char* kCannedReason = "canned cycles: program their moves explicitly";
 constexpr const char* kOffsetReason = "it changes coordinate offsets, which the reader does not keep";
 constexpr const char* kHomeReason = "it moves to stored machine positions, which the reader does not know";
 constexpr const char* kCompReason =
@@ -22,7 +21,6 @@ constexpr const char* kLengthReason =
     "dynamic or added tool length offsets: Z would no longer be the programmed tool tip; use G43 H<tool>";
 constexpr const char* kPathControlReason =
     "path control only changes how the controller blends corners; the programmed path is the same";
-constexpr const char* kRetractReason = "canned-cycle retract mode; canned cycles are refused anyway";
 
 // G codes by tenths. Groups as in LinuxCNC's interpreter (interp_array.cc).
 const std::map<int, CodeInfo>& g_codes() {
@@ -80,21 +78,21 @@ const std::map<int, CodeInfo>& g_codes() {
       {610, {13, "path control", kI, kPathControlReason}},
       {611, {13, "path control", kI, kPathControlReason}},
       {640, {13, "path control", kI, kPathControlReason}},
-      {730, {1, "motion", kR, kCannedReason}},
-      {740, {1, "motion", kR, kCannedReason}},
+      {730, {1, "motion", kS, ""}},
+      {740, {1, "motion", kR, "left-hand tapping: the feed follows the spindle"}},
       {760, {1, "motion", kR, "threading cycle"}},
       // LinuxCNC lists G80 in group 1 but accepts it beside G0–G3 (the motion wins), as in the common
       // safe-start line "G0 G40 G49 G80 G90": it gets a group of its own here.
       {800, {11, "motion cancel", kS, ""}},
-      {810, {1, "motion", kR, kCannedReason}},
-      {820, {1, "motion", kR, kCannedReason}},
-      {830, {1, "motion", kR, kCannedReason}},
-      {840, {1, "motion", kR, kCannedReason}},
-      {850, {1, "motion", kR, kCannedReason}},
-      {860, {1, "motion", kR, kCannedReason}},
-      {870, {1, "motion", kR, kCannedReason}},
-      {880, {1, "motion", kR, kCannedReason}},
-      {890, {1, "motion", kR, kCannedReason}},
+      {810, {1, "motion", kS, ""}},
+      {820, {1, "motion", kS, ""}},
+      {830, {1, "motion", kS, ""}},
+      {840, {1, "motion", kR, "tapping: the feed follows the spindle"}},
+      {850, {1, "motion", kS, ""}},
+      {860, {1, "motion", kS, ""}},
+      {870, {1, "motion", kR, "back boring: the spindle is stopped and oriented in the hole"}},
+      {880, {1, "motion", kR, "boring with a manual retract"}},
+      {890, {1, "motion", kS, ""}},
       {900, {3, "distance mode", kS, ""}},
       {901, {4, "arc distance mode", kS, ""}},
       {910, {3, "distance mode", kS, ""}},
@@ -108,8 +106,8 @@ const std::map<int, CodeInfo>& g_codes() {
       {950, {5, "feed mode", kR, "feed per revolution: program F in length per minute (G94)"}},
       {960, {14, "spindle speed mode", kR, "constant surface speed: the rpm would change along the path"}},
       {970, {14, "spindle speed mode", kI, "constant rpm is the default"}},
-      {980, {10, "canned-cycle return", kI, kRetractReason}},
-      {990, {10, "canned-cycle return", kI, kRetractReason}},
+      {980, {10, "canned-cycle return", kS, ""}},
+      {990, {10, "canned-cycle return", kS, ""}},
   };
   return codes;
 }
@@ -166,7 +164,6 @@ std::string letter_refusal(char letter) {
   switch (letter) {
     case 'A': case 'B': case 'C': return "rotary axes; the reader reads X, Y and Z only";
     case 'U': case 'V': case 'W': return "extra linear axes; the reader reads X, Y and Z only";
-    case 'L': return "L is read by G10 and canned cycles, which are not supported";
     default: return "not a word the reader knows";
   }
 }

@@ -14,6 +14,7 @@
 #include "arc_geometry.hpp"
 #include "code_catalog.hpp"
 #include "cutter_compensation.hpp"
+#include "drill_cycle.hpp"
 #include "feedplan/core/bounded_read.hpp"
 #include "feedplan/core/input_error.hpp"
 #include "feedplan/core/number_text.hpp"
@@ -66,11 +67,18 @@ constexpr int kG54 = 540;
 
 bool is_arc(int motion) { return motion == kG2 || motion == kG3; }
 bool is_motion(int motion) { return motion == kG0 || motion == kG1 || is_arc(motion); }
+// The drilling canned cycles the reader expands: G73, G81, G82, G83, G85, G86, G89.
+bool is_cycle(int motion) {
+  return motion == 730 || motion == 810 || motion == 820 || motion == 830 || motion == 850 || motion == 860 ||
+         motion == 890;
+}
+bool cycle_dwells(int motion) { return motion == 820 || motion == 860 || motion == 890; }
+bool cycle_pecks(int motion) { return motion == 730 || motion == 830; }
 
 // Value words the reader reads (G, M, N and O are handled separately).
 bool is_value_letter(char letter) {
   switch (letter) {
-    case 'D': case 'F': case 'H': case 'I': case 'J': case 'K': case 'P': case 'Q': case 'R': case 'S': case 'T': case 'X': case 'Y': case 'Z':
+    case 'D': case 'F': case 'H': case 'L': case 'I': case 'J': case 'K': case 'P': case 'Q': case 'R': case 'S': case 'T': case 'X': case 'Y': case 'Z':
       return true;
     default:
       return false;
@@ -144,6 +152,11 @@ class Interpreter {
                     "(ReaderOptions::require_program_end = false accepts it)");
     }
     program_.dwell_at_end_s = pending_dwell_s_;
+    if (drilled_holes_ > 0) {
+      note(std::to_string(drilled_holes_) + (drilled_holes_ == 1 ? " hole" : " holes") +
+           " of drilling cycles (G73, G81–G89) became their moves as LinuxCNC makes them; their feeds are the "
+           "program's and stay as written (WrittenMove::fixed_feed)");
+    }
     if (plane_arcs_ > 0) {
       note(std::to_string(plane_arcs_) + (plane_arcs_ == 1 ? " arc" : " arcs") +
            " in the XZ or YZ plane (G18, G19) became " + std::to_string(plane_arc_pieces_) +
@@ -286,7 +299,7 @@ class Interpreter {
   int executed_motion(const Block& block) const {
     if (const std::optional<int> own = block.g_by_group[1]) return *own;
     const bool axis_words = block.has('X') || block.has('Y') || block.has('Z');
-    if (axis_words && !block.has_g(kG80, 11) && is_motion(motion_)) return motion_;
+    if (axis_words && !block.has_g(kG80, 11) && (is_motion(motion_) || is_cycle(motion_))) return motion_;
     return kNoMotion;
   }
 
@@ -319,6 +332,7 @@ class Interpreter {
     const std::string motion_name = motion == kNoMotion ? std::string("no motion") : detail::g_code_name(motion);
     for (char letter : {'I', 'J', 'K', 'R'}) {
       const Word* w = block.word(letter);
+      if (letter == 'R' && is_cycle(motion)) continue;  // the cycle's R plane
       if (w != nullptr && !is_arc(motion)) {
         fail("word " + w->text + ": " + std::string(1, letter) + " is read only with G2 or G3 (" + motion_name +
              " in this block)");
@@ -360,15 +374,29 @@ class Interpreter {
           fail("word " + p->text + ": more than " + std::to_string(options_.max_arc_turns) +
                " turns in one arc (ReaderOptions::max_arc_turns)");
         }
+      } else if (is_cycle(motion)) {
+        if (p->value < 0.0) fail("word " + p->text + ": a cycle's dwell must be ≥ 0 s");
       } else if (!blend) {
-        fail("word " + p->text + ": not supported here (P is read with G4, G2, G3 and G64)");
+        fail("word " + p->text + ": not supported here (P is read with G4, G2, G3, G64 and drilling cycles)");
       }
     } else if (dwell) {
       fail("G4 without P: a dwell needs P, its time in seconds");
     }
     if (const Word* q = block.word('Q'); q != nullptr && !blend) {
-      fail("word " + q->text + ": not supported (Q is read only with G64; canned cycles are not supported)");
+      if (!cycle_pecks(motion)) {
+        fail("word " + q->text + ": not supported here (Q is read only with G64, G73 and G83)");
+      } else if (!(q->value > 0.0)) {
+        fail("word " + q->text + ": the peck depth Q must be > 0 (LinuxCNC refuses it too)");
+      }
     }
+    if (const Word* l = block.word('L')) {
+      if (!is_cycle(motion)) {
+        fail("word " + l->text + ": L is read only with drilling cycles (their repeats)");
+      } else if (l->value < 1.0 || l->value != std::floor(l->value) || l->value > 10000.0) {
+        fail("word " + l->text + ": a cycle's repeats L must be a whole number from 1 to 10000");
+      }
+    }
+    if (is_cycle(motion) && !check_cycle_words(block, motion)) ok = false;
     if (const Word* f = block.word('F'); f != nullptr && f->value < 0.0) {
       fail("word " + f->text + ": a feed must be ≥ 0");
     }
@@ -451,6 +479,38 @@ class Interpreter {
     if (!std::isfinite(diameter->second)) {
       fail("word " + code + ": the diameter given for tool " + std::to_string(*tool) + " is not a finite number");
       return false;
+    }
+    return ok;
+  }
+
+  // A drilling cycle's block: in G17, without cutter compensation; R and Z when the cycle starts (a change
+  // of cycle code, or after G80 or G0–G3), P for those that dwell, Q for those that peck (LinuxCNC's rules);
+  // G86 with the spindle turning.
+  bool check_cycle_words(const Block& block, int motion) {
+    bool ok = true;
+    auto fail = [&](const std::string& message) {
+      problems_.add(block.line, message);
+      ok = false;
+    };
+    const std::string name = detail::g_code_name(motion);
+    if (block.g_by_group[2].value_or(plane_) != kG17) {
+      fail("word " + name + ": drilling cycles are read in the XY plane (G17) only");
+    }
+    if (comp_on_) {
+      fail("word " + name + ": a drilling cycle under cutter compensation (G" + std::to_string(comp_code_ / 10) +
+           " on line " + std::to_string(comp_line_) + "); G40 first (LinuxCNC refuses it too)");
+    }
+    const bool starts = motion_ != motion;
+    if (starts && !block.has('R')) fail("word " + name + ": the cycle starts here and needs R, its R plane");
+    if (starts && !block.has('Z')) fail("word " + name + ": the cycle starts here and needs Z, its bottom");
+    if (starts && cycle_dwells(motion) && !block.has('P')) {
+      fail("word " + name + ": the cycle starts here and needs P, its dwell at the bottom in seconds");
+    }
+    if (starts && cycle_pecks(motion) && !block.has('Q')) {
+      fail("word " + name + ": the cycle starts here and needs Q, its peck depth");
+    }
+    if (motion == 860 && spindle_ == SpindleDirection::kOff && !block.has_m(3, 7) && !block.has_m(4, 7)) {
+      fail("word " + name + ": G86 needs the spindle turning (M3 or M4; LinuxCNC refuses it too)");
     }
     return ok;
   }
@@ -567,8 +627,11 @@ class Interpreter {
     if (block.has_g(kG91, 3)) absolute_ = false;
     if (block.has_g(kG90_1, 4)) absolute_arc_center_ = true;
     if (block.has_g(kG91_1, 4)) absolute_arc_center_ = false;
+    if (block.has_g(980, 10)) retract_to_r_ = false;
+    if (block.has_g(990, 10)) retract_to_r_ = true;
     if (block.has_g(kG80, 11)) motion_ = kNoMotion;
     if (const std::optional<int> own = block.g_by_group[1]) motion_ = *own;
+    if (!is_cycle(motion_)) cycle_initial_z_mm_.reset();  // the next cycle begins a new initial level
     if (motion != kNoMotion) move(block, motion);
     if (block.has_m(2, 4) || block.has_m(30, 4)) end_program(line, block.has_m(2, 4) ? "M2" : "M30");
   }
@@ -732,6 +795,10 @@ class Interpreter {
                               std::to_string(after_compensation_line_) +
                               ") must be straight, not an arc (LinuxCNC refuses it too)");
       go_to(end);
+      return;
+    }
+    if (is_cycle(motion)) {
+      drill(block, motion);
       return;
     }
     if (compensation_) {
@@ -933,6 +1000,74 @@ class Interpreter {
     go_to(end);
   }
 
+  // A block of a drilling cycle: its holes as LinuxCNC drills them (drill_cycle.hpp), every move on the
+  // block's line, kept whole, its feed the program's and fixed.
+  void drill(const Block& block, int motion) {
+    const double u = unit_mm();
+    auto raw = [&](char letter, double& sticky) {
+      if (const Word* w = block.word(letter)) sticky = w->value;
+      return sticky;
+    };
+    const double r_raw = raw('R', cycle_r_);
+    const double z_raw = raw('Z', cycle_z_);
+    const double p_raw = raw('P', cycle_p_);
+    const double q_raw = raw('Q', cycle_q_);
+    detail::DrillRequest request;
+    request.code = motion;
+    request.position = position_mm_;
+    request.unit_mm = u;
+    if (!cycle_initial_z_mm_) cycle_initial_z_mm_ = position_mm_.z_mm;
+    request.initial_level = *cycle_initial_z_mm_ / u;
+    request.retract_to_r = retract_to_r_;
+    request.peck = q_raw;
+    request.dwell_s = cycle_dwells(motion) ? p_raw : 0.0;
+    request.repeats = block.has('L') ? static_cast<int>(block.word('L')->value) : 1;
+    const double x_word = block.has('X') ? block.word('X')->value * u : 0.0;
+    const double y_word = block.has('Y') ? block.word('Y')->value * u : 0.0;
+    if (absolute_) {
+      request.r = r_raw;
+      request.bottom = z_raw;
+      request.first_hole = {block.has('X') ? x_word : position_mm_.x_mm, block.has('Y') ? y_word : position_mm_.y_mm};
+    } else {
+      request.r = r_raw + request.initial_level;
+      request.bottom = request.r + z_raw;
+      request.step = {x_word, y_word};
+      request.first_hole = {position_mm_.x_mm + x_word, position_mm_.y_mm + y_word};
+    }
+    if (request.r < request.bottom) {
+      problems_.add(block.line, detail::g_code_name(motion) + ": the R plane is below the bottom Z of the cycle (LinuxCNC "
+                                                              "refuses it too)");
+      return;
+    }
+    if (block.has('P') && !cycle_dwells(motion) && !p_note_given_) {
+      note("line " + std::to_string(block.line) + ": " + block.word('P')->text + " on " + detail::g_code_name(motion) +
+           " is ignored: the cycle does not dwell (Haas ignores it; LinuxCNC refuses it)");
+      p_note_given_ = true;
+    }
+    Point3 end;
+    const std::vector<detail::DrillMove> moves = detail::drill_moves(request, end);
+    WrittenMove written = written_move(block, motion);
+    written.keep_whole = true;
+    written.fixed_feed = true;
+    Point3 from{path_end_xy_.x_mm, path_end_xy_.y_mm, position_mm_.z_mm};
+    for (const detail::DrillMove& d : moves) {
+      pending_dwell_s_ += d.dwell_before_s;
+      if (d.end.x_mm == from.x_mm && d.end.y_mm == from.y_mm && d.end.z_mm == from.z_mm) continue;
+      if (!room_for_move(block.line)) return;
+      Move m;
+      m.kind = d.feed ? MoveKind::kLine : MoveKind::kRapid;
+      m.start = from;
+      m.end = d.end;
+      geometry::BlockCommand command = block_command(block.line, d.feed ? kG1 : kG0);
+      if (d.spindle_stopped) command.spindle = SpindleDirection::kOff;
+      written.motion = d.feed ? 1 : 0;
+      add_move(m, command, written);
+      from = d.end;
+    }
+    drilled_holes_ += request.repeats;
+    go_to(end);
+  }
+
   // The programmed position and the path both at `end` (after a block that adds no move).
   void go_to(const Point3& end) {
     position_mm_ = end;
@@ -964,6 +1099,14 @@ class Interpreter {
   bool unit_note_given_ = false;
   bool k_note_given_ = false;
   int plane_ = kG17;           // G17, G18 or G19 in effect
+  bool retract_to_r_ = false;  // G99 (else G98, LinuxCNC's default)
+  double cycle_r_ = 0.0;       // the cycles' sticky R, Z, P, Q words, in the program's unit as written
+  double cycle_z_ = 0.0;
+  double cycle_p_ = 0.0;
+  double cycle_q_ = 0.0;
+  bool p_note_given_ = false;
+  std::optional<double> cycle_initial_z_mm_;  // Z when the cycles began (LinuxCNC's cycle_il), mm
+  int drilled_holes_ = 0;
   int plane_arcs_ = 0;         // arcs in G18/G19 read as straight pieces
   int plane_arc_pieces_ = 0;   // their pieces
   bool absolute_ = true;

@@ -140,7 +140,7 @@ const std::vector<BadProgram>& bad_programs() {
       {"unknown_word.ngc", "line 2: word Q5: not supported"},
       {"unknown_g_code.ngc", "line 2: word G12: not supported"},
       {"unknown_m_code.ngc", "line 2: word M100: not supported"},
-      {"unknown_letter.ngc", "line 2: word L2: not supported"},
+      {"unknown_letter.ngc", "line 2: word L2: L is read only with drilling cycles"},
       {"feed_before_f.ngc", "line 3: G1 before any F word"},
       {"feed_zero.ngc", "line 2: G2 with F0 in effect"},
       {"feed_reset_by_g94.ngc", "line 4: G1 with no F since G94 on line 3"},

@@ -363,7 +363,7 @@ TEST(Reader, LengthOffsetWithoutToolChangeIsTakenToNameTheTool) {
 
 TEST(ReaderProblems, UnknownWordsAndCodes) {
   EXPECT_THAT(problems_of("G21 F100\nG1 X10 Q5\nM2\n"),
-              HasSubstr("test line 2: word Q5: not supported (Q is read only with G64"));
+              HasSubstr("test line 2: word Q5: not supported here (Q is read only with G64, G73 and G83)"));
   EXPECT_THAT(problems_of("G21 F100\nG7\nM2\n"), HasSubstr("test line 2: word G7: not supported (lathe diameter mode)"));
   EXPECT_THAT(problems_of("G21 F100\nG12 X1\nM2\n"),
               HasSubstr("test line 2: word G12: not supported (not a G code the reader knows)"));

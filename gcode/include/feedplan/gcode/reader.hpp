@@ -45,6 +45,15 @@
 //                     and arcs meet; moves without XY motion (plunges) and helical arcs are kept. Moves
 //                     compensation makes belong to the line of the block the controller makes them for (a
 //                     corner arc: the block after the corner), marked WrittenMove::keep_whole
+//   G73, G81, G82,    drilling canned cycles in G17, expanded into the moves LinuxCNC makes for each hole
+//   G83, G85, G86,    (drill_cycle.hpp lists them): R plane, Z bottom, P dwell (G82, G86, G89), Q peck
+//   G89, G98, G99     (G73, G83), L repeats (under G91 each a step further), G98 retract to the initial
+//                     level (the Z when the cycles began) or R if higher, G99 to R; R Z P Q stay in effect
+//                     while the cycle does; absolute and incremental as LinuxCNC. Further X/Y lines drill
+//                     more holes; G80 or G0–G3 ends the cycle. Every move of a hole is on the cycle's
+//                     line, marked WrittenMove::keep_whole and fixed_feed (its F stays as written); G86
+//                     retracts with the spindle stopped. A P on G81, G83, G73 or G85 is ignored with a
+//                     note (Haas ignores it; LinuxCNC refuses it). A note counts the holes
 //   G40               compensation off: the next move (straight) runs from where the tool is to its
 //                     programmed end, marked keep_whole
 //   G43 H             tool length offset on: the programmed Z is the tool tip, which is what the reader
@@ -59,7 +68,7 @@
 // Ignored: accepted, with no effect on the path, feeds or spindle
 //   G49 (tool length offset off): the reader's Z is the tool tip either way; G97 (constant rpm): the default;
 //   G61, G61.1, G64 [P Q] (path control): how the controller blends corners, the programmed path
-//   stays the same; G98, G99 (canned-cycle retract): canned cycles are refused anyway; M0, M1
+//   stays the same; M0, M1
 //   (program pause); M7, M8, M9 (coolant); T without M6 (tool preparation).
 // Refused, by line and word
 //   G17.1, G18.1, G19.1 (UVW planes); G18/G19 while cutter compensation is on; G41.1, G42.1 (compensation by a diameter in D); G41/G42 without a diameter
@@ -70,10 +79,12 @@
 //   entry move (LinuxCNC accepts it; the reader needs a straight entry); G43.1, G43.2 (dynamic and added tool
 //   length offsets), G43 with an H that is not the tool in the spindle, H without G43; G93 inverse
 //   time and G95 feed per revolution; G96 constant surface speed; G28, G30, G53 (machine
-//   positions); G10, G52, G92 (offset changes); G5.x splines, G33 threading, G38.x probing, G73–G89
-//   canned cycles, G7, G8; a second M6 or one after the first move (the path is planned for one
+//   positions); G10, G52, G92 (offset changes); G5.x splines, G33 threading, G38.x probing, G74 and
+//   G84 tapping, G87 back boring, G88; a drilling cycle outside G17 or under compensation, one that
+//   starts without R or Z (or P, Q where it needs them), with an R below its bottom, a Q ≤ 0, G86 with
+//   the spindle off; G7, G8; a second M6 or one after the first move (the path is planned for one
 //   tool: split the program per tool), M6 with no T before it; every other G or M code; A, B, C, U,
-//   V, W axes; K outside an arc; D outside a G41/G42 block; the letters E, L and the like; parameters and expressions
+//   V, W axes; K outside an arc; D outside a G41/G42 block; L outside a drilling cycle; the letter E and the like; parameters and expressions
 //   (#1, [..]); O-word subroutines and control flow; block delete `/` (whether the line runs
 //   depends on the operator's switch).
 //
