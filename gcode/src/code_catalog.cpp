@@ -13,7 +13,7 @@ constexpr CodeUse kR = CodeUse::kRefused;
 
 constexpr const char* kPlaneReason = "arcs are read in the XY, XZ and YZ planes (G17, G18, G19) only";
 constexpr const char* kOffsetReason = "it changes coordinate offsets, which the reader does not keep";
-constexpr const char* kHomeReason = "it moves to stored machine positions, which the reader does not know";
+constexpr const char* kHomeReason = "it stores a machine position, which the reader does not keep";
 constexpr const char* kCompReason =
     "cutter radius compensation by a diameter in the D word: use G41/G42 D<tool> with the tool's diameter given "
     "to the reader";
@@ -45,9 +45,9 @@ const std::map<int, CodeInfo>& g_codes() {
       {191, {2, "plane", kR, kPlaneReason}},
       {200, {6, "units", kS, ""}},
       {210, {6, "units", kS, ""}},
-      {280, {0, "non-modal", kR, kHomeReason}},
+      {280, {0, "non-modal", kS, ""}},
       {281, {0, "non-modal", kR, kHomeReason}},
-      {300, {0, "non-modal", kR, kHomeReason}},
+      {300, {0, "non-modal", kS, ""}},
       {301, {0, "non-modal", kR, kHomeReason}},
       {330, {1, "motion", kR, "spindle-synchronised motion (threading)"}},
       {331, {1, "motion", kR, "spindle-synchronised motion (rigid tapping)"}},
@@ -65,7 +65,7 @@ const std::map<int, CodeInfo>& g_codes() {
       {432, {8, "tool length offset", kR, kLengthReason}},
       {490, {8, "tool length offset", kI, "tool length offset off is the state of a program without G43"}},
       {520, {0, "non-modal", kR, kOffsetReason}},
-      {530, {0, "non-modal", kR, "it moves in machine coordinates, which the reader does not know"}},
+      {530, {0, "non-modal", kS, ""}},
       {540, {12, "work offset", kS, ""}},
       {550, {12, "work offset", kS, ""}},
       {560, {12, "work offset", kS, ""}},
@@ -126,6 +126,12 @@ const std::map<int, CodeInfo>& m_codes() {
       {9, {8, "coolant", kI, "coolant"}},
       {19, {7, "spindle", kR, "spindle orientation"}},
       {30, {4, "stopping", kS, ""}},
+      // Haas: chip conveyor forward, reverse, stop; through-spindle coolant on, off. No effect on the path.
+      {31, {10, "chip conveyor", kI, "Haas chip conveyor: no effect on the path, feeds or spindle"}},
+      {32, {10, "chip conveyor", kI, "Haas chip conveyor: no effect on the path, feeds or spindle"}},
+      {33, {10, "chip conveyor", kI, "Haas chip conveyor: no effect on the path, feeds or spindle"}},
+      {88, {8, "coolant", kI, "Haas through-spindle coolant"}},
+      {89, {8, "coolant", kI, "Haas through-spindle coolant"}},
       {48, {9, "override switches", kR, "override switches change the feed the machine runs"}},
       {49, {9, "override switches", kR, "override switches change the feed the machine runs"}},
       {50, {9, "override switches", kR, "override switches change the feed the machine runs"}},

@@ -38,7 +38,8 @@ namespace {
 
 constexpr double kMmPerInch = 25.4;
 constexpr double kReportedShiftMm = 1e-6;  // centre moves above this are counted in a note
-constexpr std::size_t kMaxLineCharacters = 4096;  // LinuxCNC's limit is 255; CAM comments stay far below
+constexpr std::size_t kMaxLineCharacters = 4096;
+constexpr double kParkClearanceMm = 25.0;  // the park height above the highest Z reached (ReaderOptions::park_z_mm)  // LinuxCNC's limit is 255; CAM comments stay far below
 
 // Motion modes in tenths of their G number; kNoMotion after G80 and at the start (as LinuxCNC).
 constexpr int kNoMotion = -1;
@@ -64,6 +65,9 @@ constexpr int kG90_1 = 901;
 constexpr int kG91 = 910;
 constexpr int kG91_1 = 911;
 constexpr int kG54 = 540;
+constexpr int kG28 = 280;
+constexpr int kG30 = 300;
+constexpr int kG53 = 530;
 
 bool is_arc(int motion) { return motion == kG2 || motion == kG3; }
 bool is_motion(int motion) { return motion == kG0 || motion == kG1 || is_arc(motion); }
@@ -124,6 +128,7 @@ class Interpreter {
   Interpreter(const ReaderOptions& options, detail::ProblemLog& problems) : options_(options), problems_(problems) {
     position_mm_ = options.initial_position;
     path_end_xy_ = geometry::xy(options.initial_position);
+    highest_z_mm_ = options.initial_position.z_mm;
     program_.path.part_names = {"program"};
   }
 
@@ -152,6 +157,16 @@ class Interpreter {
                     "(ReaderOptions::require_program_end = false accepts it)");
     }
     program_.dwell_at_end_s = pending_dwell_s_;
+    if (machine_position_moves_ > 0) {
+      note(std::to_string(machine_position_moves_) +
+           (machine_position_moves_ == 1 ? " move" : " moves") + " to machine positions (G28, G30, G53) were read as "
+           "retracts above the part: a rapid straight up to a park height (" +
+           (options_.park_z_mm ? "Z " + six_digit_number_text(*options_.park_z_mm) + " mm, ReaderOptions::park_z_mm"
+                               : "the highest Z reached before it plus 25 mm, at most Z " +
+                                     six_digit_number_text(highest_park_z_mm_) + " mm; ReaderOptions::park_z_mm sets it") +
+           "), X and Y kept — the reader has no machine coordinates; the next "
+           "move leaves from there");
+    }
     if (drilled_holes_ > 0) {
       note(std::to_string(drilled_holes_) + (drilled_holes_ == 1 ? " hole" : " holes") +
            " of drilling cycles (G73, G81–G89) became their moves as LinuxCNC makes them; their feeds are the "
@@ -298,9 +313,39 @@ class Interpreter {
   // G80 (LinuxCNC's rule); kNoMotion otherwise.
   int executed_motion(const Block& block) const {
     if (const std::optional<int> own = block.g_by_group[1]) return *own;
+    if (goes_home(block)) return kNoMotion;  // G28/G30 read the axis words
     const bool axis_words = block.has('X') || block.has('Y') || block.has('Z');
     if (axis_words && !block.has_g(kG80, 11) && (is_motion(motion_) || is_cycle(motion_))) return motion_;
     return kNoMotion;
+  }
+
+  static bool goes_home(const Block& block) { return block.has_g(kG28, 0) || block.has_g(kG30, 0); }
+
+  // G28, G30 and G53 (machine positions): not under cutter compensation (LinuxCNC refuses it too); G53
+  // with G0 or G1; G28/G30 without a motion of its own in the block (both would read the axis words).
+  bool check_machine_position_words(const Block& block, int motion) {
+    bool ok = true;
+    auto fail = [&](const std::string& message) {
+      problems_.add(block.line, message);
+      ok = false;
+    };
+    const bool home = goes_home(block);
+    const bool g53 = block.has_g(kG53, 0);
+    if (!home && !g53) return true;
+    const std::string name = detail::g_code_name(*block.g_by_group[0]);
+    if (comp_on_) {
+      fail("word " + name + ": a move to a machine position under cutter compensation (G" +
+           std::to_string(comp_code_ / 10) + " on line " + std::to_string(comp_line_) +
+           "); G40 first (LinuxCNC refuses it too)");
+    }
+    if (home && block.g_by_group[1]) {
+      fail("word " + name + ": " + detail::g_code_name(*block.g_by_group[1]) +
+           " in the same block: both would read the axis words; put them in separate blocks");
+    }
+    if (g53 && motion != kNoMotion && motion != kG0 && motion != kG1) {
+      fail("word G53: " + detail::g_code_name(motion) + " in effect; G53 moves with G0 or G1 (LinuxCNC refuses it too)");
+    }
+    return ok;
   }
 
   // Checks that every word of a sorted block has a code that reads it and a value it accepts.
@@ -324,7 +369,7 @@ class Interpreter {
         fail("word " + w->text + ": axis words cannot be used with G80, which cancels the motion mode");
       } else if (!own_motion && dwell) {
         fail("word " + w->text + ": axis words in a G4 block need G0, G1, G2 or G3 in the same block");
-      } else if (motion == kNoMotion) {
+      } else if (motion == kNoMotion && !goes_home(block)) {
         fail("word " + w->text + ": axis words need a motion mode, and no G0, G1, G2 or G3 is in effect");
       }
       break;
@@ -397,6 +442,7 @@ class Interpreter {
       }
     }
     if (is_cycle(motion) && !check_cycle_words(block, motion)) ok = false;
+    if (!check_machine_position_words(block, motion)) ok = false;
     if (const Word* f = block.word('F'); f != nullptr && f->value < 0.0) {
       fail("word " + f->text + ": a feed must be ≥ 0");
     }
@@ -632,6 +678,7 @@ class Interpreter {
     if (block.has_g(kG80, 11)) motion_ = kNoMotion;
     if (const std::optional<int> own = block.g_by_group[1]) motion_ = *own;
     if (!is_cycle(motion_)) cycle_initial_z_mm_.reset();  // the next cycle begins a new initial level
+    if (goes_home(block)) go_home(block);
     if (motion != kNoMotion) move(block, motion);
     if (block.has_m(2, 4) || block.has_m(30, 4)) end_program(line, block.has_m(2, 4) ? "M2" : "M30");
   }
@@ -786,9 +833,24 @@ class Interpreter {
     m.end = end;
     m.part = 0;
     const bool feed = motion != kG0;
+    if (block.has_g(kG53, 0)) {  // a move in machine coordinates: read as a park, which does not cut
+      park(block.line);
+      return;
+    }
     if (feed && (!feed_ok(line, motion) || !spindle_ok(line, motion))) {
       go_to(end);
       return;
+    }
+    if (parked_line_ != 0) {
+      const int parked = parked_line_;
+      parked_line_ = 0;
+      if (feed) {
+        problems_.add(line, detail::g_code_name(motion) + " right after a move to a machine position (line " +
+                                std::to_string(parked) + "): the reader does not know where the machine put the tool "
+                                "and reads such moves as a retract above the part; move there with G0 first");
+        go_to(end);
+        return;
+      }
     }
     if (is_arc(motion) && after_compensation_line_ != 0) {
       problems_.add(line, detail::g_code_name(motion) + ": the move just after G40 (line " +
@@ -843,7 +905,12 @@ class Interpreter {
             block.has('P'), tool_in_spindle_ ? *tool_in_spindle_ : g43_tool_ ? *g43_tool_ : -1};
   }
 
-  void add_move(Move m, const geometry::BlockCommand& command, const WrittenMove& written) {
+  void add_move(Move m, const geometry::BlockCommand& command, const WrittenMove& written, bool park = false) {
+    // The park height is above the part, not above itself: moves that stay at it (a rapid across after a
+    // park) do not raise it.
+    if (!park && !(machine_position_moves_ > 0 && m.end.z_mm == last_park_z_mm_)) {
+      highest_z_mm_ = std::max(highest_z_mm_, m.end.z_mm);
+    }
     m.part = 0;
     m.cutting = m.kind != MoveKind::kRapid;
     written_.push_back(written);
@@ -1068,6 +1135,65 @@ class Interpreter {
     go_to(end);
   }
 
+  // G28, G30: LinuxCNC goes to the intermediate point of the axis words first (in the distance mode in
+  // effect), then to the stored machine position, which the reader does not know: it parks instead.
+  void go_home(const Block& block) {
+    if (block.has('X') || block.has('Y') || block.has('Z')) {
+      Point3 end = position_mm_;
+      auto axis = [&](char letter, double start_mm, double& target_mm) {
+        if (const Word* w = block.word(letter)) target_mm = (absolute_ ? 0.0 : start_mm) + w->value * unit_mm();
+      };
+      axis('X', position_mm_.x_mm, end.x_mm);
+      axis('Y', position_mm_.y_mm, end.y_mm);
+      axis('Z', position_mm_.z_mm, end.z_mm);
+      const Point3 start{path_end_xy_.x_mm, path_end_xy_.y_mm, position_mm_.z_mm};
+      if ((end.x_mm != start.x_mm || end.y_mm != start.y_mm || end.z_mm != start.z_mm) && room_for_move(block.line)) {
+        Move m;
+        m.kind = MoveKind::kRapid;
+        m.start = start;
+        m.end = end;
+        WrittenMove written = written_move(block, kG0);
+        written.keep_whole = true;
+        add_move(m, block_command(block.line, kG0), written);
+      }
+      go_to(end);
+    }
+    park(block.line);
+  }
+
+  // A move to a machine position (G28, G30, G53): the reader has no machine coordinates, so the tool goes
+  // to a parked state above everything — a rapid straight up to the park height (ReaderOptions::park_z_mm,
+  // else the highest Z reached so far plus 25 mm), X and Y kept.
+  void park(int line) {
+    const double park_z_mm = options_.park_z_mm ? *options_.park_z_mm : highest_z_mm_ + kParkClearanceMm;
+    const Point3 start{path_end_xy_.x_mm, path_end_xy_.y_mm, position_mm_.z_mm};
+    if (start.z_mm < park_z_mm && room_for_move(line)) {  // already above it: the tool stays
+      Move m;
+      m.kind = MoveKind::kRapid;
+      m.start = start;
+      m.end = {start.x_mm, start.y_mm, park_z_mm};
+      WrittenMove written = written_move_for_line(line);
+      add_move(m, block_command(line, kG0), written, true);
+      go_to(m.end);
+    }
+    parked_line_ = line;
+    ++machine_position_moves_;
+    last_park_z_mm_ = position_mm_.z_mm;
+    highest_park_z_mm_ = std::max(highest_park_z_mm_, last_park_z_mm_);
+  }
+
+  WrittenMove written_move_for_line(int line) const {
+    WrittenMove written;
+    written.line = line;
+    written.motion = 0;
+    written.inch = inch_;
+    written.incremental = !absolute_;
+    written.absolute_arc_center = absolute_arc_center_;
+    written.tool = tool_in_spindle_ ? *tool_in_spindle_ : g43_tool_ ? *g43_tool_ : -1;
+    written.keep_whole = true;
+    return written;
+  }
+
   // The programmed position and the path both at `end` (after a block that adds no move).
   void go_to(const Point3& end) {
     position_mm_ = end;
@@ -1107,6 +1233,11 @@ class Interpreter {
   bool p_note_given_ = false;
   std::optional<double> cycle_initial_z_mm_;  // Z when the cycles began (LinuxCNC's cycle_il), mm
   int drilled_holes_ = 0;
+  double highest_z_mm_ = 0.0;        // the highest Z of the initial position and the moves (parks excepted)
+  int parked_line_ = 0;              // the line of the last park while no move has followed it
+  int machine_position_moves_ = 0;   // G28, G30, G53 blocks read as parks
+  double last_park_z_mm_ = 0.0;     // Z of the last park
+  double highest_park_z_mm_ = -1e300;
   int plane_arcs_ = 0;         // arcs in G18/G19 read as straight pieces
   int plane_arc_pieces_ = 0;   // their pieces
   bool absolute_ = true;

@@ -54,6 +54,14 @@
 //                     line, marked WrittenMove::keep_whole and fixed_feed (its F stays as written); G86
 //                     retracts with the spindle stopped. A P on G81, G83, G73 or G85 is ignored with a
 //                     note (Haas ignores it; LinuxCNC refuses it). A note counts the holes
+//   G28, G30, G53     moves to machine positions. The reader has no machine coordinates, so each is read
+//                     as taking the tool to a parked state above everything: a rapid straight up from
+//                     where it is to the park height — ReaderOptions::park_z_mm, else the highest Z the
+//                     program has reached before it (or the initial position's) plus 25 mm — X and Y kept
+//                     (G53's X Y words move nothing; a G53 G1 does not cut). G28/G30 with axis words first
+//                     go to that intermediate point (a rapid, in the distance mode in effect), as LinuxCNC
+//                     does. The next move leaves the park height from there; it must be a G0 (a feed move
+//                     would start at an unknown place). A note says how they were read
 //   G40               compensation off: the next move (straight) runs from where the tool is to its
 //                     programmed end, marked keep_whole
 //   G43 H             tool length offset on: the programmed Z is the tool tip, which is what the reader
@@ -68,8 +76,9 @@
 // Ignored: accepted, with no effect on the path, feeds or spindle
 //   G49 (tool length offset off): the reader's Z is the tool tip either way; G97 (constant rpm): the default;
 //   G61, G61.1, G64 [P Q] (path control): how the controller blends corners, the programmed path
-//   stays the same; M0, M1
-//   (program pause); M7, M8, M9 (coolant); T without M6 (tool preparation).
+//   stays the same; M0, M1 (program pause); M7, M8, M9, M88, M89 (coolant, Haas through-spindle
+//   coolant); M31, M32, M33 (Haas chip conveyor; LinuxCNC refuses them); T without M6 (tool
+//   preparation).
 // Refused, by line and word
 //   G17.1, G18.1, G19.1 (UVW planes); G18/G19 while cutter compensation is on; G41.1, G42.1 (compensation by a diameter in D); G41/G42 without a diameter
 //   for its tool in ReaderOptions::tool_diameters_mm (the message names the tool) or with no D and no tool
@@ -78,8 +87,8 @@
 //   without gouging, G41/G42 while it is on, an arc right after G40, M6 while it is on; an arc as the
 //   entry move (LinuxCNC accepts it; the reader needs a straight entry); G43.1, G43.2 (dynamic and added tool
 //   length offsets), G43 with an H that is not the tool in the spindle, H without G43; G93 inverse
-//   time and G95 feed per revolution; G96 constant surface speed; G28, G30, G53 (machine
-//   positions); G10, G52, G92 (offset changes); G5.x splines, G33 threading, G38.x probing, G74 and
+//   time and G95 feed per revolution; G96 constant surface speed; G28.1, G30.1 (storing machine
+//   positions), G28/G30/G53 under cutter compensation or G28/G30 with G0–G3 in the block; G10, G52, G92 (offset changes); G5.x splines, G33 threading, G38.x probing, G74 and
 //   G84 tapping, G87 back boring, G88; a drilling cycle outside G17 or under compensation, one that
 //   starts without R or Z (or P, Q where it needs them), with an R below its bottom, a Q ≤ 0, G86 with
 //   the spindle off; G7, G8; a second M6 or one after the first move (the path is planned for one
@@ -110,6 +119,7 @@
 #include <cstddef>
 #include <filesystem>
 #include <map>
+#include <optional>
 #include <string>
 
 #include "feedplan/geometry/point.hpp"
@@ -143,6 +153,9 @@ struct ReaderOptions {
   //! (LinuxCNC: D is a tool number whose tool-table diameter is used; Haas' D01 is tool 1), or without D
   //! the tool in the spindle. A negative diameter compensates on the other side, 0 not at all (LinuxCNC).
   std::map<int, double> tool_diameters_mm;
+  //! Z of the parked state that moves to machine positions (G28, G30, G53) are read as, mm; without it,
+  //! the highest Z the program has reached before the move (or the initial position's) plus 25 mm.
+  std::optional<double> park_z_mm;
   //! Most turns of one G2/G3 (its P word): a deep helical bore takes a few hundred; a million turns
   //! is one move that the planner and the virtual machine sample into gigabytes.
   int max_arc_turns = 1000;
