@@ -11,12 +11,14 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <sstream>
 #include <string>
 #include <vector>
 
 #include "feedplan/core/input_error.hpp"
 #include "feedplan/gcode/reader.hpp"
+#include "feedplan/gcode/refeed.hpp"
 #include "feedplan/geometry/tool_path.hpp"
 #include "rs274_runner.hpp"
 
@@ -126,6 +128,72 @@ TEST_F(HaasProgram, FeedMovesMatchLinuxCnc) {
       EXPECT_EQ(m.ccw, o.rotation > 0);
     }
     EXPECT_NEAR(ours.blocks[our_feeds[k]].feed_mm_per_min, o.feed_mm_per_min, 0.01);
+  }
+}
+
+// The end points of rs274's moves (the path), rapids and feeds alike.
+std::vector<geometry::Point3> ends_of(const oracle::OracleRun& run) {
+  std::vector<geometry::Point3> ends;
+  for (const oracle::OracleMove& m : run.moves) ends.push_back(m.end);
+  return ends;
+}
+
+TEST_F(HaasProgram, RefedWithSeveralMovesPerLineItRunsTheSamePathAtItsLinesLowestFeeds) {
+  const std::string text = text_of(kProgram);
+  std::vector<WrittenMove> written;
+  const geometry::Program program = read_program(text, kProgram.string(), haas_options(), written);
+  // Made-up feeds: 1 to 3 pieces per free feed move; none for rapids and the drilling cycles' fixed feeds.
+  std::vector<FeedPiece> pieces;
+  std::map<int, double> lowest_by_line;
+  for (std::size_t i = 0; i < program.path.moves.size(); ++i) {
+    const geometry::Move& m = program.path.moves[i];
+    if (m.kind == MoveKind::kRapid || written[i].fixed_feed) continue;
+    const int count = m.kind == MoveKind::kArc ? 1 : 1 + static_cast<int>(i % 3);
+    for (int k = 0; k < count; ++k) {
+      geometry::Move piece = m;
+      const double f0 = static_cast<double>(k) / count, f1 = static_cast<double>(k + 1) / count;
+      piece.start = geometry::point_at(m, f0);
+      piece.end = k + 1 == count ? m.end : geometry::point_at(m, f1);
+      const double feed = 500.0 + 37.0 * static_cast<double>(i % 11) + 13.0 * k;
+      pieces.push_back({static_cast<int>(i), piece, feed});
+      auto [it, fresh] = lowest_by_line.emplace(written[i].line, feed);
+      if (!fresh) it->second = std::min(it->second, feed);
+    }
+  }
+  const RefeedResult r = refeed_text(text, program, written, pieces);
+  EXPECT_GT(r.moves_at_lowest_feed, 10) << "compensated lines carry corner arcs and their moves";
+  // Every line of several moves keeps its words; only its F changes, to the lowest feed (in/min, rounded down).
+  std::map<int, int> moves_per_line;
+  for (const WrittenMove& w : written) ++moves_per_line[w.line];
+  const std::string input = as_linuxcnc_reads_it(text), output = as_linuxcnc_reads_it(r.text);
+  const oracle::OracleRun before = oracle::run_rs274_text(*rs274_, input, "T1 P1 D0.5\nT2 P2 D0.375\nT5 P5 D0.25\nT7 P7 D0.25\nT8 P8 D0.3125\n");
+  const oracle::OracleRun after = oracle::run_rs274_text(*rs274_, output, "T1 P1 D0.5\nT2 P2 D0.375\nT5 P5 D0.25\nT7 P7 D0.25\nT8 P8 D0.3125\n");
+  ASSERT_EQ(before.exit_code, 0) << before.messages;
+  ASSERT_EQ(after.exit_code, 0) << after.messages << "\n" << r.text;
+  // The same path: every point rs274 reaches before is reached after, in order (splits add points between).
+  const std::vector<geometry::Point3> a = ends_of(before), b = ends_of(after);
+  std::size_t k = 0;
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    while (k < b.size() && std::hypot(std::hypot(b[k].x_mm - a[i].x_mm, b[k].y_mm - a[i].y_mm), b[k].z_mm - a[i].z_mm) > kToleranceMm) ++k;
+    ASSERT_LT(k, b.size()) << "point " << i << " of the input's path is not on the re-fed path";
+    ++k;
+  }
+  // The compensated profile's corner arcs run at the lowest feed of their line.
+  for (std::size_t i = 0; i < program.path.moves.size(); ++i) {
+    if (moves_per_line[written[i].line] < 2 || written[i].fixed_feed) continue;
+    const double lowest = lowest_by_line[written[i].line];
+    bool found = false;
+    for (const oracle::OracleMove& m : after.moves) {
+      if (m.kind == MoveKind::kRapid) continue;
+      if (std::hypot(m.end.x_mm - program.path.moves[i].end.x_mm, m.end.y_mm - program.path.moves[i].end.y_mm) <= kToleranceMm &&
+          std::abs(m.end.z_mm - program.path.moves[i].end.z_mm) <= kToleranceMm) {
+        EXPECT_LE(m.feed_mm_per_min, lowest + 1e-6) << "line " << written[i].line;
+        EXPECT_GT(m.feed_mm_per_min, lowest - 0.001 * 25.4 - 1e-6) << "line " << written[i].line;
+        found = true;
+        break;
+      }
+    }
+    EXPECT_TRUE(found) << "move " << i << " of line " << written[i].line;
   }
 }
 
