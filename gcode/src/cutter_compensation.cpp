@@ -70,6 +70,78 @@ bool tool_inside(CompSide side, bool ccw) { return (side == CompSide::kLeft) == 
 
 std::string mm(double value) { return six_digit_number_text(value) + " mm"; }
 
+// Where the previous move must end at a concave corner, or why the tool cannot get there.
+struct Corner {
+  Point2 point;
+  std::string problem;
+};
+
+// Line after line: the tool backs up along the previous offset line (direction `back_rad`) until it
+// meets the next one; `beta` is the turn of the path less a right angle (LinuxCNC's retreat).
+Corner line_line_corner(const Point2& tool, double radius_mm, double beta, double back_rad) {
+  const double half_corner_rad = (beta + kPi) / 2.0;
+  if (half_corner_rad == 0.0) return {{}, "a zero-degree inside corner cannot be compensated"};
+  return {plus(tool, radius_mm / std::tan(half_corner_rad), back_rad), ""};
+}
+
+// Line after an arc (the compensated `prev`): where the line's offset meets the arc's offset circle, the
+// intersection on the side LinuxCNC takes. `corner` is the programmed corner, `next` the line's end.
+Corner arc_line_corner(const Move& prev, CompSide side, double radius_mm, const Point2& corner, const Point2& next) {
+  const double old_radius = distance(prev.center, geometry::xy(prev.end));
+  const double base_dir = angle_of(corner, next);
+  const double normal = prev.ccw ? base_dir + kHalfPi : base_dir - kHalfPi;
+  const bool inside = tool_inside(side, prev.ccw);
+  const double programmed_radius = inside ? old_radius + radius_mm : old_radius - radius_mm;
+  const double d = programmed_radius * std::cos(normal - angle_of(corner, prev.center));
+  const double l = (inside ? d - radius_mm : d + radius_mm) / old_radius;
+  if (l > 1.0 || l < -1.0) {
+    return {{}, "the arc before this line and the line make a corner the tool cannot fit in without gouging "
+                "(LinuxCNC refuses it too)"};
+  }
+  const bool plus_acos = inside ? !prev.ccw : prev.ccw;
+  return {plus(prev.center, old_radius, (plus_acos ? std::acos(l) : -std::acos(l)) + normal + kPi), ""};
+}
+
+// An arc (about `center`, radius `arc_radius`, tool `inside` it or not) after a line whose direction is
+// `theta`, turning by `beta`: where the line's offset meets the arc's offset circle.
+Corner line_arc_corner(double theta, double beta, const Point2& center, double arc_radius, bool ccw, bool inside,
+                       double radius_mm) {
+  const double across = arc_radius * std::sin(beta - kHalfPi);
+  const double from_center = inside ? arc_radius - radius_mm : arc_radius + radius_mm;
+  const double l = (inside ? across + radius_mm : across - radius_mm) / from_center;
+  if (l > 1.0 || l < -1.0) {
+    return {{}, "the arc in this concave corner cannot be reached by the tool without gouging (LinuxCNC refuses it "
+                "too)"};
+  }
+  double angle = 0.0;
+  if (inside) {
+    angle = ccw ? theta + std::asin(l) : theta - std::asin(l);
+  } else {
+    angle = ccw ? theta + kPi - std::asin(l) : theta + kPi + std::asin(l);
+  }
+  return {plus(center, from_center, angle), ""};
+}
+
+// An arc after an arc (the compensated `prev`): where the two offset circles meet, on LinuxCNC's side.
+Corner arc_arc_corner(const Move& prev, CompSide side, const Point2& center, double arc_radius, bool ccw, bool inside,
+                      double radius_mm) {
+  const double old_radius = distance(prev.center, geometry::xy(prev.end));
+  const double new_radius = inside ? arc_radius - radius_mm : arc_radius + radius_mm;
+  const double centers_mm = distance(prev.center, center);
+  if (old_radius == 0.0 || centers_mm == 0.0) {
+    return {{}, "an arc after an arc about the same centre cannot be compensated (LinuxCNC refuses it too)"};
+  }
+  const double a = (old_radius * old_radius + centers_mm * centers_mm - new_radius * new_radius) /
+                   (2.0 * old_radius * centers_mm);
+  if (a > 1.0 || a < -1.0) {
+    return {{}, "the two arcs make a corner the tool cannot fit in without gouging (LinuxCNC refuses it too)"};
+  }
+  const double pullback = std::acos(a);
+  const double centers_dir = angle_of(prev.center, center);
+  const bool add = tool_inside(side, prev.ccw) ? ccw : !ccw;
+  return {plus(prev.center, old_radius, add ? centers_dir + pullback : centers_dir - pullback), ""};
+}
+
 }  // namespace
 
 CutterCompensation::CutterCompensation(CompSide side, double radius_mm, const Point3& tool_position,
@@ -127,6 +199,19 @@ std::string CutterCompensation::move_ends_and_flush(const Point2& end, std::vect
   return "";
 }
 
+// Convex corner: the tool goes round the programmed corner `corner` on an arc of the tool radius to
+// `corner_end` (LinuxCNC: clockwise under G41); a rapid goes straight there. The corner is final at once.
+void CutterCompensation::round_convex_corner(bool rapid, const Point2& corner_end, int tag, std::vector<CompMove>& done) {
+  const Point3 end = at_z(corner_end, tool_.z_mm);
+  if (rapid) {
+    emit(straight_move(true, tool_, end), tag, done);
+  } else {
+    emit(arc_move(tool_, end, geometry::xy(programmed_), side_ == CompSide::kLeft ? -1 : 1), tag, done);
+  }
+  tool_ = end;
+  queue_start_ = corner_end;
+}
+
 std::string CutterCompensation::straight(bool rapid, const Point3& end, int tag, std::vector<CompMove>& done) {
   const Point2 c = geometry::xy(tool_);
   const Point2 p = geometry::xy(end);
@@ -172,50 +257,18 @@ std::string CutterCompensation::straight(bool rapid, const Point3& end, int tag,
   const bool concave = beta < -kCornerToleranceRad || beta > kPi + kCornerToleranceRad ||
                        (beta > kPi - kCornerToleranceRad && front_arc &&
                         !tool_inside(side_, queue_.front().move.move.ccw));
-  Point3 start = tool_;
   if (!concave && beta > kCornerToleranceRad) {
-    // Convex corner: round it on an arc about the programmed corner (a rapid goes straight there).
     if (std::string problem = move_ends_and_flush(c, done); !problem.empty()) return problem;
-    const Point3 corner_end = at_z(mid, tool_.z_mm);
-    if (rapid) {
-      emit(straight_move(true, tool_, corner_end), tag, done);
-    } else {
-      emit(arc_move(tool_, corner_end, op, side_ == CompSide::kLeft ? -1 : 1), tag, done);
-    }
-    tool_ = corner_end;
-    queue_start_ = mid;
-    start = corner_end;
+    round_convex_corner(rapid, mid, tag, done);
   } else if (concave) {
-    // Concave corner: the previous move ends where the two offset paths meet.
-    Point2 corner;
-    if (!front_arc) {
-      const double half_corner_rad = (beta + kPi) / 2.0;
-      if (half_corner_rad == 0.0) return "a zero-degree inside corner cannot be compensated";
-      corner = plus(c, r / std::tan(half_corner_rad), theta + gamma);
-    } else {
-      const Move& prev = queue_.front().move.move;
-      const double old_radius = distance(prev.center, geometry::xy(prev.end));
-      const double base_dir = angle_of(op, p);
-      const double normal = prev.ccw ? base_dir + kHalfPi : base_dir - kHalfPi;
-      const double phi = angle_of(op, prev.center);
-      const bool inside = tool_inside(side_, prev.ccw);
-      const double programmed_radius = inside ? old_radius + r : old_radius - r;
-      const double d = programmed_radius * std::cos(normal - phi);
-      const double l = (inside ? d - r : d + r) / old_radius;
-      if (l > 1.0 || l < -1.0) {
-        return "the arc before this line and the line make a corner the tool cannot fit in without gouging "
-               "(LinuxCNC refuses it too)";
-      }
-      const bool plus_acos = inside ? !prev.ccw : prev.ccw;
-      const double angle = (plus_acos ? std::acos(l) : -std::acos(l)) + normal + kPi;
-      corner = plus(prev.center, old_radius, angle);
-    }
-    if (std::string problem = move_ends_and_flush(corner, done); !problem.empty()) return problem;
-    start = tool_;
+    const Corner corner = front_arc ? arc_line_corner(queue_.front().move.move, side_, r, op, p)
+                                    : line_line_corner(c, r, beta, theta + gamma);
+    if (!corner.problem.empty()) return corner.problem;
+    if (std::string problem = move_ends_and_flush(corner.point, done); !problem.empty()) return problem;
   } else {
     flush(done);
   }
-  enqueue(straight_move(rapid, start, at_z(e, end.z_mm)), {p.x_mm - op.x_mm, p.y_mm - op.y_mm}, 0.0, tag);
+  enqueue(straight_move(rapid, tool_, at_z(e, end.z_mm)), {p.x_mm - op.x_mm, p.y_mm - op.y_mm}, 0.0, tag);
   tool_ = at_z(e, end.z_mm);
   programmed_ = end;
   return "";
@@ -254,59 +307,20 @@ std::string CutterCompensation::arc(const ProgrammedArc& arc, int tag, std::vect
   }
   const Point2 new_end = plus(e, r, gamma);
   const bool front_arc = !queue_.empty() && queue_.front().move.move.kind == MoveKind::kArc;
-  Point3 start = tool_;
   if (beta < -kCornerToleranceRad || beta > kPi + kCornerToleranceRad ||
       (std::abs(beta - kPi) < kCornerToleranceRad && !inside)) {
-    // Concave corner: the previous move ends where its offset path meets this arc's.
-    Point2 corner;
-    if (!front_arc) {
-      const double across = arc_radius * std::sin(beta - kHalfPi);
-      const double from_center = inside ? arc_radius - r : arc_radius + r;
-      const double l = (inside ? across + r : across - r) / from_center;
-      if (l > 1.0 || l < -1.0) {
-        return "the arc in this concave corner cannot be reached by the tool without gouging (LinuxCNC refuses it "
-               "too)";
-      }
-      double angle = 0.0;
-      if (inside) {
-        angle = arc.ccw ? theta + std::asin(l) : theta - std::asin(l);
-      } else {
-        angle = arc.ccw ? theta + kPi - std::asin(l) : theta + kPi + std::asin(l);
-      }
-      corner = plus(center, from_center, angle);
-    } else {
-      const Move& prev = queue_.front().move.move;
-      const double old_radius = distance(prev.center, geometry::xy(prev.end));
-      const double new_radius = inside ? arc_radius - r : arc_radius + r;
-      const double centers_mm = distance(prev.center, center);
-      if (old_radius == 0.0 || centers_mm == 0.0) {
-        return "an arc after an arc about the same centre cannot be compensated (LinuxCNC refuses it too)";
-      }
-      const double a = (old_radius * old_radius + centers_mm * centers_mm - new_radius * new_radius) /
-                       (2.0 * old_radius * centers_mm);
-      if (a > 1.0 || a < -1.0) {
-        return "the two arcs make a corner the tool cannot fit in without gouging (LinuxCNC refuses it too)";
-      }
-      const double pullback = std::acos(a);
-      const double centers_dir = angle_of(prev.center, center);
-      const bool add = tool_inside(side_, prev.ccw) ? arc.ccw : !arc.ccw;
-      corner = plus(prev.center, old_radius, add ? centers_dir + pullback : centers_dir - pullback);
-    }
-    if (std::string problem = move_ends_and_flush(corner, done); !problem.empty()) return problem;
-    start = tool_;
+    const Corner corner = front_arc ? arc_arc_corner(queue_.front().move.move, side_, center, arc_radius, arc.ccw, inside, r)
+                                    : line_arc_corner(theta, beta, center, arc_radius, arc.ccw, inside, r);
+    if (!corner.problem.empty()) return corner.problem;
+    if (std::string problem = move_ends_and_flush(corner.point, done); !problem.empty()) return problem;
   } else if (beta > kCornerToleranceRad) {
-    // Convex corner: round it on an arc about the programmed corner.
     flush(done);
-    const Point3 corner_end = at_z(plus(op, r, delta), tool_.z_mm);
-    emit(arc_move(tool_, corner_end, op, left ? -1 : 1), tag, done);
-    tool_ = corner_end;
-    queue_start_ = geometry::xy(corner_end);
-    start = corner_end;
+    round_convex_corner(false, plus(op, r, delta), tag, done);
   } else {
     flush(done);
   }
   const double original_sweep = signed_sweep_rad(op, center, turns, e);
-  enqueue(arc_move(start, at_z(new_end, arc.end.z_mm), center, turns), {0.0, 0.0}, original_sweep, tag);
+  enqueue(arc_move(tool_, at_z(new_end, arc.end.z_mm), center, turns), {0.0, 0.0}, original_sweep, tag);
   tool_ = at_z(new_end, arc.end.z_mm);
   programmed_ = arc.end;
   return "";

@@ -68,8 +68,7 @@ class CutterCompensation {
   void flush(std::vector<CompMove>& done);
   void emit(const geometry::Move& move, int tag, std::vector<CompMove>& done);
   void enqueue(const geometry::Move& move, const geometry::Point2& direction, double original_sweep_rad, int tag);
-  std::string concave_line_start(const geometry::Point2& new_direction_end, double theta, double beta, double gamma,
-                                 geometry::Point2& corner) const;
+  void round_convex_corner(bool rapid, const geometry::Point2& corner_end, int tag, std::vector<CompMove>& done);
 
   // A waiting move: the move, the programmed direction of a line, an arc's signed sweep when queued.
   struct Waiting {

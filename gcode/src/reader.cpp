@@ -936,7 +936,6 @@ class Interpreter {
     comp_on_ = true;
     comp_code_ = code;
     comp_line_ = block.line;
-    ++compensated_blocks_;
     if (diameter_mm != 0.0) {  // a zero radius compensates nothing (LinuxCNC)
       compensation_.emplace(side, std::abs(diameter_mm) / 2.0, Point3{path_end_xy_.x_mm, path_end_xy_.y_mm, position_mm_.z_mm},
                             position_mm_);
@@ -1211,7 +1210,6 @@ class Interpreter {
   bool comp_on_ = false;         // G41/G42 in effect (possibly with a zero radius)
   int comp_code_ = kG40;         // the G41 or G42 in effect
   int comp_line_ = 0;            // its line
-  int compensated_blocks_ = 0;   // G41/G42 words read
   std::optional<detail::CutterCompensation> compensation_;  // on, with a radius
   std::vector<CompensatedBlock> compensation_blocks_;       // by tag, while compensation_ is on
   int after_compensation_line_ = 0;  // the G40 line while the move after it is still to come
