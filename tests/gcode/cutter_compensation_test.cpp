@@ -217,6 +217,28 @@ TEST_F(CutterCompensationOracle, ScallopsMeetInConcaveCuspsArcToArcAndArcToLine)
       {{5, 6.0}});
 }
 
+TEST_F(CutterCompensationOracle, InchesG42WithDAndR) {
+  // G42 (the tool right of the path) clockwise round an outline in inches: R and I/J arcs, a chamfer.
+  expect_as_linuxcnc(
+      "G20 G17 G90\n"
+      "T1 M6\n"
+      "S8000 M3\n"
+      "G0 X-1.0 Y-1.0 Z0.1\n"
+      "G1 Z-0.2 F20.0\n"
+      "G42 D1 G1 X0.0 Y-0.25 F60.0\n"
+      "Y2.0\n"
+      "G2 X0.5 Y2.5 R0.5\n"
+      "G1 X2.5\n"
+      "G2 X3.0 Y2.0 I0.0 J-0.5\n"
+      "G1 Y0.5\n"
+      "X2.5 Y0.0\n"
+      "X-0.25\n"
+      "G40 G1 X-1.0 Y-1.0\n"
+      "G0 Z0.5\n"
+      "M30\n",
+      {{1, 6.35}});
+}
+
 // --- Refusals -------------------------------------------------------------------------------------
 
 std::string problems_of(const std::string& text, const std::map<int, double>& diameters_mm) {

@@ -306,6 +306,41 @@ TEST_F(RefeedWholeLines, AMoveToKeepWholeIsNotSplitAndAFixedFeedIsNotChanged) {
       << "a feed for a move whose feed is fixed";
 }
 
+TEST_F(RefeedWholeLines, ADrillingCycleLineStaysAsWrittenAndItsMovesTakeNoPieces) {
+  const std::string text =
+      "G21 G17 G90\n"
+      "M3 S3000\n"
+      "G0 X0 Y0 Z10\n"
+      "G99 G83 X5 Y5 Z-10 R2 Q4 F100\n"
+      "X15\n"
+      "G80\n"
+      "G1 X30 F300\n"
+      "M2\n";
+  std::vector<WrittenMove> written;
+  const geometry::Program program = read_program(text, "test", {}, written);
+  std::vector<FeedPiece> pieces;
+  for (std::size_t i = 0; i < program.path.moves.size(); ++i) {
+    if (program.path.moves[i].kind == geometry::MoveKind::kRapid) continue;
+    if (written[i].fixed_feed) {
+      EXPECT_THROW(refeed_text(text, program, written, {{static_cast<int>(i), program.path.moves[i], 50.0}}),
+                   std::invalid_argument);
+      continue;
+    }
+    pieces.push_back({static_cast<int>(i), program.path.moves[i], 250.0});
+  }
+  ASSERT_EQ(pieces.size(), 1U) << "only the G1 is free";
+  const RefeedResult r = refeed_text(text, program, written, pieces);
+  const std::vector<std::string> out = lines_of(r.text);
+  ASSERT_EQ(out.size(), 8U);
+  EXPECT_EQ(out[3], "G99 G83 X5 Y5 Z-10 R2 Q4 F100");
+  EXPECT_EQ(out[4], "X15");
+  EXPECT_EQ(out[6], "G1 X30 F250.");
+  const oracle::OracleRun run = oracle::run_rs274_text(*rs274_, r.text);
+  ASSERT_EQ(run.exit_code, 0) << run.messages;
+  EXPECT_NEAR(run.moves.back().feed_mm_per_min, 250.0, 1e-6);
+  EXPECT_NEAR(run.moves[run.moves.size() - 2].end.z_mm, 2.0, 1e-9) << "the second hole ends at R (G99)";
+}
+
 TEST(RefeedPieces, PiecesThatAreNotTheProgramsAreRefused) {
   std::vector<WrittenMove> written;
   const std::string text = "G21 G90\nM3 S1000\nG0 X1 Y0 Z5\nG1 X10 F100\nM2\n";
