@@ -1,5 +1,7 @@
 #include "drill_cycle.hpp"
 
+#include <cmath>
+
 namespace feedplan::gcode::detail {
 
 using geometry::Point3;
@@ -71,6 +73,12 @@ void hole_moves(const DrillRequest& q, double x, double y, double clear, Moves& 
 }
 
 }  // namespace
+
+double drill_move_count(const DrillRequest& q) {
+  const bool pecks = q.code == 730 || q.code == 830;
+  const double pecks_per_hole = pecks && q.peck > 0.0 ? std::ceil((q.r - q.bottom) / q.peck) : 0.0;
+  return 1.0 + static_cast<double>(q.repeats) * (4.0 + 3.0 * pecks_per_hole);
+}
 
 std::vector<DrillMove> drill_moves(const DrillRequest& q, Point3& end) {
   Moves out(q.unit_mm);

@@ -51,6 +51,9 @@ struct DrillMove {
   bool spindle_stopped = false;        //!< G86's retract, spindle stopped
 };
 
+//! About how many moves drill_moves makes (a bound, as a double: Q may be tiny and L large).
+double drill_move_count(const DrillRequest& request);
+
 //! The moves of the cycle, in order; `end` gets where the tool is after it, mm. Moves of zero length
 //! are included (the caller drops them, as the reader drops zero-length moves).
 std::vector<DrillMove> drill_moves(const DrillRequest& request, geometry::Point3& end);

@@ -18,17 +18,25 @@ Point3 from_plane(ArcPlane plane, const Point2& q, double axis_mm) {
 
 double helix_axis(ArcPlane plane, const Point3& p) { return plane == ArcPlane::kXZ ? p.y_mm : p.x_mm; }
 
+double plane_arc_piece_count(ArcPlane plane, const Point3& start, const Point3& end, const Point2& center,
+                             double sweep_rad) {
+  const Point2 s = in_plane(plane, start);
+  const Point2 e = in_plane(plane, end);
+  const double r_max = std::max(std::hypot(s.x_mm - center.x_mm, s.y_mm - center.y_mm),
+                                std::hypot(e.x_mm - center.x_mm, e.y_mm - center.y_mm));
+  // A chord of angle φ on radius r deviates r·(1 − cos(φ/2)) from its arc.
+  double piece_rad = kPlaneArcPieceRad;
+  if (r_max > kPlaneArcSagittaMm) piece_rad = std::min(piece_rad, 2.0 * std::acos(1.0 - kPlaneArcSagittaMm / r_max));
+  return std::max(1.0, std::ceil(sweep_rad / piece_rad - 1e-9));
+}
+
 std::vector<Point3> plane_arc_points(ArcPlane plane, const Point3& start, const Point3& end, const Point2& center,
                                      bool ccw, double sweep_rad) {
   const Point2 s = in_plane(plane, start);
   const Point2 e = in_plane(plane, end);
   const double r0 = std::hypot(s.x_mm - center.x_mm, s.y_mm - center.y_mm);
   const double r1 = std::hypot(e.x_mm - center.x_mm, e.y_mm - center.y_mm);
-  const double r_max = std::max(r0, r1);
-  // A chord of angle φ on radius r deviates r·(1 − cos(φ/2)) from its arc.
-  double piece_rad = kPlaneArcPieceRad;
-  if (r_max > kPlaneArcSagittaMm) piece_rad = std::min(piece_rad, 2.0 * std::acos(1.0 - kPlaneArcSagittaMm / r_max));
-  const int pieces = std::max(1, static_cast<int>(std::ceil(sweep_rad / piece_rad - 1e-9)));
+  const int pieces = static_cast<int>(plane_arc_piece_count(plane, start, end, center, sweep_rad));
   const double a0 = std::atan2(s.y_mm - center.y_mm, s.x_mm - center.x_mm);
   const double direction = ccw ? 1.0 : -1.0;
   const double axis0 = helix_axis(plane, start);

@@ -31,6 +31,10 @@ inline constexpr double kPlaneArcSagittaMm = 1e-3;
 //! Longest piece: no chord spans more than this angle, rad (5°).
 inline constexpr double kPlaneArcPieceRad = 5.0 * 3.14159265358979323846 / 180.0;
 
+//! How many pieces plane_arc_points makes of the arc (as a double: a huge radius may need more than an int).
+double plane_arc_piece_count(ArcPlane plane, const geometry::Point3& start, const geometry::Point3& end,
+                             const geometry::Point2& center, double sweep_rad);
+
 //! The ends of the straight pieces of the arc from `start` to `end` about `center` (plane
 //! coordinates) sweeping `sweep_rad` (> 0) in direction `ccw` (in the plane's first→second sense):
 //! as many equal angular pieces as make each chord deviate at most kPlaneArcSagittaMm from the arc and

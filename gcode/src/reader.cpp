@@ -719,8 +719,10 @@ class Interpreter {
   }
 
   // False (after a problem that stops the reading) when the program has max_moves moves already.
-  bool room_for_move(int line) {
-    if (program_.path.moves.size() < static_cast<std::size_t>(std::max(options_.max_moves, 0))) return true;
+  bool room_for_move(int line, double count = 1.0) {
+    if (static_cast<double>(program_.path.moves.size()) + count <= static_cast<double>(std::max(options_.max_moves, 0))) {
+      return true;
+    }
     problems_.add(line, "more than " + std::to_string(options_.max_moves) +
                             " moves (ReaderOptions::max_moves): the planner and the virtual machine would need "
                             "gigabytes for them; split the program");
@@ -1048,6 +1050,7 @@ class Interpreter {
       go_to(end);
       return;
     }
+    if (!room_for_move(block.line, detail::plane_arc_piece_count(plane, start, end, arc.center, arc.sweep_rad))) return;
     const std::vector<Point3> points = detail::plane_arc_points(plane, start, end, arc.center, ccw, arc.sweep_rad);
     WrittenMove written = written_move(block, motion);
     written.keep_whole = true;
@@ -1110,6 +1113,7 @@ class Interpreter {
            " is ignored: the cycle does not dwell (Haas ignores it; LinuxCNC refuses it)");
       p_note_given_ = true;
     }
+    if (!room_for_move(block.line, detail::drill_move_count(request))) return;
     Point3 end;
     const std::vector<detail::DrillMove> moves = detail::drill_moves(request, end);
     WrittenMove written = written_move(block, motion);
