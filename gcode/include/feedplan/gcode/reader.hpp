@@ -45,6 +45,8 @@
 //                     and arcs meet; moves without XY motion (plunges) and helical arcs are kept. Moves
 //                     compensation makes belong to the line of the block the controller makes them for (a
 //                     corner arc: the block after the corner), marked WrittenMove::keep_whole
+//   G40               compensation off: the next move (straight) runs from where the tool is to its
+//                     programmed end, marked keep_whole
 //   G73, G81, G82,    drilling canned cycles in G17, expanded into the moves LinuxCNC makes for each hole
 //   G83, G85, G86,    (drill_cycle.hpp lists them): R plane, Z bottom, P dwell (G82, G86, G89), Q peck
 //   G89, G98, G99     (G73, G83), L repeats (under G91 each a step further), G98 retract to the initial
@@ -62,8 +64,6 @@
 //                     go to that intermediate point (a rapid, in the distance mode in effect), as LinuxCNC
 //                     does. The next move leaves the park height from there; it must be a G0 (a feed move
 //                     would start at an unknown place). A note says how they were read
-//   G40               compensation off: the next move (straight) runs from where the tool is to its
-//                     programmed end, marked keep_whole
 //   G43 H             tool length offset on: the programmed Z is the tool tip, which is what the reader
 //                     assumes anyway; H must be the tool in the spindle (without H: that tool). Other
 //                     words may share the block (`G43 H1 Z5`). G43 with no M6 before it is taken to name
@@ -80,22 +80,25 @@
 //   coolant); M31, M32, M33 (Haas chip conveyor; LinuxCNC refuses them); T without M6 (tool
 //   preparation).
 // Refused, by line and word
-//   G17.1, G18.1, G19.1 (UVW planes); G18/G19 while cutter compensation is on; G41.1, G42.1 (compensation by a diameter in D); G41/G42 without a diameter
-//   for its tool in ReaderOptions::tool_diameters_mm (the message names the tool) or with no D and no tool
-//   in the spindle; what LinuxCNC refuses under compensation: an entry move no longer than the tool radius,
-//   an inside arc whose radius is not larger than the tool's, a concave corner the tool cannot reach
+//   G17.1, G18.1, G19.1 (UVW planes); G18/G19 while cutter compensation is on; G41.1, G42.1
+//   (compensation by a diameter in D); G41/G42 without a diameter for its tool in
+//   ReaderOptions::tool_diameters_mm (the message names the tool) or with no D and no tool in the
+//   spindle; what LinuxCNC refuses under compensation: an entry move no longer than the tool radius, an
+//   inside arc whose radius is not larger than the tool's, a concave corner the tool cannot reach
 //   without gouging, G41/G42 while it is on, an arc right after G40, M6 while it is on; an arc as the
-//   entry move (LinuxCNC accepts it; the reader needs a straight entry); G43.1, G43.2 (dynamic and added tool
-//   length offsets), G43 with an H that is not the tool in the spindle, H without G43; G93 inverse
-//   time and G95 feed per revolution; G96 constant surface speed; G28.1, G30.1 (storing machine
-//   positions), G28/G30/G53 under cutter compensation or G28/G30 with G0–G3 in the block; G10, G52, G92 (offset changes); G5.x splines, G33 threading, G38.x probing, G74 and
-//   G84 tapping, G87 back boring, G88; a drilling cycle outside G17 or under compensation, one that
-//   starts without R or Z (or P, Q where it needs them), with an R below its bottom, a Q ≤ 0, G86 with
-//   the spindle off; G7, G8; a second M6 or one after the first move (the path is planned for one
-//   tool: split the program per tool), M6 with no T before it; every other G or M code; A, B, C, U,
-//   V, W axes; K outside an arc; D outside a G41/G42 block; L outside a drilling cycle; the letter E and the like; parameters and expressions
-//   (#1, [..]); O-word subroutines and control flow; block delete `/` (whether the line runs
-//   depends on the operator's switch).
+//   entry move (LinuxCNC accepts it; the reader needs a straight entry); G43.1, G43.2 (dynamic and
+//   added tool length offsets), G43 with an H that is not the tool in the spindle, H without G43; G93
+//   inverse time and G95 feed per revolution; G96 constant surface speed; G28.1, G30.1 (storing
+//   machine positions), G28/G30/G53 under cutter compensation, G28/G30 with G0–G3 in the block, a feed
+//   move right after a park; G10, G52, G92 (offset changes); G5.x splines, G33 threading, G38.x
+//   probing, G74 and G84 tapping, G87 back boring, G88; a drilling cycle outside G17 or under
+//   compensation, one that starts without R or Z (or P, Q where it needs them), with an R below its
+//   bottom, a Q ≤ 0, G86 with the spindle off; G7, G8; a second M6 or one after the first move (the
+//   path is planned for one tool: split the program per tool), M6 with no T before it; every other G
+//   or M code; A, B, C, U, V, W axes; K outside an arc; D outside a G41/G42 block; L outside a
+//   drilling cycle; the letter E and the like; parameters and expressions (#1, [..]); O-word
+//   subroutines and control flow; block delete `/` (whether the line runs depends on the operator's
+//   switch).
 //
 // Problems found (all collected, up to a cap, into one InputError; each names the line and the
 // word): unknown or refused words; numbers that are not plain decimals (`X1..2`, `Xabc`, `X`, no
@@ -109,11 +112,12 @@
 // (LinuxCNC reads 255), an arc of more than ReaderOptions::max_arc_turns turns, more than
 // ReaderOptions::max_moves moves, a file larger than ReaderOptions::max_file_bytes.
 //
-// What the output means: every G1/G2/G3 move is `cutting` because a reader cannot know which feed
+// What the output means: the moves are the tool tip's centre (under G41/G42 the compensated path).
+// Every feed move (G1, G2, G3, a cycle's feeds, a plane arc's pieces) is `cutting` because a reader cannot know which feed
 // moves cut and which move through air (that needs the stock: geometry/engagement does it);
 // axial_depth_mm is 0 for the same reason. All moves belong to part 0, named "program". Moves of
 // zero length (a G0/G1 to where the tool already is, or a block without axis words) are dropped.
-// Program::coordinate_resolution_mm is the last digit of the finest X Y Z I J R word of the moves
+// Program::coordinate_resolution_mm is the last digit of the finest X Y Z I J K R word of the moves
 // (`X1.25` in G21: 0.01 mm; in G20: 0.254 mm); whole numbers (`X3`, `X3.`) do not count.
 
 #include <cstddef>
