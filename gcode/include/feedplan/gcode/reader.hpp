@@ -113,9 +113,9 @@
 // ReaderOptions::max_moves moves, a file larger than ReaderOptions::max_file_bytes.
 //
 // What the output means: the moves are the tool tip's centre (under G41/G42 the compensated path).
-// Every feed move (G1, G2, G3, a cycle's feeds, a plane arc's pieces) is `cutting` because a reader cannot know which feed
-// moves cut and which move through air (that needs the stock: geometry/engagement does it);
-// axial_depth_mm is 0 for the same reason. All moves belong to part 0, named "program". Moves of
+// Every feed move (G1, G2, G3, a cycle's feeds, a plane arc's pieces) is `cutting` because a reader
+// cannot know which feed moves cut and which move through air (that needs the stock:
+// geometry/engagement does it); axial_depth_mm is 0 for the same reason. All moves belong to part 0, named "program". Moves of
 // zero length (a G0/G1 to where the tool already is, or a block without axis words) are dropped.
 // Program::coordinate_resolution_mm is the last digit of the finest X Y Z I J K R word of the moves
 // (`X1.25` in G21: 0.01 mm; in G20: 0.254 mm); whole numbers (`X3`, `X3.`) do not count.
