@@ -175,7 +175,8 @@ struct ReaderOptions {
 //!
 //! Needs nothing but the text. Returns the moves with one BlockCommand each: the feed in mm/min in
 //! effect for G1/G2/G3 (0 on rapids), the spindle rpm and direction in effect, any G4 dwell since the
-//! previous move, and the 1-based text line of the move; a dwell after the last move goes to
+//! previous move, and the 1-based text line of the move (of the block that makes it: a compensated corner
+//! arc, a drilling cycle's moves, a plane arc's pieces); a dwell after the last move goes to
 //! dwell_at_end_s, and Program::notes carries what the user should know that is not an error. The
 //! path satisfies geometry::consistency_defects. On any problem it throws one feedplan::InputError
 //! listing every problem found (up to options.max_problems), each as
