@@ -11,18 +11,16 @@ constexpr CodeUse kS = CodeUse::kSupported;
 constexpr CodeUse kI = CodeUse::kIgnored;
 constexpr CodeUse kR = CodeUse::kRefused;
 
-constexpr const char* kPlaneReason = "arcs are read in the XY plane (G17) only";
-constexpr const char* kCannedReason = "canned cycles: program their moves explicitly";
+constexpr const char* kPlaneReason = "arcs are read in the XY, XZ and YZ planes (G17, G18, G19) only";
 constexpr const char* kOffsetReason = "it changes coordinate offsets, which the reader does not keep";
-constexpr const char* kHomeReason = "it moves to stored machine positions, which the reader does not know";
+constexpr const char* kHomeReason = "it stores a machine position, which the reader does not keep";
 constexpr const char* kCompReason =
-    "cutter radius compensation: the controller would offset the path by the tool radius; program the "
-    "tool-centre path instead";
+    "cutter radius compensation by a diameter in the D word: use G41/G42 D<tool> with the tool's diameter given "
+    "to the reader";
 constexpr const char* kLengthReason =
     "dynamic or added tool length offsets: Z would no longer be the programmed tool tip; use G43 H<tool>";
 constexpr const char* kPathControlReason =
     "path control only changes how the controller blends corners; the programmed path is the same";
-constexpr const char* kRetractReason = "canned-cycle retract mode; canned cycles are refused anyway";
 
 // G codes by tenths. Groups as in LinuxCNC's interpreter (interp_array.cc).
 const std::map<int, CodeInfo>& g_codes() {
@@ -41,15 +39,15 @@ const std::map<int, CodeInfo>& g_codes() {
       {100, {0, "non-modal", kR, kOffsetReason}},
       {170, {2, "plane", kS, ""}},
       {171, {2, "plane", kR, kPlaneReason}},
-      {180, {2, "plane", kR, kPlaneReason}},
+      {180, {2, "plane", kS, ""}},
       {181, {2, "plane", kR, kPlaneReason}},
-      {190, {2, "plane", kR, kPlaneReason}},
+      {190, {2, "plane", kS, ""}},
       {191, {2, "plane", kR, kPlaneReason}},
       {200, {6, "units", kS, ""}},
       {210, {6, "units", kS, ""}},
-      {280, {0, "non-modal", kR, kHomeReason}},
+      {280, {0, "non-modal", kS, ""}},
       {281, {0, "non-modal", kR, kHomeReason}},
-      {300, {0, "non-modal", kR, kHomeReason}},
+      {300, {0, "non-modal", kS, ""}},
       {301, {0, "non-modal", kR, kHomeReason}},
       {330, {1, "motion", kR, "spindle-synchronised motion (threading)"}},
       {331, {1, "motion", kR, "spindle-synchronised motion (rigid tapping)"}},
@@ -57,17 +55,17 @@ const std::map<int, CodeInfo>& g_codes() {
       {383, {1, "motion", kR, "probing moves"}},
       {384, {1, "motion", kR, "probing moves"}},
       {385, {1, "motion", kR, "probing moves"}},
-      {400, {7, "cutter compensation", kI, "cutter compensation off is the state of a program without G41/G42"}},
-      {410, {7, "cutter compensation", kR, kCompReason}},
+      {400, {7, "cutter compensation", kS, ""}},
+      {410, {7, "cutter compensation", kS, ""}},
       {411, {7, "cutter compensation", kR, kCompReason}},
-      {420, {7, "cutter compensation", kR, kCompReason}},
+      {420, {7, "cutter compensation", kS, ""}},
       {421, {7, "cutter compensation", kR, kCompReason}},
       {430, {8, "tool length offset", kS, ""}},
       {431, {8, "tool length offset", kR, kLengthReason}},
       {432, {8, "tool length offset", kR, kLengthReason}},
       {490, {8, "tool length offset", kI, "tool length offset off is the state of a program without G43"}},
       {520, {0, "non-modal", kR, kOffsetReason}},
-      {530, {0, "non-modal", kR, "it moves in machine coordinates, which the reader does not know"}},
+      {530, {0, "non-modal", kS, ""}},
       {540, {12, "work offset", kS, ""}},
       {550, {12, "work offset", kS, ""}},
       {560, {12, "work offset", kS, ""}},
@@ -80,21 +78,21 @@ const std::map<int, CodeInfo>& g_codes() {
       {610, {13, "path control", kI, kPathControlReason}},
       {611, {13, "path control", kI, kPathControlReason}},
       {640, {13, "path control", kI, kPathControlReason}},
-      {730, {1, "motion", kR, kCannedReason}},
-      {740, {1, "motion", kR, kCannedReason}},
+      {730, {1, "motion", kS, ""}},
+      {740, {1, "motion", kR, "left-hand tapping: the feed follows the spindle"}},
       {760, {1, "motion", kR, "threading cycle"}},
       // LinuxCNC lists G80 in group 1 but accepts it beside G0–G3 (the motion wins), as in the common
       // safe-start line "G0 G40 G49 G80 G90": it gets a group of its own here.
       {800, {11, "motion cancel", kS, ""}},
-      {810, {1, "motion", kR, kCannedReason}},
-      {820, {1, "motion", kR, kCannedReason}},
-      {830, {1, "motion", kR, kCannedReason}},
-      {840, {1, "motion", kR, kCannedReason}},
-      {850, {1, "motion", kR, kCannedReason}},
-      {860, {1, "motion", kR, kCannedReason}},
-      {870, {1, "motion", kR, kCannedReason}},
-      {880, {1, "motion", kR, kCannedReason}},
-      {890, {1, "motion", kR, kCannedReason}},
+      {810, {1, "motion", kS, ""}},
+      {820, {1, "motion", kS, ""}},
+      {830, {1, "motion", kS, ""}},
+      {840, {1, "motion", kR, "tapping: the feed follows the spindle"}},
+      {850, {1, "motion", kS, ""}},
+      {860, {1, "motion", kS, ""}},
+      {870, {1, "motion", kR, "back boring: the spindle is stopped and oriented in the hole"}},
+      {880, {1, "motion", kR, "boring with a manual retract"}},
+      {890, {1, "motion", kS, ""}},
       {900, {3, "distance mode", kS, ""}},
       {901, {4, "arc distance mode", kS, ""}},
       {910, {3, "distance mode", kS, ""}},
@@ -108,8 +106,8 @@ const std::map<int, CodeInfo>& g_codes() {
       {950, {5, "feed mode", kR, "feed per revolution: program F in length per minute (G94)"}},
       {960, {14, "spindle speed mode", kR, "constant surface speed: the rpm would change along the path"}},
       {970, {14, "spindle speed mode", kI, "constant rpm is the default"}},
-      {980, {10, "canned-cycle return", kI, kRetractReason}},
-      {990, {10, "canned-cycle return", kI, kRetractReason}},
+      {980, {10, "canned-cycle return", kS, ""}},
+      {990, {10, "canned-cycle return", kS, ""}},
   };
   return codes;
 }
@@ -128,6 +126,12 @@ const std::map<int, CodeInfo>& m_codes() {
       {9, {8, "coolant", kI, "coolant"}},
       {19, {7, "spindle", kR, "spindle orientation"}},
       {30, {4, "stopping", kS, ""}},
+      // Haas: chip conveyor forward, reverse, stop; through-spindle coolant on, off. No effect on the path.
+      {31, {10, "chip conveyor", kI, "Haas chip conveyor: no effect on the path, feeds or spindle"}},
+      {32, {10, "chip conveyor", kI, "Haas chip conveyor: no effect on the path, feeds or spindle"}},
+      {33, {10, "chip conveyor", kI, "Haas chip conveyor: no effect on the path, feeds or spindle"}},
+      {88, {8, "coolant", kI, "Haas through-spindle coolant"}},
+      {89, {8, "coolant", kI, "Haas through-spindle coolant"}},
       {48, {9, "override switches", kR, "override switches change the feed the machine runs"}},
       {49, {9, "override switches", kR, "override switches change the feed the machine runs"}},
       {50, {9, "override switches", kR, "override switches change the feed the machine runs"}},
@@ -166,8 +170,6 @@ std::string letter_refusal(char letter) {
   switch (letter) {
     case 'A': case 'B': case 'C': return "rotary axes; the reader reads X, Y and Z only";
     case 'U': case 'V': case 'W': return "extra linear axes; the reader reads X, Y and Z only";
-    case 'D': return "D selects cutter radius compensation (G41, G42), which is not supported";
-    case 'L': return "L is read by G10 and canned cycles, which are not supported";
     default: return "not a word the reader knows";
   }
 }

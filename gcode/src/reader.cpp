@@ -13,11 +13,14 @@
 
 #include "arc_geometry.hpp"
 #include "code_catalog.hpp"
+#include "cutter_compensation.hpp"
+#include "drill_cycle.hpp"
 #include "feedplan/core/bounded_read.hpp"
 #include "feedplan/core/input_error.hpp"
 #include "feedplan/core/number_text.hpp"
 #include "feedplan/geometry/tool_path.hpp"
 #include "line_lexer.hpp"
+#include "plane_arc.hpp"
 #include "problem_log.hpp"
 
 namespace feedplan::gcode {
@@ -35,7 +38,8 @@ namespace {
 
 constexpr double kMmPerInch = 25.4;
 constexpr double kReportedShiftMm = 1e-6;  // centre moves above this are counted in a note
-constexpr std::size_t kMaxLineCharacters = 4096;  // LinuxCNC's limit is 255; CAM comments stay far below
+constexpr std::size_t kMaxLineCharacters = 4096;
+constexpr double kParkClearanceMm = 25.0;  // the park height above the highest Z reached (ReaderOptions::park_z_mm)  // LinuxCNC's limit is 255; CAM comments stay far below
 
 // Motion modes in tenths of their G number; kNoMotion after G80 and at the start (as LinuxCNC).
 constexpr int kNoMotion = -1;
@@ -44,7 +48,13 @@ constexpr int kG1 = 10;
 constexpr int kG2 = 20;
 constexpr int kG3 = 30;
 constexpr int kG4 = 40;
+constexpr int kG17 = 170;
+constexpr int kG18 = 180;
+constexpr int kG19 = 190;
 constexpr int kG20 = 200;
+constexpr int kG40 = 400;
+constexpr int kG41 = 410;
+constexpr int kG42 = 420;
 constexpr int kG43 = 430;
 constexpr int kG49 = 490;
 constexpr int kG64 = 640;
@@ -55,14 +65,24 @@ constexpr int kG90_1 = 901;
 constexpr int kG91 = 910;
 constexpr int kG91_1 = 911;
 constexpr int kG54 = 540;
+constexpr int kG28 = 280;
+constexpr int kG30 = 300;
+constexpr int kG53 = 530;
 
 bool is_arc(int motion) { return motion == kG2 || motion == kG3; }
 bool is_motion(int motion) { return motion == kG0 || motion == kG1 || is_arc(motion); }
+// The drilling canned cycles the reader expands: G73, G81, G82, G83, G85, G86, G89.
+bool is_cycle(int motion) {
+  return motion == 730 || motion == 810 || motion == 820 || motion == 830 || motion == 850 || motion == 860 ||
+         motion == 890;
+}
+bool cycle_dwells(int motion) { return motion == 820 || motion == 860 || motion == 890; }
+bool cycle_pecks(int motion) { return motion == 730 || motion == 830; }
 
 // Value words the reader reads (G, M, N and O are handled separately).
 bool is_value_letter(char letter) {
   switch (letter) {
-    case 'F': case 'H': case 'I': case 'J': case 'K': case 'P': case 'Q': case 'R': case 'S': case 'T': case 'X': case 'Y': case 'Z':
+    case 'D': case 'F': case 'H': case 'L': case 'I': case 'J': case 'K': case 'P': case 'Q': case 'R': case 'S': case 'T': case 'X': case 'Y': case 'Z':
       return true;
     default:
       return false;
@@ -108,6 +128,7 @@ class Interpreter {
   Interpreter(const ReaderOptions& options, detail::ProblemLog& problems) : options_(options), problems_(problems) {
     position_mm_ = options.initial_position;
     path_end_xy_ = geometry::xy(options.initial_position);
+    highest_z_mm_ = options.initial_position.z_mm;
     program_.path.part_names = {"program"};
   }
 
@@ -129,12 +150,33 @@ class Interpreter {
       if (end == text.size()) break;
       begin = end + 1;
     }
+    finish_compensation();
     if (!ended_ && options_.require_program_end && !problems_.full()) {
       problems_.add(std::max(last_content_line_, 1),
                     "end of text: the program ends without M2, M30 or a closing %, so the file may be truncated "
                     "(ReaderOptions::require_program_end = false accepts it)");
     }
     program_.dwell_at_end_s = pending_dwell_s_;
+    if (machine_position_moves_ > 0) {
+      note(std::to_string(machine_position_moves_) +
+           (machine_position_moves_ == 1 ? " move" : " moves") + " to machine positions (G28, G30, G53) were read as "
+           "retracts above the part: a rapid straight up to a park height (" +
+           (options_.park_z_mm ? "Z " + six_digit_number_text(*options_.park_z_mm) + " mm, ReaderOptions::park_z_mm"
+                               : "the highest Z reached before it plus 25 mm, at most Z " +
+                                     six_digit_number_text(highest_park_z_mm_) + " mm; ReaderOptions::park_z_mm sets it") +
+           "), X and Y kept — the reader has no machine coordinates; the next "
+           "move leaves from there");
+    }
+    if (drilled_holes_ > 0) {
+      note(std::to_string(drilled_holes_) + (drilled_holes_ == 1 ? " hole" : " holes") +
+           " of drilling cycles (G73, G81–G89) became their moves as LinuxCNC makes them; their feeds are the "
+           "program's and stay as written (WrittenMove::fixed_feed)");
+    }
+    if (plane_arcs_ > 0) {
+      note(std::to_string(plane_arcs_) + (plane_arcs_ == 1 ? " arc" : " arcs") +
+           " in the XZ or YZ plane (G18, G19) became " + std::to_string(plane_arc_pieces_) +
+           " straight feed moves along the arc (chords within 1 µm of it, at most 5° each), kept on their lines");
+    }
     if (moved_centres_.count > 0) {
       note(moved_centres_.text(" arc centre was", " arc centres were") +
            " moved so that start and end lie on one circle (their radii differed within "
@@ -156,6 +198,7 @@ class Interpreter {
 
  private:
   void end_program(int line, const char* how) {
+    finish_compensation();
     ended_ = true;
     end_line_ = line;
     end_word_ = how;
@@ -270,9 +313,39 @@ class Interpreter {
   // G80 (LinuxCNC's rule); kNoMotion otherwise.
   int executed_motion(const Block& block) const {
     if (const std::optional<int> own = block.g_by_group[1]) return *own;
+    if (goes_home(block)) return kNoMotion;  // G28/G30 read the axis words
     const bool axis_words = block.has('X') || block.has('Y') || block.has('Z');
-    if (axis_words && !block.has_g(kG80, 11) && is_motion(motion_)) return motion_;
+    if (axis_words && !block.has_g(kG80, 11) && (is_motion(motion_) || is_cycle(motion_))) return motion_;
     return kNoMotion;
+  }
+
+  static bool goes_home(const Block& block) { return block.has_g(kG28, 0) || block.has_g(kG30, 0); }
+
+  // G28, G30 and G53 (machine positions): not under cutter compensation (LinuxCNC refuses it too); G53
+  // with G0 or G1; G28/G30 without a motion of its own in the block (both would read the axis words).
+  bool check_machine_position_words(const Block& block, int motion) {
+    bool ok = true;
+    auto fail = [&](const std::string& message) {
+      problems_.add(block.line, message);
+      ok = false;
+    };
+    const bool home = goes_home(block);
+    const bool g53 = block.has_g(kG53, 0);
+    if (!home && !g53) return true;
+    const std::string name = detail::g_code_name(*block.g_by_group[0]);
+    if (comp_on_) {
+      fail("word " + name + ": a move to a machine position under cutter compensation (G" +
+           std::to_string(comp_code_ / 10) + " on line " + std::to_string(comp_line_) +
+           "); G40 first (LinuxCNC refuses it too)");
+    }
+    if (home && block.g_by_group[1]) {
+      fail("word " + name + ": " + detail::g_code_name(*block.g_by_group[1]) +
+           " in the same block: both would read the axis words; put them in separate blocks");
+    }
+    if (g53 && motion != kNoMotion && motion != kG0 && motion != kG1) {
+      fail("word G53: " + detail::g_code_name(motion) + " in effect; G53 moves with G0 or G1 (LinuxCNC refuses it too)");
+    }
+    return ok;
   }
 
   // Checks that every word of a sorted block has a code that reads it and a value it accepts.
@@ -296,7 +369,7 @@ class Interpreter {
         fail("word " + w->text + ": axis words cannot be used with G80, which cancels the motion mode");
       } else if (!own_motion && dwell) {
         fail("word " + w->text + ": axis words in a G4 block need G0, G1, G2 or G3 in the same block");
-      } else if (motion == kNoMotion) {
+      } else if (motion == kNoMotion && !goes_home(block)) {
         fail("word " + w->text + ": axis words need a motion mode, and no G0, G1, G2 or G3 is in effect");
       }
       break;
@@ -304,16 +377,35 @@ class Interpreter {
     const std::string motion_name = motion == kNoMotion ? std::string("no motion") : detail::g_code_name(motion);
     for (char letter : {'I', 'J', 'K', 'R'}) {
       const Word* w = block.word(letter);
+      if (letter == 'R' && is_cycle(motion)) continue;  // the cycle's R plane
       if (w != nullptr && !is_arc(motion)) {
         fail("word " + w->text + ": " + std::string(1, letter) + " is read only with G2 or G3 (" + motion_name +
              " in this block)");
       }
     }
-    if (is_arc(motion) && block.has('R') && (block.has('I') || block.has('J'))) {
-      fail("word " + block.word('R')->text + ": R and I/J in one arc; use one format");
+    const int plane = block.g_by_group[2].value_or(plane_);
+    const std::string centre_letters = plane == kG17 ? "IJ" : plane == kG18 ? "IK" : "JK";
+    const std::string centre_names = plane == kG17 ? "I, J" : plane == kG18 ? "I, K" : "J, K";
+    const bool centre_words = block.has(centre_letters[0]) || block.has(centre_letters[1]);
+    if (is_arc(motion) && block.has('R') && (block.has('I') || block.has('J') || (plane != kG17 && block.has('K')))) {
+      fail("word " + block.word('R')->text + ": R and " + (plane == kG17 ? "I/J" : plane == kG18 ? "I/K" : "J/K") +
+           " in one arc; use one format");
     }
-    if (is_arc(motion) && !block.has('R') && !block.has('I') && !block.has('J')) {
-      fail(detail::g_code_name(motion) + " without I, J or R: an arc needs its centre (I, J) or its radius (R)");
+    if (is_arc(motion) && !block.has('R') && !centre_words) {
+      fail(detail::g_code_name(motion) + " without " + centre_names + " or R: an arc needs its centre (" + centre_names +
+           ") or its radius (R)");
+    }
+    if (is_arc(motion) && plane != kG17) {
+      const char off_plane = plane == kG18 ? 'J' : 'I';
+      if (const Word* w = block.word(off_plane)) {
+        fail("word " + w->text + ": " + std::string(1, off_plane) + " is not read in the " +
+             (plane == kG18 ? "XZ plane (G18), whose arc centre is I (X) and K (Z)" : "YZ plane (G19), whose arc centre is J (Y) and K (Z)") +
+             " (LinuxCNC refuses it too)");
+      }
+    }
+    if (const std::optional<int> new_plane = block.g_by_group[2]; new_plane && *new_plane != kG17 && comp_on_) {
+      fail("word " + detail::g_code_name(*new_plane) + ": cutter compensation (G" + std::to_string(comp_code_ / 10) +
+           " on line " + std::to_string(comp_line_) + ") is read in the XY plane (G17) only; G40 first");
     }
     if (const Word* p = block.word('P')) {
       if (dwell && (is_arc(motion) || blend)) {
@@ -327,15 +419,30 @@ class Interpreter {
           fail("word " + p->text + ": more than " + std::to_string(options_.max_arc_turns) +
                " turns in one arc (ReaderOptions::max_arc_turns)");
         }
+      } else if (is_cycle(motion)) {
+        if (p->value < 0.0) fail("word " + p->text + ": a cycle's dwell must be ≥ 0 s");
       } else if (!blend) {
-        fail("word " + p->text + ": not supported here (P is read with G4, G2, G3 and G64)");
+        fail("word " + p->text + ": not supported here (P is read with G4, G2, G3, G64 and drilling cycles)");
       }
     } else if (dwell) {
       fail("G4 without P: a dwell needs P, its time in seconds");
     }
     if (const Word* q = block.word('Q'); q != nullptr && !blend) {
-      fail("word " + q->text + ": not supported (Q is read only with G64; canned cycles are not supported)");
+      if (!cycle_pecks(motion)) {
+        fail("word " + q->text + ": not supported here (Q is read only with G64, G73 and G83)");
+      } else if (!(q->value > 0.0)) {
+        fail("word " + q->text + ": the peck depth Q must be > 0 (LinuxCNC refuses it too)");
+      }
     }
+    if (const Word* l = block.word('L')) {
+      if (!is_cycle(motion)) {
+        fail("word " + l->text + ": L is read only with drilling cycles (their repeats)");
+      } else if (l->value < 1.0 || l->value != std::floor(l->value) || l->value > 10000.0) {
+        fail("word " + l->text + ": a cycle's repeats L must be a whole number from 1 to 10000");
+      }
+    }
+    if (is_cycle(motion) && !check_cycle_words(block, motion)) ok = false;
+    if (!check_machine_position_words(block, motion)) ok = false;
     if (const Word* f = block.word('F'); f != nullptr && f->value < 0.0) {
       fail("word " + f->text + ": a feed must be ≥ 0");
     }
@@ -354,6 +461,103 @@ class Interpreter {
            " changes the units (LinuxCNC reads this F in the previous unit); put F in a later block");
     }
     if (!check_tool_words(block)) ok = false;
+    if (!check_compensation_words(block)) ok = false;
+    return ok;
+  }
+
+  // The tool whose diameter a G41/G42 block compensates for: its D word (a tool number, as in LinuxCNC),
+  // else the tool in the spindle. nullopt when neither names one.
+  std::optional<int> compensation_tool(const Block& block) const {
+    if (const Word* d = block.word('D')) return static_cast<int>(d->value);
+    if (block.has_m(6, 6) && block.has('T')) return tool_of(block.word('T'));
+    if (tool_in_spindle_) return tool_in_spindle_;
+    return g43_tool_;
+  }
+
+  // D only with G41/G42, a whole tool number whose diameter the options give; no second G41/G42, no tool
+  // change while compensation is on (LinuxCNC refuses both too).
+  bool check_compensation_words(const Block& block) {
+    bool ok = true;
+    auto fail = [&](const std::string& message) {
+      problems_.add(block.line, message);
+      ok = false;
+    };
+    const std::optional<int> comp = block.g_by_group[7];
+    const bool turns_on = comp && (*comp == kG41 || *comp == kG42);
+    const Word* d = block.word('D');
+    if (d != nullptr && !turns_on) {
+      fail("word " + d->text + ": D is read only with G41 or G42 (the tool whose diameter compensation uses)");
+      return false;
+    }
+    if (comp_on_ && block.has_m(6, 6) && (!comp || *comp != kG40)) {
+      fail("word M6: a tool change while cutter compensation is on (G" + std::to_string(comp_code_ / 10) + " on line " +
+           std::to_string(comp_line_) + "); G40 first (LinuxCNC refuses it too)");
+    }
+    if (!turns_on) return ok;
+    const std::string code = detail::g_code_name(*comp);
+    if (block.g_by_group[2].value_or(plane_) != kG17) {
+      fail("word " + code + ": cutter compensation is read in the XY plane (G17) only");
+      return false;
+    }
+    if (comp_on_) {
+      fail("word " + code + ": cutter compensation is already on (G" + std::to_string(comp_code_ / 10) + " on line " +
+           std::to_string(comp_line_) + "); turn it off with G40 first (LinuxCNC refuses it too)");
+      return false;
+    }
+    if (d != nullptr && (d->value < 0.0 || d->value != std::floor(d->value) || d->value > 1e6)) {
+      fail("word " + d->text + ": D must be a whole tool number ≥ 0 (LinuxCNC: the tool whose diameter is used)");
+      return false;
+    }
+    const std::optional<int> tool = compensation_tool(block);
+    if (!tool) {
+      fail("word " + code + ": no D word and no tool in the spindle (T M6 or G43 H before it): the reader cannot tell "
+           "which tool's radius to compensate for; write " + code + " D<tool>");
+      return false;
+    }
+    const auto diameter = options_.tool_diameters_mm.find(*tool);
+    if (diameter == options_.tool_diameters_mm.end()) {
+      const std::string subject = d != nullptr ? "word " + d->text : "word " + code;
+      fail(subject + ": cutter compensation needs the diameter of tool " + std::to_string(*tool) +
+           ", which is not given: give the diameter of tool " + std::to_string(*tool) +
+           " (ReaderOptions::tool_diameters_mm; feedplan optimize --tools)");
+      return false;
+    }
+    if (!std::isfinite(diameter->second)) {
+      fail("word " + code + ": the diameter given for tool " + std::to_string(*tool) + " is not a finite number");
+      return false;
+    }
+    return ok;
+  }
+
+  // A drilling cycle's block: in G17, without cutter compensation; R and Z when the cycle starts (a change
+  // of cycle code, or after G80 or G0–G3), P for those that dwell, Q for those that peck (LinuxCNC's rules);
+  // G86 with the spindle turning.
+  bool check_cycle_words(const Block& block, int motion) {
+    bool ok = true;
+    auto fail = [&](const std::string& message) {
+      problems_.add(block.line, message);
+      ok = false;
+    };
+    const std::string name = detail::g_code_name(motion);
+    if (block.g_by_group[2].value_or(plane_) != kG17) {
+      fail("word " + name + ": drilling cycles are read in the XY plane (G17) only");
+    }
+    if (comp_on_) {
+      fail("word " + name + ": a drilling cycle under cutter compensation (G" + std::to_string(comp_code_ / 10) +
+           " on line " + std::to_string(comp_line_) + "); G40 first (LinuxCNC refuses it too)");
+    }
+    const bool starts = motion_ != motion;
+    if (starts && !block.has('R')) fail("word " + name + ": the cycle starts here and needs R, its R plane");
+    if (starts && !block.has('Z')) fail("word " + name + ": the cycle starts here and needs Z, its bottom");
+    if (starts && cycle_dwells(motion) && !block.has('P')) {
+      fail("word " + name + ": the cycle starts here and needs P, its dwell at the bottom in seconds");
+    }
+    if (starts && cycle_pecks(motion) && !block.has('Q')) {
+      fail("word " + name + ": the cycle starts here and needs Q, its peck depth");
+    }
+    if (motion == 860 && spindle_ == SpindleDirection::kOff && !block.has_m(3, 7) && !block.has_m(4, 7)) {
+      fail("word " + name + ": G86 needs the spindle turning (M3 or M4; LinuxCNC refuses it too)");
+    }
     return ok;
   }
 
@@ -449,10 +653,12 @@ class Interpreter {
     if (block.has_m(4, 7)) spindle_ = SpindleDirection::kCounterClockwise;
     if (block.has_m(5, 7)) spindle_ = SpindleDirection::kOff;
     if (block.has_g(kG4, 0)) pending_dwell_s_ += block.word('P')->value;
+    if (const std::optional<int> plane = block.g_by_group[2]) plane_ = *plane;
     if (const std::optional<int> units = block.g_by_group[6]) {
       inch_ = *units == kG20;
       units_set_ = true;
     }
+    if (const std::optional<int> comp = block.g_by_group[7]) set_compensation(block, *comp);
     if (const std::optional<int> offset = block.g_by_group[12]) work_offset_ = *offset;
     if (block.has_g(kG43, 8)) {
       g43_tool_ = block.has('H') ? static_cast<int>(block.word('H')->value) : *tool_in_spindle_;
@@ -467,8 +673,12 @@ class Interpreter {
     if (block.has_g(kG91, 3)) absolute_ = false;
     if (block.has_g(kG90_1, 4)) absolute_arc_center_ = true;
     if (block.has_g(kG91_1, 4)) absolute_arc_center_ = false;
+    if (block.has_g(980, 10)) retract_to_r_ = false;
+    if (block.has_g(990, 10)) retract_to_r_ = true;
     if (block.has_g(kG80, 11)) motion_ = kNoMotion;
     if (const std::optional<int> own = block.g_by_group[1]) motion_ = *own;
+    if (!is_cycle(motion_)) cycle_initial_z_mm_.reset();  // the next cycle begins a new initial level
+    if (goes_home(block)) go_home(block);
     if (motion != kNoMotion) move(block, motion);
     if (block.has_m(2, 4) || block.has_m(30, 4)) end_program(line, block.has_m(2, 4) ? "M2" : "M30");
   }
@@ -509,8 +719,10 @@ class Interpreter {
   }
 
   // False (after a problem that stops the reading) when the program has max_moves moves already.
-  bool room_for_move(int line) {
-    if (program_.path.moves.size() < static_cast<std::size_t>(std::max(options_.max_moves, 0))) return true;
+  bool room_for_move(int line, double count = 1.0) {
+    if (static_cast<double>(program_.path.moves.size()) + count <= static_cast<double>(std::max(options_.max_moves, 0))) {
+      return true;
+    }
     problems_.add(line, "more than " + std::to_string(options_.max_moves) +
                             " moves (ReaderOptions::max_moves): the planner and the virtual machine would need "
                             "gigabytes for them; split the program");
@@ -520,7 +732,8 @@ class Interpreter {
 
   // The program's coordinate grid: the finest last digit of the block's X Y Z I J R words.
   void note_resolution(const Block& block) {
-    for (const char letter : {'X', 'Y', 'Z', 'I', 'J', 'R'}) {
+    for (const char letter : {'X', 'Y', 'Z', 'I', 'J', 'K', 'R'}) {
+      if (letter == 'K' && plane_ == kG17) continue;  // ignored in XY arcs
       const Word* w = block.word(letter);
       const std::size_t point = w != nullptr ? w->text.find('.') : std::string::npos;
       if (point == std::string::npos || point + 1 == w->text.size()) continue;  // a whole number: exact
@@ -534,9 +747,10 @@ class Interpreter {
   static constexpr double kInchProgramDigitMm = 0.0001 * 25.4;
 
   // The largest last digit of the block's X Y I J words written with decimals, mm (0 when none has any).
-  double coarsest_digit_mm(const Block& block) const {
+  double coarsest_digit_mm(const Block& block, const char* letters = "XYIJ") const {
     double coarsest = 0.0;
-    for (const char letter : {'X', 'Y', 'I', 'J'}) {
+    for (const char* letter_at = letters; *letter_at != '\0'; ++letter_at) {
+      const char letter = *letter_at;
       const Word* w = block.word(letter);
       const std::size_t point = w != nullptr ? w->text.find('.') : std::string::npos;
       if (point == std::string::npos || point + 1 == w->text.size()) continue;
@@ -602,6 +816,10 @@ class Interpreter {
     axis('X', position_mm_.x_mm, end.x_mm);
     axis('Y', position_mm_.y_mm, end.y_mm);
     axis('Z', position_mm_.z_mm, end.z_mm);
+    if (is_arc(motion) && plane_ != kG17) {
+      plane_arc_move(block, motion, end);
+      return;
+    }
     if (block.has('K') && !k_note_given_) {
       note("line " + std::to_string(line) + ": K words of arcs in the XY plane are ignored, as grbl does (they offset "
            "the centre along Z, which an XY arc does not have); LinuxCNC refuses them");
@@ -617,8 +835,38 @@ class Interpreter {
     m.end = end;
     m.part = 0;
     const bool feed = motion != kG0;
+    if (block.has_g(kG53, 0)) {  // a move in machine coordinates: read as a park, which does not cut
+      park(block.line);
+      return;
+    }
     if (feed && (!feed_ok(line, motion) || !spindle_ok(line, motion))) {
       go_to(end);
+      return;
+    }
+    if (parked_line_ != 0) {
+      const int parked = parked_line_;
+      parked_line_ = 0;
+      if (feed) {
+        problems_.add(line, detail::g_code_name(motion) + " right after a move to a machine position (line " +
+                                std::to_string(parked) + "): the reader does not know where the machine put the tool "
+                                "and reads such moves as a retract above the part; move there with G0 first");
+        go_to(end);
+        return;
+      }
+    }
+    if (is_arc(motion) && after_compensation_line_ != 0) {
+      problems_.add(line, detail::g_code_name(motion) + ": the move just after G40 (line " +
+                              std::to_string(after_compensation_line_) +
+                              ") must be straight, not an arc (LinuxCNC refuses it too)");
+      go_to(end);
+      return;
+    }
+    if (is_cycle(motion)) {
+      drill(block, motion);
+      return;
+    }
+    if (compensation_) {
+      compensated_move(block, motion, end);
       return;
     }
     if (!is_arc(motion)) {
@@ -633,22 +881,320 @@ class Interpreter {
       return;
     }
     if (!room_for_move(line)) return;
-    m.cutting = feed;
+    WrittenMove written = written_move(block, motion);
+    written.keep_whole = after_compensation_line_ != 0;  // the exit move starts off the programmed path
+    after_compensation_line_ = 0;
+    add_move(m, block_command(line, motion), written);
+    position_mm_ = end;
+    path_end_xy_ = geometry::xy(m.end);
+  }
+
+  // The command of a move of `motion` read on `line` (takes the pending dwell).
+  geometry::BlockCommand block_command(int line, int motion) {
     geometry::BlockCommand command;
-    command.feed_mm_per_min = feed ? feed_mm_per_min_ : 0.0;
+    command.feed_mm_per_min = motion != kG0 ? feed_mm_per_min_ : 0.0;
     command.spindle_rpm = spindle_rpm_;
     command.spindle = spindle_;
     command.dwell_before_s = pending_dwell_s_;
     command.source_line = line;
     pending_dwell_s_ = 0.0;
-    written_.push_back({line, motion == kG0 ? 0 : motion == kG1 ? 1 : motion == kG2 ? 2 : 3,
-                        block.g_by_group[1].has_value(), inch_, !absolute_, absolute_arc_center_, block.has('R'),
-                        block.has('P'), tool_in_spindle_ ? *tool_in_spindle_ : g43_tool_ ? *g43_tool_ : -1});
+    return command;
+  }
+
+  WrittenMove written_move(const Block& block, int motion) const {
+    return {block.line, motion == kG0 ? 0 : motion == kG1 ? 1 : motion == kG2 ? 2 : 3,
+            block.g_by_group[1].has_value(), inch_, !absolute_, absolute_arc_center_, block.has('R'),
+            block.has('P'), tool_in_spindle_ ? *tool_in_spindle_ : g43_tool_ ? *g43_tool_ : -1};
+  }
+
+  void add_move(Move m, const geometry::BlockCommand& command, const WrittenMove& written, bool park = false) {
+    // The park height is above the part, not above itself: moves that stay at it (a rapid across after a
+    // park) do not raise it.
+    if (!park && !(machine_position_moves_ > 0 && m.end.z_mm == last_park_z_mm_)) {
+      highest_z_mm_ = std::max(highest_z_mm_, m.end.z_mm);
+    }
+    m.part = 0;
+    m.cutting = m.kind != MoveKind::kRapid;
+    written_.push_back(written);
     program_.path.moves.push_back(m);
     program_.blocks.push_back(command);
-    position_mm_ = end;
-    path_end_xy_ = geometry::xy(m.end);
     moved_ = true;
+  }
+
+  // G40, G41, G42 (LinuxCNC: after units, before the tool length offset). check_compensation_words made
+  // sure a G41/G42 has its tool's diameter.
+  void set_compensation(const Block& block, int code) {
+    if (code == kG40) {
+      if (compensation_) after_compensation_line_ = block.line;
+      finish_compensation();
+      comp_on_ = false;
+      return;
+    }
+    const double diameter_mm = options_.tool_diameters_mm.at(*compensation_tool(block));
+    detail::CompSide side = code == kG41 ? detail::CompSide::kLeft : detail::CompSide::kRight;
+    if (diameter_mm < 0.0) {  // LinuxCNC: a negative diameter compensates on the other side
+      side = side == detail::CompSide::kLeft ? detail::CompSide::kRight : detail::CompSide::kLeft;
+    }
+    comp_on_ = true;
+    comp_code_ = code;
+    comp_line_ = block.line;
+    if (diameter_mm != 0.0) {  // a zero radius compensates nothing (LinuxCNC)
+      compensation_.emplace(side, std::abs(diameter_mm) / 2.0, Point3{path_end_xy_.x_mm, path_end_xy_.y_mm, position_mm_.z_mm},
+                            position_mm_);
+    }
+  }
+
+  // A move under G41/G42: the tool-centre moves compensation makes of it (cutter_compensation.hpp), each
+  // kept whole on the line of the block the controller makes it for.
+  void compensated_move(const Block& block, int motion, const Point3& end) {
+    const int line = block.line;
+    const int tag = static_cast<int>(compensation_blocks_.size());
+    std::vector<detail::CompMove> done;
+    std::string problem;
+    if (is_arc(motion)) {
+      Move programmed;
+      programmed.start = position_mm_;
+      programmed.end = end;
+      if (!make_arc(block, motion, programmed)) {
+        go_to(end);
+        return;
+      }
+      const int turns = block.has('P') ? static_cast<int>(block.word('P')->value) : 1;
+      problem = compensation_->arc({programmed.center, programmed.end, motion == kG3, turns}, tag, done);
+    } else {
+      problem = compensation_->straight(motion == kG0, end, tag, done);
+    }
+    if (!problem.empty()) {
+      problems_.add(line, detail::g_code_name(motion) + " under cutter compensation (G" + std::to_string(comp_code_ / 10) +
+                              " on line " + std::to_string(comp_line_) + "): " + problem);
+      compensation_.reset();  // the rest is read uncompensated: one problem, not a cascade
+      go_to(end);
+      return;
+    }
+    WrittenMove written = written_move(block, motion);
+    written.keep_whole = true;
+    compensation_blocks_.push_back({block_command(line, motion), written});
+    add_compensated(done);
+    position_mm_ = compensation_->programmed_position();
+    path_end_xy_ = geometry::xy(compensation_->tool_position());
+  }
+
+  // Moves whose compensated end is final, each with the command of the block that made it.
+  void add_compensated(const std::vector<detail::CompMove>& done) {
+    for (const detail::CompMove& c : done) {
+      const Move& m = c.move;
+      if (m.kind != MoveKind::kArc && m.start.x_mm == m.end.x_mm && m.start.y_mm == m.end.y_mm &&
+          m.start.z_mm == m.end.z_mm) {
+        continue;
+      }
+      if (!room_for_move(compensation_blocks_[static_cast<std::size_t>(c.tag)].command.source_line)) return;
+      const CompensatedBlock& block = compensation_blocks_[static_cast<std::size_t>(c.tag)];
+      geometry::BlockCommand command = block.command;
+      if (m.kind == MoveKind::kRapid) command.feed_mm_per_min = 0.0;
+      add_move(m, command, block.written);
+      compensation_blocks_[static_cast<std::size_t>(c.tag)].command.dwell_before_s = 0.0;
+    }
+  }
+
+  // G40 or the program end: the moves compensation holds back keep their ends; the tool is where the last
+  // one ends, the programmed position where it was programmed.
+  void finish_compensation() {
+    if (!compensation_) return;
+    std::vector<detail::CompMove> done;
+    compensation_->finish(done);
+    add_compensated(done);
+    path_end_xy_ = geometry::xy(compensation_->tool_position());
+    position_mm_ = compensation_->programmed_position();
+    compensation_.reset();
+    compensation_blocks_.clear();
+  }
+
+  // A G2/G3 in the XZ (G18) or YZ (G19) plane: its circle from R or from the plane's centre words, as
+  // LinuxCNC reads them (plane_arc.hpp), as straight feed moves along it, all on the block's line and kept
+  // whole.
+  void plane_arc_move(const Block& block, int motion, const Point3& end) {
+    const detail::ArcPlane plane = plane_ == kG18 ? detail::ArcPlane::kXZ : detail::ArcPlane::kYZ;
+    const bool ccw = motion == kG3;
+    const int turns = block.has('P') ? static_cast<int>(block.word('P')->value) : 1;
+    const Point3 start{path_end_xy_.x_mm, path_end_xy_.y_mm, position_mm_.z_mm};
+    const Point2 start_2 = detail::in_plane(plane, start);
+    const Point2 end_2 = detail::in_plane(plane, end);
+    detail::ArcCircle arc;
+    std::string subject = detail::g_code_name(motion);
+    if (const Word* r = block.word('R')) {
+      subject += " " + r->text;
+      arc = detail::arc_from_radius(start_2, end_2, r->value * unit_mm(), ccw, turns, options_.arc_radius_tolerance_mm);
+    } else {
+      // The plane's centre words: G18 K (Z) then I (X); G19 J (Y) then K (Z), as LinuxCNC pairs them.
+      const char first = plane == detail::ArcPlane::kXZ ? 'K' : 'J';
+      const char second = plane == detail::ArcPlane::kXZ ? 'I' : 'K';
+      double offset[2] = {0.0, 0.0};
+      int k = 0;
+      for (const char letter : {first, second}) {
+        if (const Word* w = block.word(letter)) {
+          subject += " " + w->text;
+          offset[k] = w->value * unit_mm();
+        }
+        ++k;
+      }
+      const Point2 programmed_start = detail::in_plane(plane, position_mm_);
+      const Point2 center = absolute_arc_center_ ? Point2{offset[0], offset[1]}
+                                                 : Point2{programmed_start.x_mm + offset[0], programmed_start.y_mm + offset[1]};
+      const double digit_mm = std::min(coarsest_digit_mm(block, plane == detail::ArcPlane::kXZ ? "XZIK" : "YZJK"),
+                                       kInchProgramDigitMm);
+      const double tolerance_mm = std::max(options_.arc_radius_tolerance_mm, 2.0 * digit_mm);
+      arc = detail::arc_from_center(programmed_start, start_2, end_2, center, ccw, turns, tolerance_mm);
+    }
+    if (!arc.problem.empty()) {
+      problems_.add(block.line, subject + ": " + arc.problem);
+      go_to(end);
+      return;
+    }
+    if (!room_for_move(block.line, detail::plane_arc_piece_count(plane, start, end, arc.center, arc.sweep_rad))) return;
+    const std::vector<Point3> points = detail::plane_arc_points(plane, start, end, arc.center, ccw, arc.sweep_rad);
+    WrittenMove written = written_move(block, motion);
+    written.keep_whole = true;
+    Point3 from = start;
+    for (const Point3& to : points) {
+      if (!room_for_move(block.line)) return;
+      Move m;
+      m.kind = MoveKind::kLine;
+      m.start = from;
+      m.end = to;
+      add_move(m, block_command(block.line, motion), written);
+      from = to;
+    }
+    ++plane_arcs_;
+    plane_arc_pieces_ += static_cast<int>(points.size());
+    go_to(end);
+  }
+
+  // A block of a drilling cycle: its holes as LinuxCNC drills them (drill_cycle.hpp), every move on the
+  // block's line, kept whole, its feed the program's and fixed.
+  void drill(const Block& block, int motion) {
+    const double u = unit_mm();
+    auto raw = [&](char letter, double& sticky) {
+      if (const Word* w = block.word(letter)) sticky = w->value;
+      return sticky;
+    };
+    const double r_raw = raw('R', cycle_r_);
+    const double z_raw = raw('Z', cycle_z_);
+    const double p_raw = raw('P', cycle_p_);
+    const double q_raw = raw('Q', cycle_q_);
+    detail::DrillRequest request;
+    request.code = motion;
+    request.position = position_mm_;
+    request.unit_mm = u;
+    if (!cycle_initial_z_mm_) cycle_initial_z_mm_ = position_mm_.z_mm;
+    request.initial_level = *cycle_initial_z_mm_ / u;
+    request.retract_to_r = retract_to_r_;
+    request.peck = q_raw;
+    request.dwell_s = cycle_dwells(motion) ? p_raw : 0.0;
+    request.repeats = block.has('L') ? static_cast<int>(block.word('L')->value) : 1;
+    const double x_word = block.has('X') ? block.word('X')->value * u : 0.0;
+    const double y_word = block.has('Y') ? block.word('Y')->value * u : 0.0;
+    if (absolute_) {
+      request.r = r_raw;
+      request.bottom = z_raw;
+      request.first_hole = {block.has('X') ? x_word : position_mm_.x_mm, block.has('Y') ? y_word : position_mm_.y_mm};
+    } else {
+      request.r = r_raw + request.initial_level;
+      request.bottom = request.r + z_raw;
+      request.step = {x_word, y_word};
+      request.first_hole = {position_mm_.x_mm + x_word, position_mm_.y_mm + y_word};
+    }
+    if (request.r < request.bottom) {
+      problems_.add(block.line, detail::g_code_name(motion) + ": the R plane is below the bottom Z of the cycle (LinuxCNC "
+                                                              "refuses it too)");
+      return;
+    }
+    if (block.has('P') && !cycle_dwells(motion) && !p_note_given_) {
+      note("line " + std::to_string(block.line) + ": " + block.word('P')->text + " on " + detail::g_code_name(motion) +
+           " is ignored: the cycle does not dwell (Haas ignores it; LinuxCNC refuses it)");
+      p_note_given_ = true;
+    }
+    if (!room_for_move(block.line, detail::drill_move_count(request))) return;
+    Point3 end;
+    const std::vector<detail::DrillMove> moves = detail::drill_moves(request, end);
+    WrittenMove written = written_move(block, motion);
+    written.keep_whole = true;
+    written.fixed_feed = true;
+    Point3 from{path_end_xy_.x_mm, path_end_xy_.y_mm, position_mm_.z_mm};
+    for (const detail::DrillMove& d : moves) {
+      pending_dwell_s_ += d.dwell_before_s;
+      if (d.end.x_mm == from.x_mm && d.end.y_mm == from.y_mm && d.end.z_mm == from.z_mm) continue;
+      if (!room_for_move(block.line)) return;
+      Move m;
+      m.kind = d.feed ? MoveKind::kLine : MoveKind::kRapid;
+      m.start = from;
+      m.end = d.end;
+      geometry::BlockCommand command = block_command(block.line, d.feed ? kG1 : kG0);
+      if (d.spindle_stopped) command.spindle = SpindleDirection::kOff;
+      written.motion = d.feed ? 1 : 0;
+      add_move(m, command, written);
+      from = d.end;
+    }
+    drilled_holes_ += request.repeats;
+    go_to(end);
+  }
+
+  // G28, G30: LinuxCNC goes to the intermediate point of the axis words first (in the distance mode in
+  // effect), then to the stored machine position, which the reader does not know: it parks instead.
+  void go_home(const Block& block) {
+    if (block.has('X') || block.has('Y') || block.has('Z')) {
+      Point3 end = position_mm_;
+      auto axis = [&](char letter, double start_mm, double& target_mm) {
+        if (const Word* w = block.word(letter)) target_mm = (absolute_ ? 0.0 : start_mm) + w->value * unit_mm();
+      };
+      axis('X', position_mm_.x_mm, end.x_mm);
+      axis('Y', position_mm_.y_mm, end.y_mm);
+      axis('Z', position_mm_.z_mm, end.z_mm);
+      const Point3 start{path_end_xy_.x_mm, path_end_xy_.y_mm, position_mm_.z_mm};
+      if ((end.x_mm != start.x_mm || end.y_mm != start.y_mm || end.z_mm != start.z_mm) && room_for_move(block.line)) {
+        Move m;
+        m.kind = MoveKind::kRapid;
+        m.start = start;
+        m.end = end;
+        WrittenMove written = written_move(block, kG0);
+        written.keep_whole = true;
+        add_move(m, block_command(block.line, kG0), written);
+      }
+      go_to(end);
+    }
+    park(block.line);
+  }
+
+  // A move to a machine position (G28, G30, G53): the reader has no machine coordinates, so the tool goes
+  // to a parked state above everything — a rapid straight up to the park height (ReaderOptions::park_z_mm,
+  // else the highest Z reached so far plus 25 mm), X and Y kept.
+  void park(int line) {
+    const double park_z_mm = options_.park_z_mm ? *options_.park_z_mm : highest_z_mm_ + kParkClearanceMm;
+    const Point3 start{path_end_xy_.x_mm, path_end_xy_.y_mm, position_mm_.z_mm};
+    if (start.z_mm < park_z_mm && room_for_move(line)) {  // already above it: the tool stays
+      Move m;
+      m.kind = MoveKind::kRapid;
+      m.start = start;
+      m.end = {start.x_mm, start.y_mm, park_z_mm};
+      WrittenMove written = written_move_for_line(line);
+      add_move(m, block_command(line, kG0), written, true);
+      go_to(m.end);
+    }
+    parked_line_ = line;
+    ++machine_position_moves_;
+    last_park_z_mm_ = position_mm_.z_mm;
+    highest_park_z_mm_ = std::max(highest_park_z_mm_, last_park_z_mm_);
+  }
+
+  WrittenMove written_move_for_line(int line) const {
+    WrittenMove written;
+    written.line = line;
+    written.motion = 0;
+    written.inch = inch_;
+    written.incremental = !absolute_;
+    written.absolute_arc_center = absolute_arc_center_;
+    written.tool = tool_in_spindle_ ? *tool_in_spindle_ : g43_tool_ ? *g43_tool_ : -1;
+    written.keep_whole = true;
+    return written;
   }
 
   // The programmed position and the path both at `end` (after a block that adds no move).
@@ -657,8 +1203,20 @@ class Interpreter {
     path_end_xy_ = geometry::xy(end);
   }
 
+  // The command and the written form of a block whose moves compensation may still hold back.
+  struct CompensatedBlock {
+    geometry::BlockCommand command;
+    WrittenMove written;
+  };
+
   const ReaderOptions& options_;
   detail::ProblemLog& problems_;
+  bool comp_on_ = false;         // G41/G42 in effect (possibly with a zero radius)
+  int comp_code_ = kG40;         // the G41 or G42 in effect
+  int comp_line_ = 0;            // its line
+  std::optional<detail::CutterCompensation> compensation_;  // on, with a radius
+  std::vector<CompensatedBlock> compensation_blocks_;       // by tag, while compensation_ is on
+  int after_compensation_line_ = 0;  // the G40 line while the move after it is still to come
   geometry::Program program_;
   std::vector<WrittenMove> written_;  // parallel to program_.path.moves
 
@@ -668,6 +1226,22 @@ class Interpreter {
   bool units_set_ = false;
   bool unit_note_given_ = false;
   bool k_note_given_ = false;
+  int plane_ = kG17;           // G17, G18 or G19 in effect
+  bool retract_to_r_ = false;  // G99 (else G98, LinuxCNC's default)
+  double cycle_r_ = 0.0;       // the cycles' sticky R, Z, P, Q words, in the program's unit as written
+  double cycle_z_ = 0.0;
+  double cycle_p_ = 0.0;
+  double cycle_q_ = 0.0;
+  bool p_note_given_ = false;
+  std::optional<double> cycle_initial_z_mm_;  // Z when the cycles began (LinuxCNC's cycle_il), mm
+  int drilled_holes_ = 0;
+  double highest_z_mm_ = 0.0;        // the highest Z of the initial position and the moves (parks excepted)
+  int parked_line_ = 0;              // the line of the last park while no move has followed it
+  int machine_position_moves_ = 0;   // G28, G30, G53 blocks read as parks
+  double last_park_z_mm_ = 0.0;     // Z of the last park
+  double highest_park_z_mm_ = -1e300;
+  int plane_arcs_ = 0;         // arcs in G18/G19 read as straight pieces
+  int plane_arc_pieces_ = 0;   // their pieces
   bool absolute_ = true;
   bool absolute_arc_center_ = false;
   int motion_ = kNoMotion;

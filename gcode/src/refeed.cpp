@@ -253,6 +253,7 @@ std::string motion_code(int motion) {
 
 // The pieces of every move, indexed by move.
 std::vector<std::vector<const FeedPiece*>> pieces_by_move(const geometry::Program& program,
+                                                          const std::vector<WrittenMove>& written,
                                                           const std::vector<FeedPiece>& pieces) {
   std::vector<std::vector<const FeedPiece*>> by_move(program.path.moves.size());
   for (const FeedPiece& piece : pieces) {
@@ -263,12 +264,55 @@ std::vector<std::vector<const FeedPiece*>> pieces_by_move(const geometry::Progra
     if (program.path.moves[static_cast<std::size_t>(piece.move_index)].kind == geometry::MoveKind::kRapid) {
       throw std::invalid_argument("refeed_text: a feed for rapid move " + std::to_string(piece.move_index));
     }
+    if (written[static_cast<std::size_t>(piece.move_index)].fixed_feed) {
+      throw std::invalid_argument("refeed_text: a feed for move " + std::to_string(piece.move_index) +
+                                  ", whose feed is fixed (a drilling cycle's)");
+    }
     if (!(piece.feed_mm_per_min > 0.0)) {
       throw std::invalid_argument("refeed_text: a piece of move " + std::to_string(piece.move_index) + " without a feed");
     }
     by_move[static_cast<std::size_t>(piece.move_index)].push_back(&piece);
   }
   return by_move;
+}
+
+// Writes `line` into `out` with only its F word changed: the feed `feed_mm_per_min` for all of it.
+void rewrite_feed_only(const TextLine& line, const Units& units, double feed_mm_per_min, OutputState& state,
+                       RefeedResult& result, std::vector<TextLine>& out) {
+  std::string body = without_words(line.body, "F");
+  if (resets_feed(line.body)) state.feed_mm_per_min = 0.0;
+  const std::string f = feed_word(feed_mm_per_min, units, state);
+  if (!f.empty()) body = with_words(body, f);
+  if (body != line.body) ++result.lines_changed;
+  out.push_back({body, line.ending});
+}
+
+// Rewrites a line that carries several moves, or one that must stay whole (`moves`: their indices, in
+// order): at the lowest feed of all their pieces, only its F word changed. A line without pieces is copied.
+void rewrite_whole_line(const TextLine& line, int line_number, const std::vector<int>& moves,
+                        const std::vector<WrittenMove>& written,
+                        const std::vector<std::vector<const FeedPiece*>>& by_move, OutputState& state,
+                        RefeedResult& result, std::vector<TextLine>& out) {
+  const Units units{written[static_cast<std::size_t>(moves.front())].inch};
+  std::optional<double> lowest;
+  int moves_with_pieces = 0;
+  bool same_feed = true;
+  for (const int m : moves) {
+    const std::vector<const FeedPiece*>& pieces = by_move[static_cast<std::size_t>(m)];
+    if (!pieces.empty()) ++moves_with_pieces;
+    for (const FeedPiece* p : pieces) {
+      if (lowest && units.feed_as_written(p->feed_mm_per_min) != units.feed_as_written(*lowest)) same_feed = false;
+      lowest = lowest ? std::min(*lowest, p->feed_mm_per_min) : p->feed_mm_per_min;
+    }
+  }
+  if (!lowest) {
+    follow_copied_line(line.body, line_number, state);
+    out.push_back(line);
+    return;
+  }
+  state.inch = units.inch;
+  if (!same_feed) result.moves_at_lowest_feed += moves_with_pieces;
+  rewrite_feed_only(line, units, *lowest, state, result, out);
 }
 
 // Rewrites the line of move `m` (its pieces `pieces`, at least one) into `out`.
@@ -293,13 +337,7 @@ void rewrite_move(const TextLine& line, const WrittenMove& w, const std::vector<
     single = true;
   }
   if (single || same_feed) {
-    // One feed on the line: only its F changes.
-    std::string body = without_words(line.body, "F");
-    if (resets_feed(line.body)) state.feed_mm_per_min = 0.0;
-    const std::string f = feed_word(lowest, units, state);
-    if (!f.empty()) body = with_words(body, f);
-    if (body != line.body) ++result.lines_changed;
-    out.push_back({body, line.ending});
+    rewrite_feed_only(line, units, lowest, state, result, out);
     return;
   }
   ++result.moves_split;
@@ -349,12 +387,12 @@ RefeedResult refeed_text(const std::string& text, const geometry::Program& progr
     throw std::invalid_argument("refeed_text: " + std::to_string(written.size()) + " written moves for " +
                                 std::to_string(program.path.moves.size()) + " moves");
   }
-  const std::vector<std::vector<const FeedPiece*>> by_move = pieces_by_move(program, pieces);
-  std::vector<int> move_of_line;  // per 1-based line: the move index + 1, 0 for none
+  const std::vector<std::vector<const FeedPiece*>> by_move = pieces_by_move(program, written, pieces);
+  std::vector<std::vector<int>> moves_of_line;  // per 1-based line: the indices of its moves, in order
   for (std::size_t m = 0; m < written.size(); ++m) {
     const auto line = static_cast<std::size_t>(written[m].line);
-    if (move_of_line.size() <= line) move_of_line.resize(line + 1, 0);
-    move_of_line[line] = static_cast<int>(m) + 1;
+    if (moves_of_line.size() <= line) moves_of_line.resize(line + 1);
+    moves_of_line[line].push_back(static_cast<int>(m));
   }
   const std::vector<TextLine> lines = split_lines(text);
   std::vector<TextLine> out;
@@ -363,10 +401,14 @@ RefeedResult refeed_text(const std::string& text, const geometry::Program& progr
   OutputState state;
   for (std::size_t i = 0; i < lines.size(); ++i) {
     const int line_number = static_cast<int>(i) + 1;
-    const int move = static_cast<std::size_t>(line_number) < move_of_line.size() ? move_of_line[i + 1] - 1 : -1;
-    if (move >= 0 && !by_move[static_cast<std::size_t>(move)].empty()) {
-      rewrite_move(lines[i], written[static_cast<std::size_t>(move)], by_move[static_cast<std::size_t>(move)], state,
-                   result, out);
+    const std::vector<int> none;
+    const std::vector<int>& moves = i + 1 < moves_of_line.size() ? moves_of_line[i + 1] : none;
+    const bool whole = moves.size() > 1 || (moves.size() == 1 && written[static_cast<std::size_t>(moves[0])].keep_whole);
+    if (whole) {
+      rewrite_whole_line(lines[i], line_number, moves, written, by_move, state, result, out);
+    } else if (moves.size() == 1 && !by_move[static_cast<std::size_t>(moves[0])].empty()) {
+      const auto move = static_cast<std::size_t>(moves[0]);
+      rewrite_move(lines[i], written[move], by_move[move], state, result, out);
     } else {
       follow_copied_line(lines[i].body, line_number, state);
       out.push_back(lines[i]);

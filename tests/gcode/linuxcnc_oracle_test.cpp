@@ -140,7 +140,7 @@ const std::vector<BadProgram>& bad_programs() {
       {"unknown_word.ngc", "line 2: word Q5: not supported"},
       {"unknown_g_code.ngc", "line 2: word G12: not supported"},
       {"unknown_m_code.ngc", "line 2: word M100: not supported"},
-      {"unknown_letter.ngc", "line 2: word L2: not supported"},
+      {"unknown_letter.ngc", "line 2: word L2: L is read only with drilling cycles"},
       {"feed_before_f.ngc", "line 3: G1 before any F word"},
       {"feed_zero.ngc", "line 2: G2 with F0 in effect"},
       {"feed_reset_by_g94.ngc", "line 4: G1 with no F since G94 on line 3"},
@@ -176,14 +176,14 @@ const std::vector<BadProgram>& bad_programs() {
       {"line_number_not_first.ngc", "line 2: word N10: a line number must be the first word"},
       {"percent_not_opened.ngc", "line 3: '%': a closing % needs an opening %"},
       {"many_problems.ngc", "line 8: comment: '(' at column 7 is not closed"},
+      {"plane_g18_j_word.ngc", "line 2: word J0: J is not read in the XZ plane (G18)"},
       // LinuxCNC accepts these; feedplan refuses them (reader.hpp says why).
       {"lathe_g7.ngc", "line 2: word G7: not supported (lathe diameter mode)", false},
       {"arc_radius_mismatch_small.ngc", "line 2: G3 I5.01: end point is 0.02 mm off the circle", false},
       {"tool_change.ngc", "line 3: word M6: not supported after the first move (tool change: the path is planned "
                           "for one tool", false},
       {"tool_change_second.ngc", "line 3: word M6: a second tool change (T1 M6 on line 2) is not supported", false},
-      {"cutter_compensation.ngc", "line 2: word G41: not supported (cutter radius compensation", false},
-      {"plane_g18.ngc", "line 2: word G18: not supported (arcs are read in the XY plane", false},
+      {"cutter_compensation.ngc", "line 2: word G41: no D word and no tool in the spindle", false},
       {"tool_length_offset.ngc", "line 3: word H2: G43 H2 is the length offset of tool 2, but tool 1 is in the "
                                  "spindle", false},
       {"inverse_time.ngc", "line 2: word G93: not supported (inverse-time feed", false},

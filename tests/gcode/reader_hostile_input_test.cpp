@@ -85,5 +85,14 @@ TEST(ReaderHostileInput, FeedMoveAtSZeroWithTheSpindleOnIsRefused) {
   EXPECT_EQ(problems_of("G21 F100 M3\nG1 X10\nM2\n"), "(accepted)");  // no S at all: the machine's own speed
 }
 
+// A plane arc of 1 km radius turning 1000 times would be 70 million chords, a peck drill with a
+// micrometre Q a billion pecks: both are counted before they are made and refused like max_moves.
+TEST(ReaderHostileInput, PlaneArcsAndDrillingCyclesAreBoundedByMaxMovesBeforeTheyAreMade) {
+  EXPECT_THAT(problems_of("G21 F100 S1000 M3\nG0 X0 Y0 Z0\nG18 G2 X0 Z0 I1000000 K0 P1000\nM2\n"),
+              HasSubstr("test line 3: more than 50000 moves (ReaderOptions::max_moves)"));
+  EXPECT_THAT(problems_of("G21 F100 S1000 M3\nG0 X0 Y0 Z10\nG83 X1 Z-900000 R1 Q0.001 L10000\nM2\n"),
+              HasSubstr("test line 3: more than 50000 moves (ReaderOptions::max_moves)"));
+}
+
 }  // namespace
 }  // namespace feedplan::gcode

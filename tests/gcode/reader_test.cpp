@@ -363,16 +363,17 @@ TEST(Reader, LengthOffsetWithoutToolChangeIsTakenToNameTheTool) {
 
 TEST(ReaderProblems, UnknownWordsAndCodes) {
   EXPECT_THAT(problems_of("G21 F100\nG1 X10 Q5\nM2\n"),
-              HasSubstr("test line 2: word Q5: not supported (Q is read only with G64"));
+              HasSubstr("test line 2: word Q5: not supported here (Q is read only with G64, G73 and G83)"));
   EXPECT_THAT(problems_of("G21 F100\nG7\nM2\n"), HasSubstr("test line 2: word G7: not supported (lathe diameter mode)"));
   EXPECT_THAT(problems_of("G21 F100\nG12 X1\nM2\n"),
               HasSubstr("test line 2: word G12: not supported (not a G code the reader knows)"));
   EXPECT_THAT(problems_of("G21 F100\nM100\nM2\n"),
               HasSubstr("test line 2: word M100: not supported (not an M code the reader knows)"));
-  EXPECT_THAT(problems_of("G21 F100\nG41 D1\nM2\n"), HasSubstr("test line 2: word G41: not supported (cutter radius"));
+  EXPECT_THAT(problems_of("G21 F100\nG41 D1\nM2\n"), HasSubstr("test line 2: word D1: cutter compensation needs the diameter of tool 1, which is not given: give "
+                                                              "the diameter of tool 1 (ReaderOptions::tool_diameters_mm; feedplan optimize --tools)"));
   EXPECT_THAT(problems_of("G21 F100\nG1 X1 A3\nM2\n"), HasSubstr("test line 2: word A3: not supported (rotary axes"));
   EXPECT_THAT(problems_of("G21 F100\nG1 X1 E3\nM2\n"), HasSubstr("test line 2: word E3: not supported"));
-  EXPECT_THAT(problems_of("G21 F100\nG18\nM2\n"), HasSubstr("test line 2: word G18: not supported (arcs are read in the XY plane"));
+  EXPECT_THAT(problems_of("G21 F100\nG18.1\nM2\n"), HasSubstr("test line 2: word G18.1: not supported (arcs are read in the XY, XZ and YZ"));
 }
 
 TEST(ReaderProblems, ToolChangesAndLengthOffsets) {

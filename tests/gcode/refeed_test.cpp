@@ -224,6 +224,123 @@ TEST_F(Refeed, IncrementalMovesRunAtTheirLowestFeedUnsplit) {
   EXPECT_GT(r.moves_at_lowest_feed, 0);
 }
 
+// The program read from `text` with its move `index` (an arc) cut into two moves of one line, as a line
+// that carries several moves (a compensated corner, a linearised plane arc) is read.
+geometry::Program with_move_in_two(const std::string& text, std::size_t index, std::vector<WrittenMove>& written) {
+  geometry::Program program = read_program(text, "test", {}, written);
+  const geometry::Move whole = program.path.moves.at(index);
+  program.path.moves[index] = part_of(whole, 0.0, 0.5);
+  program.path.moves.insert(program.path.moves.begin() + static_cast<long>(index) + 1, part_of(whole, 0.5, 1.0));
+  program.blocks.insert(program.blocks.begin() + static_cast<long>(index) + 1, program.blocks[index]);
+  written.insert(written.begin() + static_cast<long>(index) + 1, written[index]);
+  return program;
+}
+
+using RefeedWholeLines = oracle::Rs274Test;
+
+TEST_F(RefeedWholeLines, ALineOfSeveralMovesRunsAtTheLowestFeedOfAllTheirPieces) {
+  const std::string text =
+      "G21 G17 G90\n"
+      "M3 S3000\n"
+      "G0 X0 Y0 Z1\n"
+      "G1 Z-1 F100\n"
+      "G2 X10 Y0 I5 J0 F500 (half circle)\n"
+      "G1 X20\n"
+      "M2\n";
+  std::vector<WrittenMove> written;
+  const geometry::Program program = with_move_in_two(text, 2, written);
+  ASSERT_EQ(program.path.moves.size(), 5U);
+  ASSERT_EQ(written[2].line, 5);
+  ASSERT_EQ(written[3].line, 5);
+  std::vector<FeedPiece> pieces = {{1, program.path.moves[1], 90.0},
+                                   {2, part_of(program.path.moves[2], 0.0, 0.5), 400.0},
+                                   {2, part_of(program.path.moves[2], 0.5, 1.0), 350.0},
+                                   {3, program.path.moves[3], 275.55},
+                                   {4, program.path.moves[4], 600.0}};
+  const RefeedResult r = refeed_text(text, program, written, pieces);
+  const std::vector<std::string> out = lines_of(r.text);
+  ASSERT_EQ(out.size(), 7U) << r.text;
+  EXPECT_EQ(out[4], "G2 X10 Y0 I5 J0 F275.5 (half circle)");
+  EXPECT_EQ(r.moves_split, 0);
+  EXPECT_EQ(r.lines_added, 0);
+  EXPECT_EQ(r.moves_at_lowest_feed, 2);
+  const oracle::OracleRun run = oracle::run_rs274_text(*rs274_, r.text);
+  ASSERT_EQ(run.exit_code, 0) << run.messages;
+  ASSERT_EQ(run.moves.size(), 4U);
+  EXPECT_NEAR(run.moves[2].feed_mm_per_min, 275.5, 1e-6);
+  EXPECT_NEAR(run.moves[3].feed_mm_per_min, 600.0, 1e-6);
+}
+
+TEST_F(RefeedWholeLines, AMoveToKeepWholeIsNotSplitAndAFixedFeedIsNotChanged) {
+  const std::string text =
+      "G20 G17 G90\n"
+      "M3 S3000\n"
+      "G0 X0 Y0 Z0.1\n"
+      "G1 Z-0.1 F10\n"
+      "G1 X1 F40\n"
+      "G1 Y1\n"
+      "M2\n";
+  std::vector<WrittenMove> written;
+  const geometry::Program program = read_program(text, "test", {}, written);
+  ASSERT_EQ(program.path.moves.size(), 4U);
+  written[2].keep_whole = true;
+  written[1].fixed_feed = true;
+  const std::vector<FeedPiece> pieces = {{2, part_of(program.path.moves[2], 0.0, 0.3), 30.0 * 25.4},
+                                         {2, part_of(program.path.moves[2], 0.3, 1.0), 20.0 * 25.4},
+                                         {3, program.path.moves[3], 50.0 * 25.4}};
+  const RefeedResult r = refeed_text(text, program, written, pieces);
+  const std::vector<std::string> out = lines_of(r.text);
+  ASSERT_EQ(out.size(), 7U) << r.text;
+  EXPECT_EQ(out[3], "G1 Z-0.1 F10") << "a fixed feed stays as written";
+  EXPECT_EQ(out[4], "G1 X1 F20.");
+  EXPECT_EQ(out[5], "G1 Y1 F50.");
+  EXPECT_EQ(r.moves_at_lowest_feed, 1);
+  const oracle::OracleRun run = oracle::run_rs274_text(*rs274_, r.text);
+  ASSERT_EQ(run.exit_code, 0) << run.messages;
+  ASSERT_EQ(run.moves.size(), 4U);
+  EXPECT_NEAR(run.moves[1].feed_mm_per_min, 10.0 * 25.4, 1e-6);
+  EXPECT_NEAR(run.moves[2].feed_mm_per_min, 20.0 * 25.4, 1e-6);
+  EXPECT_NEAR(run.moves[3].feed_mm_per_min, 50.0 * 25.4, 1e-6);
+
+  EXPECT_THROW(refeed_text(text, program, written, {{1, program.path.moves[1], 100.0}}), std::invalid_argument)
+      << "a feed for a move whose feed is fixed";
+}
+
+TEST_F(RefeedWholeLines, ADrillingCycleLineStaysAsWrittenAndItsMovesTakeNoPieces) {
+  const std::string text =
+      "G21 G17 G90\n"
+      "M3 S3000\n"
+      "G0 X0 Y0 Z10\n"
+      "G99 G83 X5 Y5 Z-10 R2 Q4 F100\n"
+      "X15\n"
+      "G80\n"
+      "G1 X30 F300\n"
+      "M2\n";
+  std::vector<WrittenMove> written;
+  const geometry::Program program = read_program(text, "test", {}, written);
+  std::vector<FeedPiece> pieces;
+  for (std::size_t i = 0; i < program.path.moves.size(); ++i) {
+    if (program.path.moves[i].kind == geometry::MoveKind::kRapid) continue;
+    if (written[i].fixed_feed) {
+      EXPECT_THROW(refeed_text(text, program, written, {{static_cast<int>(i), program.path.moves[i], 50.0}}),
+                   std::invalid_argument);
+      continue;
+    }
+    pieces.push_back({static_cast<int>(i), program.path.moves[i], 250.0});
+  }
+  ASSERT_EQ(pieces.size(), 1U) << "only the G1 is free";
+  const RefeedResult r = refeed_text(text, program, written, pieces);
+  const std::vector<std::string> out = lines_of(r.text);
+  ASSERT_EQ(out.size(), 8U);
+  EXPECT_EQ(out[3], "G99 G83 X5 Y5 Z-10 R2 Q4 F100");
+  EXPECT_EQ(out[4], "X15");
+  EXPECT_EQ(out[6], "G1 X30 F250.");
+  const oracle::OracleRun run = oracle::run_rs274_text(*rs274_, r.text);
+  ASSERT_EQ(run.exit_code, 0) << run.messages;
+  EXPECT_NEAR(run.moves.back().feed_mm_per_min, 250.0, 1e-6);
+  EXPECT_NEAR(run.moves[run.moves.size() - 2].end.z_mm, 2.0, 1e-9) << "the second hole ends at R (G99)";
+}
+
 TEST(RefeedPieces, PiecesThatAreNotTheProgramsAreRefused) {
   std::vector<WrittenMove> written;
   const std::string text = "G21 G90\nM3 S1000\nG0 X1 Y0 Z5\nG1 X10 F100\nM2\n";

@@ -182,15 +182,22 @@ class Rs274Lock {
   int fd_;
 };
 
-//! Runs rs274 on the file `program` in a directory of this process's own.
-inline OracleRun run_rs274(const fs::path& rs274, const fs::path& program) {
+//! Runs rs274 on the file `program` in a directory of this process's own; `tool_table`, when not empty,
+//! is the text of a LinuxCNC tool table (`T1 P1 D0.5`, diameters in inches) given with -t.
+inline OracleRun run_rs274(const fs::path& rs274, const fs::path& program, const std::string& tool_table = "") {
   const Rs274Lock lock;
   const fs::path dir = fs::temp_directory_path() / ("feedplan-rs274-" + std::to_string(::getpid()));
   fs::create_directories(dir);
   const fs::path output = dir / "canonical.txt";
   const fs::path messages = dir / "messages.txt";
   fs::remove(output);
-  const std::string command = "cd " + shell_quoted(dir.string()) + " && " + shell_quoted(rs274.string()) + " -g " +
+  std::string table_option;
+  if (!tool_table.empty()) {
+    const fs::path table = dir / "tools.tbl";
+    std::ofstream(table, std::ios::binary | std::ios::trunc) << tool_table;
+    table_option = " -t " + shell_quoted(table.string());
+  }
+  const std::string command = "cd " + shell_quoted(dir.string()) + " && " + shell_quoted(rs274.string()) + table_option + " -g " +
                               shell_quoted(fs::absolute(program).string()) + " " + shell_quoted(output.string()) +
                               " < /dev/null > " + shell_quoted(messages.string()) + " 2>&1";
   OracleRun run;
@@ -202,14 +209,14 @@ inline OracleRun run_rs274(const fs::path& rs274, const fs::path& program) {
   return run;
 }
 
-//! Runs rs274 on program text (written to a file of this process's own first).
-inline OracleRun run_rs274_text(const fs::path& rs274, const std::string& text) {
+//! Runs rs274 on program text (written to a file of this process's own first), with run_rs274's tool table.
+inline OracleRun run_rs274_text(const fs::path& rs274, const std::string& text, const std::string& tool_table = "") {
   const fs::path file = fs::temp_directory_path() / ("feedplan-rs274-input-" + std::to_string(::getpid()) + ".ngc");
   {
     std::ofstream out(file, std::ios::binary | std::ios::trunc);
     out << text;
   }
-  OracleRun run = run_rs274(rs274, file);
+  OracleRun run = run_rs274(rs274, file, tool_table);
   fs::remove(file);
   return run;
 }

@@ -15,6 +15,11 @@
 //     inches (within 0.13 µm of the path), in the units in effect;
 //   - a move that cannot be split this way — an arc of several turns (P) or a move in incremental
 //     distance mode (G91) — runs at the lowest feed of its pieces, on its own line;
+//   - a line that carries several moves of the program (cutter compensation's corner arcs, a canned
+//     cycle's moves, an arc outside the XY plane read as straight pieces) or whose move is marked
+//     WrittenMove::keep_whole runs at the lowest feed of all the pieces of all its moves: only its F
+//     word changes. Moves marked WrittenMove::fixed_feed (drilling cycles) take no pieces; a line of
+//     them is copied as it is;
 // F is modal: it is written where the feed in effect (from F words on any line, as read; G94 resets it)
 // differs from the planned one, in the units in effect (mm/min, or in/min under G20), rounded down to
 // 0.1 mm/min or 0.001 in/min — never faster than planned. Rapids and every other line are copied byte
@@ -42,12 +47,14 @@ struct RefeedResult {
   int lines_changed = 0;            //!< input lines whose text changed
   int lines_added = 0;              //!< lines inserted for the pieces of split moves
   int moves_split = 0;              //!< moves written as more than one piece
-  int moves_at_lowest_feed = 0;     //!< moves that could not be split and run at their lowest feed
+  int moves_at_lowest_feed = 0;     //!< moves that could not be split and run at their lowest feed (of
+                                    //!< their line's pieces, when the line carries several moves)
 };
 
 //! Writes `text` (the program `program` and `written` were read from by read_program) with the feeds
 //! of `pieces`: for every feed move of the program, its pieces in order (moves without pieces keep their
-//! F). Rapids must have none. Throws std::invalid_argument when the pieces do not belong to the program.
+//! F). Rapids and moves marked WrittenMove::fixed_feed must have none. Throws std::invalid_argument when
+//! the pieces do not belong to the program.
 RefeedResult refeed_text(const std::string& text, const geometry::Program& program,
                          const std::vector<WrittenMove>& written, const std::vector<FeedPiece>& pieces);
 
