@@ -12,6 +12,7 @@
 #include "database_path.hpp"
 #include "model_choice.hpp"
 #include "model_kind_choice.hpp"
+#include "program_operations.hpp"
 #include "number_flag.hpp"
 #include "output_files.hpp"
 #include "output_path.hpp"
@@ -23,7 +24,7 @@
 #include "feedplan/gcode/reader.hpp"
 #include "feedplan/gcode/refeed.hpp"
 #include "feedplan/model_db/store.hpp"
-#include "feedplan/planner/constant_feed.hpp"
+#include "feedplan/planner/feed_prediction.hpp"
 #include "feedplan/planner/feed_plan.hpp"
 
 namespace feedplan::cli {
@@ -110,6 +111,14 @@ double spindle_speed(const OptimizeOptions& o, const geometry::Program& program,
   return rpm;
 }
 
+// True when `run` has no feed moves (a G28 before the first tool change): nothing to plan or cut.
+bool rapids_only(const geometry::Program& program, const ToolRun& run) {
+  for (std::size_t i = run.first; i < run.end; ++i) {
+    if (program.path.moves[i].kind != geometry::MoveKind::kRapid) return false;
+  }
+  return true;
+}
+
 // The program's moves by the tool that makes them (WrittenMove::tool), each with its end mill: from
 // --tools by T number, else --tool for a program of one tool.
 std::vector<ToolRun> tool_runs(const OptimizeOptions& o, const OptimizeInputs& in, const std::optional<geometry::Tool>& tool,
@@ -120,7 +129,9 @@ std::vector<ToolRun> tool_runs(const OptimizeOptions& o, const OptimizeInputs& i
     runs.back().end = m + 1;
   }
   std::map<int, int> first_line;  // T number → the line of its first move
-  for (const ToolRun& run : runs) first_line.emplace(run.number, in.written[run.first].line);
+  for (const ToolRun& run : runs) {
+    if (!rapids_only(in.program, run)) first_line.emplace(run.number, in.written[run.first].line);
+  }
   if (library.empty() && first_line.size() > 1) {
     std::string which;
     for (const auto& [number, line] : first_line) {
@@ -132,6 +143,7 @@ std::vector<ToolRun> tool_runs(const OptimizeOptions& o, const OptimizeInputs& i
     return runs;
   }
   for (ToolRun& run : runs) {
+    if (rapids_only(in.program, run)) continue;  // no tool needed: nothing is cut or planned
     if (library.empty()) {
       if (tool) run.tool = *tool;
     } else if (const auto it = library.find(run.number); it != library.end()) {
@@ -184,14 +196,17 @@ OptimizeInputs read_inputs(const OptimizeOptions& o) {
                  {"--tools", o.tools_path}},
                 {{"-o", o.output_path}}, problems);
   if (!problems.empty()) throw InputError(std::move(problems));
+  const std::map<int, geometry::Tool> library =
+      o.tools_path.empty() ? std::map<int, geometry::Tool>{} : cycles::load_tool_library(o.tools_path);
   gcode::ReaderOptions reader;
   reader.tool_changes = true;  // each tool's moves are planned on their own
+  // Cutter compensation (G41/G42 D<tool>) offsets by the diameters of the tools given.
+  for (const auto& [number, t] : library) reader.tool_diameters_mm[number] = t.diameter_mm;
+  if (tool) reader.any_tool_diameter_mm = tool->diameter_mm;
   in.text = read_input_file(o.program_path, {"a G-code program of a milling job", reader.max_file_bytes,
                                              "ReaderOptions::max_file_bytes"});
   in.program = gcode::read_program(in.text, o.program_path, reader, in.written);
   if (!o.stock_path.empty()) in.stock = cycles::load_stock_spec(o.stock_path);
-  const std::map<int, geometry::Tool> library =
-      o.tools_path.empty() ? std::map<int, geometry::Tool>{} : cycles::load_tool_library(o.tools_path);
   in.runs = tool_runs(o, in, tool, library, problems);
   for (ToolRun& run : in.runs) run.spindle_rpm = spindle_speed(o, in.program, run, problems);
   if (!problems.empty()) throw InputError(std::move(problems));
@@ -224,6 +239,7 @@ struct PlannedRun {
   planner::PlanSettings settings;
   planner::PlanResult result;
   std::optional<double> unconstrained_s;  // the cycle time of the plan with every ramp written out
+  planner::FeedPrediction input;          // the run at the input program's own feeds
 };
 
 // The moves [run.first, run.end) as a path of their own.
@@ -233,6 +249,21 @@ geometry::ToolPath run_path(const geometry::Program& program, const ToolRun& run
   path.moves.assign(program.path.moves.begin() + static_cast<long>(run.first),
                     program.path.moves.begin() + static_cast<long>(run.end));
   return path;
+}
+
+// The input program's own F of every move of `run` (0 on rapids), mm/min.
+std::vector<double> input_feeds(const geometry::Program& program, const ToolRun& run) {
+  std::vector<double> feeds;
+  for (std::size_t i = run.first; i < run.end; ++i) feeds.push_back(program.blocks[i].feed_mm_per_min);
+  return feeds;
+}
+
+// True when every feed move of `run` keeps the F it was written with (a drilling cycle's): nothing to plan.
+bool feeds_kept(const OptimizeInputs& in, const ToolRun& run) {
+  for (std::size_t i = run.first; i < run.end; ++i) {
+    if (in.program.path.moves[i].kind != geometry::MoveKind::kRapid && !in.written[i].fixed_feed) return false;
+  }
+  return true;
 }
 
 // Plans one tool's moves on `stock` (the material the earlier tools left). Nothing when the database has
@@ -246,7 +277,7 @@ std::optional<PlannedRun> plan_run(const OptimizeOptions& o, const OptimizeInput
   spec.machine = in.machine;
   std::optional<ChosenModel> chosen = choose_model(store, spec, o.model_id);
   if (!chosen) return std::nullopt;
-  PlannedRun planned{std::move(*chosen), {}, planner::analyse(run_path(in.program, run), stock, run.tool, o.ds_mm), {}, {}, {}};
+  PlannedRun planned{std::move(*chosen), {}, planner::analyse(run_path(in.program, run), stock, run.tool, o.ds_mm), {}, {}, {}, {}};
   planned.kind = choose_model_kind(store, planned.chosen, run.tool, o.model_kind,
                                    extrapolated_contact_share(planned.chosen.record.model, planned.geometry.engagement));
   planned.settings = settings_for(o, in, run, planned.chosen, planned.kind);
@@ -256,27 +287,20 @@ std::optional<PlannedRun> plan_run(const OptimizeOptions& o, const OptimizeInput
     unconstrained.options.feed_step = 0.0;
     planned.unconstrained_s = planner::plan(planned.geometry, unconstrained).summary.cycle_time_s;
   }
+  planned.input = planner::predict_feeds(planned.geometry, planned.settings, input_feeds(in.program, run),
+                                         planned.result.summary.accel_used_mm_per_s2);
   return planned;
 }
 
 // The planner's blocks of feed moves as pieces of the program's moves (the run starting at `first`).
-void add_feed_pieces(const planner::PlanResult& result, std::size_t first, std::vector<gcode::FeedPiece>& pieces) {
+void add_feed_pieces(const planner::PlanResult& result, std::size_t first, const std::vector<gcode::WrittenMove>& written,
+                     std::vector<gcode::FeedPiece>& pieces) {
   for (std::size_t k = 0; k < result.blocks.size(); ++k) {
     const planner::PlannedBlock& block = result.blocks[k];
     if (!(block.feed_mm_per_min > 0.0)) continue;
+    if (written[first + static_cast<std::size_t>(block.move_index)].fixed_feed) continue;  // a drilling cycle's F
     pieces.push_back({block.move_index + static_cast<int>(first), result.program.path.moves[k], block.feed_mm_per_min});
   }
-}
-
-// The one F of every feed move of `run`, or 0 when they differ.
-double single_input_feed(const geometry::Program& program, const ToolRun& run) {
-  double feed = 0.0;
-  for (std::size_t i = run.first; i < run.end; ++i) {
-    if (program.path.moves[i].kind == geometry::MoveKind::kRapid) continue;
-    if (feed == 0.0) feed = program.blocks[i].feed_mm_per_min;
-    if (program.blocks[i].feed_mm_per_min != feed) return 0.0;
-  }
-  return feed;
 }
 
 std::string seconds(double s) { return fixed_number_text(s, 2) + " s"; }
@@ -305,16 +329,49 @@ void print_run(const OptimizeOptions& o, const OptimizeInputs& in, const ToolRun
                 100.0 * (result.summary.cycle_time_s - *p.unconstrained_s) / *p.unconstrained_s,
                 seconds(*p.unconstrained_s).c_str());
   }
-  if (const double feed = single_input_feed(in.program, run); feed > 0.0) {
-    const planner::ConstantFeedPrediction input =
-        planner::predict_constant_feed(p.geometry, p.settings, feed, result.summary.accel_used_mm_per_s2);
-    std::printf("  input: F%s on every feed move: cycle time %s, predicted peak %s N (%+.1f %% time re-fed)\n",
-                shortest_number_text(std::round(feed * 10) / 10).c_str(), seconds(input.cycle_time_s).c_str(),
-                fixed_number_text(input.peak_force_n, 1).c_str(),
-                100.0 * (result.summary.cycle_time_s - input.cycle_time_s) / input.cycle_time_s);
-  } else {
-    std::printf("  input: several F words (its cycle time is not predicted here; run both programs with feedplan "
-                "simulate to compare)\n");
+  std::printf("  input: cycle time %s, predicted peak %s N (%+.1f %% time re-fed)\n", seconds(p.input.cycle_time_s).c_str(),
+              fixed_number_text(p.input.peak_force_n, 1).c_str(),
+              100.0 * (result.summary.cycle_time_s - p.input.cycle_time_s) / p.input.cycle_time_s);
+}
+
+// One operation's time and largest predicted force, at the input's feeds and at the plan's.
+struct OperationFigures {
+  double input_s = 0.0, refed_s = 0.0;
+  double input_peak_n = 0.0, refed_peak_n = 0.0;
+  bool planned = false;   // its moves were planned
+  bool drilling = false;  // it holds drilling cycles, whose feeds are kept
+};
+
+// Adds run `run`'s samples to the figures of the operations their moves belong to (`operation_of_move`).
+void add_operation_figures(const ToolRun& run, const PlannedRun& p, const std::vector<std::size_t>& operation_of_move,
+                           std::vector<OperationFigures>& figures) {
+  const auto& samples = p.geometry.engagement.samples;
+  const auto& planned = p.result.samples;
+  for (std::size_t i = 0; i < samples.size(); ++i) {
+    OperationFigures& f = figures[operation_of_move[run.first + static_cast<std::size_t>(samples[i].move_index)]];
+    f.planned = true;
+    f.input_peak_n = std::max(f.input_peak_n, p.input.force_n[i]);
+    if (i < planned.size()) f.refed_peak_n = std::max(f.refed_peak_n, planned[i].predicted_force_n);
+    if (i + 1 < samples.size()) {
+      f.input_s += p.input.time_s[i + 1] - p.input.time_s[i];
+      if (i + 1 < planned.size()) f.refed_s += planned[i + 1].time_s - planned[i].time_s;
+    }
+  }
+}
+
+void print_operations(const std::vector<ProgramOperation>& operations, const std::vector<OperationFigures>& figures) {
+  std::printf("per operation (predicted): time input → re-fed, peak force input → re-fed\n");
+  for (std::size_t k = 0; k < operations.size(); ++k) {
+    const ProgramOperation& op = operations[k];
+    const OperationFigures& f = figures[k];
+    if (!f.planned && !f.drilling) continue;  // rapids only
+    std::printf("  lines %d–%d %s: ", op.first_line, op.last_line, op.name.c_str());
+    if (!f.planned) {
+      std::printf("feeds kept as written (drilling)\n");
+      continue;
+    }
+    std::printf("%s → %s, %s → %s N\n", seconds(f.input_s).c_str(), seconds(f.refed_s).c_str(),
+                fixed_number_text(f.input_peak_n, 1).c_str(), fixed_number_text(f.refed_peak_n, 1).c_str());
   }
 }
 
@@ -363,20 +420,38 @@ int run_optimize_command(const OptimizeOptions& o) {
   std::vector<gcode::FeedPiece> pieces;
   double cycle_time_s = 0.0;
   bool refused = false;
+  const std::vector<ProgramOperation> operations = program_operations(in.text, in.written);
+  std::vector<std::size_t> operation_of_move(in.written.size());
+  for (std::size_t k = 0; k < operations.size(); ++k) {
+    for (std::size_t m = operations[k].first_move; m < operations[k].end_move; ++m) operation_of_move[m] = k;
+  }
+  std::vector<OperationFigures> figures(operations.size());
   for (const ToolRun& run : in.runs) {
+    if (rapids_only(in.program, run)) continue;
+    if (feeds_kept(in, run)) {  // a drilling tool: its holes come out of the stock, its feeds stay
+      std::printf("%s, lines %d–%d: drilling cycles, feeds kept as written; holes of Ø%s mm cut from the stock\n",
+                  run.number < 0 ? "moves" : ("T" + std::to_string(run.number)).c_str(), in.written[run.first].line,
+                  in.written[run.end - 1].line, shortest_number_text(run.tool.diameter_mm).c_str());
+      stock = geometry::after_cutting(stock, run_path(in.program, run), run.tool.radius_mm());
+      for (std::size_t m = run.first; m < run.end; ++m) figures[operation_of_move[m]].drilling = true;
+      continue;
+    }
     const std::optional<PlannedRun> planned = plan_run(o, in, run, store, stock);
     if (!planned) return kExitFailed;
     print_run(o, in, run, *planned);
-    add_feed_pieces(planned->result, run.first, pieces);
+    add_operation_figures(run, *planned, operation_of_move, figures);
+    add_feed_pieces(planned->result, run.first, in.written, pieces);
     cycle_time_s += planned->result.summary.cycle_time_s;
     refused = refused || planned->result.status == planner::PlanStatus::kTargetNotMet ||
               planned->result.status == planner::PlanStatus::kUnsafe;
     stock = geometry::after_cutting(stock, planned->geometry.path, run.tool.radius_mm());
   }
+  print_operations(operations, figures);
   const gcode::RefeedResult refed = gcode::refeed_text(in.text, in.program, in.written, pieces);
   const double wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
   std::printf("planned cycle time %s; re-fed: %d lines changed, %d lines added (%d moves split where their feed "
-              "changes), %d moves at their lowest feed (not split: incremental or multi-turn); %.2f s\n",
+              "changes), %d moves at their lowest feed (not split: incremental, multi-turn, compensated, or one of several "
+              "moves of a line); %.2f s\n",
               seconds(cycle_time_s).c_str(), refed.lines_changed, refed.lines_added, refed.moves_split,
               refed.moves_at_lowest_feed, wall_s);
   if (refused) {

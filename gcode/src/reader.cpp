@@ -38,8 +38,8 @@ namespace {
 
 constexpr double kMmPerInch = 25.4;
 constexpr double kReportedShiftMm = 1e-6;  // centre moves above this are counted in a note
-constexpr std::size_t kMaxLineCharacters = 4096;
-constexpr double kParkClearanceMm = 25.0;  // the park height above the highest Z reached (ReaderOptions::park_z_mm)  // LinuxCNC's limit is 255; CAM comments stay far below
+constexpr std::size_t kMaxLineCharacters = 4096;  // LinuxCNC's limit is 255; CAM comments stay far below
+constexpr double kParkClearanceMm = 25.0;  // the park height above the highest Z reached (ReaderOptions::park_z_mm)
 
 // Motion modes in tenths of their G number; kNoMotion after G80 and at the start (as LinuxCNC).
 constexpr int kNoMotion = -1;
@@ -514,15 +514,15 @@ class Interpreter {
            "which tool's radius to compensate for; write " + code + " D<tool>");
       return false;
     }
-    const auto diameter = options_.tool_diameters_mm.find(*tool);
-    if (diameter == options_.tool_diameters_mm.end()) {
+    const std::optional<double> diameter = tool_diameter_mm(*tool);
+    if (!diameter) {
       const std::string subject = d != nullptr ? "word " + d->text : "word " + code;
       fail(subject + ": cutter compensation needs the diameter of tool " + std::to_string(*tool) +
            ", which is not given: give the diameter of tool " + std::to_string(*tool) +
            " (ReaderOptions::tool_diameters_mm; feedplan optimize --tools)");
       return false;
     }
-    if (!std::isfinite(diameter->second)) {
+    if (!std::isfinite(*diameter)) {
       fail("word " + code + ": the diameter given for tool " + std::to_string(*tool) + " is not a finite number");
       return false;
     }
@@ -921,6 +921,13 @@ class Interpreter {
     moved_ = true;
   }
 
+  // The diameter of `tool` for cutter compensation: ReaderOptions::tool_diameters_mm, else
+  // ReaderOptions::any_tool_diameter_mm when given.
+  std::optional<double> tool_diameter_mm(int tool) const {
+    if (const auto it = options_.tool_diameters_mm.find(tool); it != options_.tool_diameters_mm.end()) return it->second;
+    return options_.any_tool_diameter_mm;
+  }
+
   // G40, G41, G42 (LinuxCNC: after units, before the tool length offset). check_compensation_words made
   // sure a G41/G42 has its tool's diameter.
   void set_compensation(const Block& block, int code) {
@@ -930,7 +937,7 @@ class Interpreter {
       comp_on_ = false;
       return;
     }
-    const double diameter_mm = options_.tool_diameters_mm.at(*compensation_tool(block));
+    const double diameter_mm = *tool_diameter_mm(*compensation_tool(block));
     detail::CompSide side = code == kG41 ? detail::CompSide::kLeft : detail::CompSide::kRight;
     if (diameter_mm < 0.0) {  // LinuxCNC: a negative diameter compensates on the other side
       side = side == detail::CompSide::kLeft ? detail::CompSide::kRight : detail::CompSide::kLeft;

@@ -1,4 +1,4 @@
-// A real hand-written Haas program (/work/shared/cam/handwritten_nims_mill_hp_4.ngc: a profile and a slot
+// A real hand-written Haas program (../shared/cam/handwritten_nims_mill_hp_4.ngc: a profile and a slot
 // with G41 D01 / D02, G81/G83 drilling with G99, G28, G53 retracts, M31/M33, O1001, five tools) read
 // whole, as `feedplan optimize` reads it (tool changes anywhere, the end mills' diameters given); and its
 // feed moves against LinuxCNC's: rs274 runs the same text with a tool table of the same diameters, less
@@ -30,7 +30,9 @@ using geometry::MoveKind;
 
 constexpr double kToleranceMm = 1e-3 + 0.5 * 0.0001 * 25.4 * 1.7320508;  // 1 µm and half an inch digit
 
-const fs::path kProgram = "/work/shared/cam/handwritten_nims_mill_hp_4.ngc";
+// ../shared/cam beside the repository, when it is there.
+const fs::path kProgram =
+    fs::path(FEEDPLAN_TEST_DATA_DIR) / ".." / ".." / ".." / "shared" / "cam" / "handwritten_nims_mill_hp_4.ngc";
 
 std::string text_of(const fs::path& path) {
   std::ifstream in(path);
@@ -65,7 +67,7 @@ ReaderOptions haas_options() {
 class HaasProgram : public oracle::Rs274Test {
  protected:
   void SetUp() override {
-    if (!fs::exists(kProgram)) GTEST_SKIP() << kProgram << " is absent (/work/shared/cam): the Haas program test is not run";
+    if (!fs::exists(kProgram)) GTEST_SKIP() << kProgram << " is absent (../shared/cam beside the repository): the Haas program test is not run";
     oracle::Rs274Test::SetUp();
   }
 };

@@ -157,6 +157,9 @@ struct ReaderOptions {
   //! (LinuxCNC: D is a tool number whose tool-table diameter is used; Haas' D01 is tool 1), or without D
   //! the tool in the spindle. A negative diameter compensates on the other side, 0 not at all (LinuxCNC).
   std::map<int, double> tool_diameters_mm;
+  //! The diameter of every tool tool_diameters_mm does not list, mm: for a program of one tool whose number
+  //! the caller does not know (feedplan optimize --tool). Empty: none.
+  std::optional<double> any_tool_diameter_mm;
   //! Z of the parked state that moves to machine positions (G28, G30, G53) are read as, mm; without it,
   //! the highest Z the program has reached before the move (or the initial position's) plus 25 mm.
   std::optional<double> park_z_mm;
