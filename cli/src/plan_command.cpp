@@ -63,6 +63,7 @@ gcode::WriterOptions writer_options(const PlanCommandOptions& o, const std::opti
   writer.coolant = o.coolant;
   writer.tool_number = o.tool_number;
   writer.program_number = o.program_number;
+  writer.work_offset = o.work_offset;
   for (InputProblem problem : gcode::validate(writer)) {
     std::replace(problem.field.begin(), problem.field.end(), '_', '-');  // decimals, tool-number: the flags
     problem.field = "--" + problem.field;
@@ -214,6 +215,17 @@ ProgramChoice choose_program(const PlanCommandOptions& o, const planner::PlanRes
   return choice;
 }
 
+// The tool comment of the program: "T1 SC EM D10 Z4, D10 mm, 4 flutes, helix 30 deg" (the name once; the
+// numbers the controller's operator checks against the tool in the holder).
+std::string tool_comment(int tool_number, const geometry::Tool& tool) {
+  std::string text(1, 'T');
+  text += std::to_string(tool_number);
+  if (!tool.name.empty()) text += " " + tool.name;
+  text += ", D" + shortest_number_text(tool.diameter_mm) + " mm, " + std::to_string(tool.flutes) + " flutes, helix " +
+          shortest_number_text(tool.helix_deg) + " deg";
+  return text;
+}
+
 // The writer options with the program's name and header comments.
 gcode::WriterOptions program_writer(const PlanCommandOptions& o, const PlanInputs& in, const ChosenModel& chosen,
                                     const ProgramChoice& program, const planner::PlanResult& result) {
@@ -223,7 +235,7 @@ gcode::WriterOptions program_writer(const PlanCommandOptions& o, const PlanInput
   writer.program_name = spec.cycle + " " + spec.tool.name;
   writer.header_comments = {
       {"cycle", spec.cycle + " from " + fs::path(o.spec_path).filename().string()},
-      {"tool", spec.tool.name + " D" + shortest_number_text(spec.tool.diameter_mm) + " Z" + std::to_string(spec.tool.flutes)},
+      {"tool", tool_comment(writer.tool_number, spec.tool)},
       {"material", spec.material}};
   if (program.constant) {
     writer.header_comments.push_back({"constant feed mm/min", shortest_number_text(*o.constant_feed_mm_per_min)});
@@ -386,6 +398,7 @@ void add_plan_command(CLI::App& app, PlanCommandOptions& options) {
   cmd->add_flag("--line-numbers", options.line_numbers, "Number the blocks (N words)");
   cmd->add_flag("--coolant", options.coolant, "Flood coolant on (M8) while cutting");
   add_integer_flag(cmd, "--tool-number", options.tool_number, "Tool number for T and H (default 1)");
+  add_integer_flag(cmd, "--work-offset", options.work_offset, "Work offset G54..G59 as 54..59 (default 54; 0: none)");
   add_integer_flag(cmd, "--program-number", options.program_number, "Program number for the O word of Fanuc/Haas (default 1000)");
   cmd->add_flag("--json", options.json, "Print the summary as JSON");
   cmd->add_flag("--simulate", options.simulate,

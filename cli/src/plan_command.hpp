@@ -35,6 +35,7 @@ struct PlanCommandOptions {
   bool line_numbers = false;          //!< --line-numbers
   bool coolant = false;               //!< --coolant
   int tool_number = 1;                //!< --tool-number
+  int work_offset = 54;               //!< --work-offset (54..59, 0: none)
   int program_number = 1000;          //!< --program-number (Fanuc/Haas O word)
   bool json = false;                  //!< --json: summary as JSON on stdout
   bool simulate = false;              //!< --simulate: run the program on the virtual machine and compare

@@ -81,14 +81,16 @@ std::vector<ProgramOperation> program_operations(const std::string& text, const 
   int previous_line = 0;
   for (std::size_t m = 0; m < written.size(); ++m) {
     const int line = written[m].line;
-    std::optional<std::string> name;
+    std::optional<std::string> name, begun;  // the first opening comment; the last "begin operation"
     bool comment_between = false;
     for (int k = previous_line + 1; k < line && k < static_cast<int>(lines.size()); ++k) {
       const std::optional<std::string> comment = comment_only(lines[static_cast<std::size_t>(k)]);
       if (!comment) continue;
       comment_between = true;
       if (!name) name = opening_name(*comment);
+      if (lower(*comment).rfind("begin operation", 0) == 0) begun = opening_name(*comment);
     }
+    if (begun) name = begun;  // FreeCAD opens operations without moves too (fixtures, tool changes)
     const bool new_tool = m > 0 && written[m].tool != written[m - 1].tool;
     const bool current_feeds = !operations.empty() && feed_moves_in(written, operations.back().first_move, m);
     if (operations.empty() || new_tool || (comment_between && name && current_feeds)) {

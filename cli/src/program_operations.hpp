@@ -22,8 +22,8 @@ struct ProgramOperation {
 
 //! The operations of the program `text` whose moves were read as `written`: a new one starts at a move
 //! with another tool than the move before it, or with a line holding only comments between the two when
-//! the operation so far has a feed move (its name: the first such comment that does not start with
-//! "finish" or "end"; none such: no new operation); an operation still named after its tool takes such a
+//! the operation so far has a feed move (its name: the last "begin operation" comment among them, else the
+//! first that does not start with "finish" or "end"; none such: no new operation); an operation still named after its tool takes such a
 //! comment before its first feed move. Every move belongs to exactly one operation, in program order.
 std::vector<ProgramOperation> program_operations(const std::string& text, const std::vector<gcode::WrittenMove>& written);
 

@@ -292,6 +292,11 @@ class Writer {
     } else {
       block("G21 G17 G90 G91.1 G40 G49 G80 G94");
     }
+    if (options_.work_offset != 0) {
+      std::string offset(1, 'G');
+      offset += std::to_string(options_.work_offset);
+      block(offset);
+    }
     if (options_.tool_change) block("T" + std::to_string(options_.tool_number) + " " + m_code(6));
   }
 
@@ -563,6 +568,9 @@ std::vector<InputProblem> validate(const WriterOptions& options) {
   if (options.retract_z_mm &&
       (!std::isfinite(*options.retract_z_mm) || std::abs(*options.retract_z_mm) > kCoordinateLimitMm)) {
     add("retract_z_mm", "= " + number(*options.retract_z_mm) + ": must be finite and within ±99999 mm");
+  }
+  if (options.work_offset != 0 && (options.work_offset < 54 || options.work_offset > 59)) {
+    add("work_offset", "= " + std::to_string(options.work_offset) + ": must be 54..59 (G54 … G59), or 0 for none");
   }
   if (!std::isfinite(options.max_arc_sweep_deg) || options.max_arc_sweep_deg < 1.0 ||
       options.max_arc_sweep_deg > 360.0) {

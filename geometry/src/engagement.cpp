@@ -31,6 +31,7 @@ constexpr double kMinEngagedRad = 1e-9;
 constexpr int kCompactEvery = 4;
 // Air samples with more engagement than this are reported as meeting material.
 constexpr double kAirContactRad = 1e-6;
+constexpr double kGrazingDepthMm = 0.001;  // contact of air moves shallower than this is grazing (1 µm)
 // Heights closer than this to the tip or the stock faces are not evaluated (a face is not material).
 constexpr double kLayerOffsetMm = 1e-6;
 
@@ -441,7 +442,11 @@ void engage_layers(Sampler& sampler, const MoveSampling& m, double f, Engagement
 void warn_of_contact_in_air(Sampler& sampler, const MoveSampling& m, const EngagementSample& sample, int step) {
   const std::size_t i = m.index;
   const bool retract = m.xy_length_mm <= 0.0 && m.move.end.z_mm > m.move.start.z_mm;
-  if (step > 0 && !retract && !m.cutting && sample.engagement_rad > kAirContactRad && !sampler.warned[i]) {
+  // Material reaching less than kGrazingDepthMm into the tool circle (against a wall: r·(1 − cos(α/2))) is
+  // the sliver a retraced cut leaves between the stock's polygons and the path, not a collision.
+  const bool grazing = !sample.end_face_in_material &&
+                       sampler.r * (1.0 - std::cos(0.5 * sample.engagement_rad)) <= kGrazingDepthMm;
+  if (step > 0 && !retract && !grazing && !m.cutting && sample.engagement_rad > kAirContactRad && !sampler.warned[i]) {
     sampler.warned[i] = true;
     std::ostringstream out;
     out << describe(m.move, i, sampler.path.part_names) << " meets material at s = " << sample.s_mm

@@ -92,6 +92,9 @@ double force_limit_mm_per_min(const SafetyCheckInput& input, const geometry::Eng
   return std::max(limit.feed_mm_per_min, settings.machine.min_feed_mm_per_min);
 }
 
+// Least depth below which a rapid's contact with material counts as grazing, mm.
+constexpr double kGrazingDepthMm = 0.001;
+
 // The feed allowed at one sample and the invariant that sets it.
 struct SampleAllowance {
   double mm_per_min = std::numeric_limits<double>::infinity();
@@ -105,6 +108,16 @@ bool rises_straight_up(const geometry::Move& move) {
   return move.end.z_mm > move.start.z_mm && geometry::xy_length_mm(move) < 1e-9;
 }
 
+// True when the tool circle only grazes the material at `sample`: the material it meets reaches into the
+// circle less deep than the program's coordinates resolve (at least 1 µm), r·(1 − cos(α/2)) for an engaged
+// angle α against a wall — a rapid retracing a cut it made along the wall it left, where the stock's
+// polygons and the path's rounding leave slivers of a micrometre. Its end face meets nothing.
+bool grazes(const geometry::EngagementSample& sample, double tool_radius_mm, double resolution_mm) {
+  if (sample.end_face_in_material) return false;
+  const double depth_mm = tool_radius_mm * (1.0 - std::cos(0.5 * sample.engagement_rad));
+  return depth_mm <= std::max(resolution_mm, kGrazingDepthMm);
+}
+
 SampleAllowance allowance(const SafetyCheckInput& input, const geometry::EngagementProfile& profile,
                           const geometry::EngagementSample& sample, const geometry::Move& move) {
   if (!std::isfinite(sample.engagement_rad) || !std::isfinite(sample.chip_factor) ||
@@ -112,7 +125,10 @@ SampleAllowance allowance(const SafetyCheckInput& input, const geometry::Engagem
     return {0.0, SafetyProblem::kEngagementUnknown};
   }
   if (!meets_material(sample) || rises_straight_up(move)) return {};
-  if (move.kind == geometry::MoveKind::kRapid) return {0.0, SafetyProblem::kRapidInMaterial};
+  if (move.kind == geometry::MoveKind::kRapid) {
+    if (grazes(sample, profile.tool_radius_mm, input.settings->options.coordinate_resolution_mm)) return {};
+    return {0.0, SafetyProblem::kRapidInMaterial};
+  }
   const double plunge = plunge_feed_limit_mm_per_min(move, *input.tool, input.settings->spindle_rpm,
                                                      input.settings->options.coordinate_resolution_mm);
   const double force =

@@ -12,8 +12,9 @@
 //   3. Safe start. LinuxCNC `G21 G17 G90 G91.1 G40 G49 G80 G94` — G91.1 (I J incremental) is
 //      LinuxCNC's default, written out because an INI file can change it; Fanuc and Haas have no
 //      G90.1/G91.1, their I J are always incremental: `G21` alone (Fanuc wants G20/G21 in a block
-//      of its own at the start), then `G17 G90 G40 G49 G80 G94`. No work offset is written: the
-//      one the operator has active (G54 after reset) stays.
+//      of its own at the start), then `G17 G90 G40 G49 G80 G94`. Then the work offset in a block of
+//      its own (`G54` by default, WriterOptions::work_offset; none when 0: the one the operator has
+//      active stays).
 //   4. Tool: `T<n> M6` when tool_change (M06 on Fanuc and Haas).
 //   5. Spindle for the first block: `S<rpm> M3` (M4) when its spindle runs. With coolant, `M8` right
 //      after the spindle first starts (here or at a later block), or here if it never does.
@@ -96,12 +97,14 @@ struct WriterOptions {
   //! _ . / -, starting with a letter; values are any text (made safe, see above).
   std::vector<std::pair<std::string, std::string>> header_comments;
   std::optional<double> retract_z_mm;  //!< safe height, mm: `G0 Z<this>` before the end if the tool is below it
+  //! Work offset written after the safe start, 54..59 (G54 … G59); 0: none (the active one stays).
+  int work_offset = 54;
   double max_arc_sweep_deg = 180.0;    //!< arcs and helices sweeping more than this, deg, are split
                                        //!< into equal sub-arcs; 1..360
 };
 
 //! Checks `options`: dialect one of the three; decimals in 1..6; line_number_step in 1..99999;
-//! tool_number in 1..999; program_number in 1..9999 (Fanuc) or 1..99999 (Haas); header comment keys
+//! tool_number in 1..999; work_offset 0 or 54..59; program_number in 1..9999 (Fanuc) or 1..99999 (Haas); header comment keys
 //! as described at WriterOptions::header_comments; retract_z_mm finite within ±99999 mm;
 //! max_arc_sweep_deg finite in [1, 360]. Returns every problem, each naming the field as declared
 //! ("decimals", "header_comments[2].key" — the CLI prefixes its flag), its value and the allowed

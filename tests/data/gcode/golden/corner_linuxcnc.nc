@@ -5,6 +5,7 @@
 (material: S50C)
 (target force N: 300)
 G21 G17 G90 G91.1 G40 G49 G80 G94
+G54
 T1 M6
 S2800 M3
 G0 X-20. Y-5.5
