@@ -35,9 +35,10 @@ const std::string kSecondToolAlone =
 
 class SimulateToolsCliTest : public CliTest {
  protected:
-  nlohmann::json simulate_json(const std::string& arguments) {
+  // The --json summary of `feedplan simulate <arguments>`, its force log written to `log_name` in the test's folder.
+  nlohmann::json simulate_json(const std::string& arguments, const std::string& log_name) {
     const RunResult r = run_feedplan("simulate " + arguments + " --material Al7075-T6" + kStock + "--log-rate 2000 --log " +
-                                     (dir_ / "log.csv").string() + " --json");
+                                     (dir_ / log_name).string() + " --json");
     EXPECT_EQ(r.exit_code, 0) << arguments << "\n" << r.output;
     if (r.exit_code != 0) return {};
     return nlohmann::json::parse(r.output.substr(r.output.find('{')));
@@ -55,12 +56,12 @@ class SimulateToolsCliTest : public CliTest {
 };
 
 TEST_F(SimulateToolsCliTest, TheSecondToolFindsTheFirstToolsSlotCut) {
-  const nlohmann::json both = simulate_json(kProgram + " --tools " + kTools + " --peaks " + (dir_ / "peaks.csv").string());
+  const nlohmann::json both = simulate_json(kProgram + " --tools " + kTools + " --peaks " + (dir_ / "peaks.csv").string(), "log.csv");
   ASSERT_TRUE(both.contains("tool_runs"));
   const nlohmann::json first = simulate_json(write_spec("t1.ngc", kFirstToolAlone).string() +
-                                             " --tool diameter_mm=10,flutes=2,helix_deg=30");
+                                             " --tool diameter_mm=10,flutes=2,helix_deg=30", "t1.csv");
   const nlohmann::json second = simulate_json(write_spec("t2.ngc", kSecondToolAlone).string() +
-                                              " --tool diameter_mm=8,flutes=2,helix_deg=30");
+                                              " --tool diameter_mm=8,flutes=2,helix_deg=30", "t2.csv");
   ASSERT_FALSE(first.is_null());
   ASSERT_FALSE(second.is_null());
   const auto& runs = both["tool_runs"];
