@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
+#include <cstdio>
 #include <string>
 #include <vector>
 
@@ -133,6 +134,27 @@ TEST_F(SimulateToolsCliTest, BadToolFlagsNameTheFlag) {
   expect_bad_input(kProgram + kStock + " --tools " + three.string() + " --machine " + kMachines + "/aluminium-two-flute.yaml",
                    "runout_mm has 2 values: must have one per flute, and the tool T2 has 3 (T2 of --tools " +
                        three.string() + ")");
+}
+
+// Cutter compensation offsets by the tool's diameter with --tool too (ReaderOptions::any_tool_diameter_mm): the
+// compensated side cut along y = -5 runs with its centre at y = 0, one radius into the block.
+TEST_F(SimulateToolsCliTest, CutterCompensationTakesTheToolsDiameter) {
+  const fs::path program = write_spec("g41.ngc",
+                                      "G17 G21 G90\nM3 S6000\nG0 X-20 Y-10 Z5\nG0 Z-3\nG41 D1 G1 X-5 Y-5 F600\n"
+                                      "G1 X30\nG40 G1 X40 Y-20\nG0 Z5\nM5\nM30\n");
+  const nlohmann::json out = simulate_json(program.string() + " --tool diameter_mm=10,flutes=2,helix_deg=30", "g41.csv");
+  ASSERT_FALSE(out.is_null());
+  EXPECT_GT(out["max_revolution_peak_n"].get<double>(), 50.0);
+  int on_the_cut = 0;  // rows on the straight part of the cut: the centre at y = 0
+  for (const std::string& line : lines_of(read_text(dir_ / "g41.csv"))) {
+    if (line.empty() || line[0] == '#' || line[0] == 't') continue;
+    double t = 0.0, x = 0.0, y = 0.0, z = 0.0;
+    ASSERT_EQ(std::sscanf(line.c_str(), "%lf,%lf,%lf,%lf", &t, &x, &y, &z), 4) << line;
+    if (z > -2.999 || x < 0.0 || x > 25.0) continue;
+    ++on_the_cut;
+    EXPECT_NEAR(y, 0.0, 1e-4) << line;
+  }
+  EXPECT_GT(on_the_cut, 100);
 }
 
 const fs::path kHaas =
