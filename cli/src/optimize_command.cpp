@@ -17,6 +17,7 @@
 #include "output_files.hpp"
 #include "output_path.hpp"
 #include "tool_flag.hpp"
+#include "tool_runs.hpp"
 #include "feedplan/core/bounded_read.hpp"
 #include "feedplan/core/input_error.hpp"
 #include "feedplan/core/number_text.hpp"
@@ -66,14 +67,6 @@ geometry::Stock stock_box(const std::string& text, std::vector<InputProblem>& pr
   return stock;
 }
 
-// The moves [first, end) of the program one tool makes, between its tool changes.
-struct ToolRun {
-  std::size_t first = 0, end = 0;
-  int number = -1;          // T number (−1: none named)
-  geometry::Tool tool;
-  double spindle_rpm = 0.0;
-};
-
 // What the user gave, checked before anything is planned or written.
 struct OptimizeInputs {
   std::string text;                           // the program as read
@@ -109,55 +102,6 @@ double spindle_speed(const OptimizeOptions& o, const geometry::Program& program,
                                        ": give --spindle-rpm"});
   }
   return rpm;
-}
-
-// True when `run` has no feed moves (a G28 before the first tool change): nothing to plan or cut.
-bool rapids_only(const geometry::Program& program, const ToolRun& run) {
-  for (std::size_t i = run.first; i < run.end; ++i) {
-    if (program.path.moves[i].kind != geometry::MoveKind::kRapid) return false;
-  }
-  return true;
-}
-
-// The program's moves by the tool that makes them (WrittenMove::tool), each with its end mill: from
-// --tools by T number, else --tool for a program of one tool.
-std::vector<ToolRun> tool_runs(const OptimizeOptions& o, const OptimizeInputs& in, const std::optional<geometry::Tool>& tool,
-                               const std::map<int, geometry::Tool>& library, std::vector<InputProblem>& problems) {
-  std::vector<ToolRun> runs;
-  for (std::size_t m = 0; m < in.written.size(); ++m) {
-    if (runs.empty() || in.written[m].tool != runs.back().number) runs.push_back({m, m, in.written[m].tool, {}, 0.0});
-    runs.back().end = m + 1;
-  }
-  std::map<int, int> first_line;  // T number → the line of its first move
-  for (const ToolRun& run : runs) {
-    if (!rapids_only(in.program, run)) first_line.emplace(run.number, in.written[run.first].line);
-  }
-  if (library.empty() && first_line.size() > 1) {
-    std::string which;
-    for (const auto& [number, line] : first_line) {
-      which += (which.empty() ? "" : ", ") + (number < 0 ? std::string("no tool") : "T" + std::to_string(number)) +
-               " from line " + std::to_string(line);
-    }
-    problems.push_back({"--tools", "is required: the program changes tools (" + which +
-                                       "); give --tools TOOLS.yaml with the end mill of each T number"});
-    return runs;
-  }
-  for (ToolRun& run : runs) {
-    if (rapids_only(in.program, run)) continue;  // no tool needed: nothing is cut or planned
-    if (library.empty()) {
-      if (tool) run.tool = *tool;
-    } else if (const auto it = library.find(run.number); it != library.end()) {
-      run.tool = it->second;
-    } else {
-      std::string known;
-      for (const auto& [number, t] : library) known += (known.empty() ? "T" : ", T") + std::to_string(number);
-      problems.push_back({"--tools", "= " + o.tools_path + ": has no " +
-                                         (run.number < 0 ? std::string("tool for the moves before any tool change")
-                                                         : "T" + std::to_string(run.number)) +
-                                         " (line " + std::to_string(in.written[run.first].line) + "); it has " + known});
-    }
-  }
-  return runs;
 }
 
 OptimizeInputs read_inputs(const OptimizeOptions& o) {
@@ -198,16 +142,12 @@ OptimizeInputs read_inputs(const OptimizeOptions& o) {
   if (!problems.empty()) throw InputError(std::move(problems));
   const std::map<int, geometry::Tool> library =
       o.tools_path.empty() ? std::map<int, geometry::Tool>{} : cycles::load_tool_library(o.tools_path);
-  gcode::ReaderOptions reader;
-  reader.tool_changes = true;  // each tool's moves are planned on their own
-  // Cutter compensation (G41/G42 D<tool>) offsets by the diameters of the tools given.
-  for (const auto& [number, t] : library) reader.tool_diameters_mm[number] = t.diameter_mm;
-  if (tool) reader.any_tool_diameter_mm = tool->diameter_mm;
+  const gcode::ReaderOptions reader = tool_change_reader(library, tool);  // each tool's moves planned on their own
   in.text = read_input_file(o.program_path, {"a G-code program of a milling job", reader.max_file_bytes,
                                              "ReaderOptions::max_file_bytes"});
   in.program = gcode::read_program(in.text, o.program_path, reader, in.written);
   if (!o.stock_path.empty()) in.stock = cycles::load_stock_spec(o.stock_path);
-  in.runs = tool_runs(o, in, tool, library, problems);
+  in.runs = tool_runs(in.program, in.written, tool, library, o.tools_path, problems);
   for (ToolRun& run : in.runs) run.spindle_rpm = spindle_speed(o, in.program, run, problems);
   if (!problems.empty()) throw InputError(std::move(problems));
   return in;
@@ -242,28 +182,11 @@ struct PlannedRun {
   planner::FeedPrediction input;          // the run at the input program's own feeds
 };
 
-// The moves [run.first, run.end) as a path of their own.
-geometry::ToolPath run_path(const geometry::Program& program, const ToolRun& run) {
-  geometry::ToolPath path;
-  path.part_names = program.path.part_names;
-  path.moves.assign(program.path.moves.begin() + static_cast<long>(run.first),
-                    program.path.moves.begin() + static_cast<long>(run.end));
-  return path;
-}
-
 // The input program's own F of every move of `run` (0 on rapids), mm/min.
 std::vector<double> input_feeds(const geometry::Program& program, const ToolRun& run) {
   std::vector<double> feeds;
   for (std::size_t i = run.first; i < run.end; ++i) feeds.push_back(program.blocks[i].feed_mm_per_min);
   return feeds;
-}
-
-// True when every feed move of `run` keeps the F it was written with (a drilling cycle's): nothing to plan.
-bool feeds_kept(const OptimizeInputs& in, const ToolRun& run) {
-  for (std::size_t i = run.first; i < run.end; ++i) {
-    if (in.program.path.moves[i].kind != geometry::MoveKind::kRapid && !in.written[i].fixed_feed) return false;
-  }
-  return true;
 }
 
 // Plans one tool's moves on `stock` (the material the earlier tools left). Nothing when the database has
@@ -308,7 +231,7 @@ std::string seconds(double s) { return fixed_number_text(s, 2) + " s"; }
 void print_run(const OptimizeOptions& o, const OptimizeInputs& in, const ToolRun& run, const PlannedRun& p) {
   const planner::PlanResult& result = p.result;
   std::printf("%s, lines %d–%d: %s (D%s, %d flutes) at S%s\n",
-              run.number < 0 ? "moves" : ("T" + std::to_string(run.number)).c_str(), in.written[run.first].line,
+              run_name(run).c_str(), in.written[run.first].line,
               in.written[run.end - 1].line, run.tool.name.c_str(), shortest_number_text(run.tool.diameter_mm).c_str(),
               run.tool.flutes, shortest_number_text(run.spindle_rpm).c_str());
   for (const std::string& warning : p.geometry.engagement.warnings) std::printf("  warning: %s\n", warning.c_str());
@@ -428,9 +351,9 @@ int run_optimize_command(const OptimizeOptions& o) {
   std::vector<OperationFigures> figures(operations.size());
   for (const ToolRun& run : in.runs) {
     if (rapids_only(in.program, run)) continue;
-    if (feeds_kept(in, run)) {  // a drilling tool: its holes come out of the stock, its feeds stay
+    if (feeds_kept(in.program, in.written, run)) {  // a drilling tool: its holes come out of the stock, its feeds stay
       std::printf("%s, lines %d–%d: drilling cycles, feeds kept as written; holes of Ø%s mm cut from the stock\n",
-                  run.number < 0 ? "moves" : ("T" + std::to_string(run.number)).c_str(), in.written[run.first].line,
+                  run_name(run).c_str(), in.written[run.first].line,
                   in.written[run.end - 1].line, shortest_number_text(run.tool.diameter_mm).c_str());
       stock = geometry::after_cutting(stock, run_path(in.program, run), run.tool.radius_mm());
       for (std::size_t m = run.first; m < run.end; ++m) figures[operation_of_move[m]].drilling = true;

@@ -14,6 +14,7 @@ struct SimulateOptions {
   std::string program_path;        //!< the G-code program; empty with --cutting-test
   std::string spec_path;           //!< cycle spec to take tool, material, spindle, machine and stock from
   std::string tool_text;           //!< "diameter_mm=10,flutes=4,helix_deg=30[,name=…]"
+  std::string tools_path;          //!< tool library (the end mill of each T number); conflicts with tool_text
   std::string material_name;       //!< name or alias in the materials file
   std::string materials_path;      //!< materials file; empty: the bundled one
   std::string stock_path;          //!< stock YAML (or a cycle spec); empty: a block around the program
