@@ -118,10 +118,31 @@ TEST(PocketCornerEngagement, WallPassCornerArcsMatchTheInternalArcForm) {
   }
 }
 
+// Whether a removed move's swept region can reach within `margin_mm` of (x, y): its XY bounding box
+// (the whole circle for arcs) grown by the tool radius.
+bool may_reach(const geometry::SweptMove& swept, double x_mm, double y_mm, double margin_mm) {
+  const auto& m = swept.move;
+  double lo_x = std::min(m.start.x_mm, m.end.x_mm), hi_x = std::max(m.start.x_mm, m.end.x_mm);
+  double lo_y = std::min(m.start.y_mm, m.end.y_mm), hi_y = std::max(m.start.y_mm, m.end.y_mm);
+  if (m.kind == geometry::MoveKind::kArc) {
+    const double radius = geometry::arc_radius_mm(m);
+    lo_x = m.center.x_mm - radius, hi_x = m.center.x_mm + radius;
+    lo_y = m.center.y_mm - radius, hi_y = m.center.y_mm + radius;
+  }
+  const double grow = swept.tool_radius_mm + margin_mm;
+  return x_mm >= lo_x - grow && x_mm <= hi_x + grow && y_mm >= lo_y - grow && y_mm <= hi_y + grow;
+}
+
 // Material at (x, y) on the layer 5 mm above the pocket floor, probed with a tiny tool: engaged means
-// material within 5 µm.
+// material within 5 µm. Only the removed moves that can reach the probe are kept (speed; the others
+// cannot change the answer).
 bool material_at(const geometry::Stock& stock, double x_mm, double y_mm) {
   constexpr double kProbeRadiusMm = 0.005;
+  geometry::Stock near = stock;
+  near.removed.clear();
+  for (const auto& swept : stock.removed) {
+    if (may_reach(swept, x_mm, y_mm, 2 * kProbeRadiusMm)) near.removed.push_back(swept);
+  }
   geometry::ToolPath probe;
   probe.part_names = {"probe"};
   geometry::Move m;
@@ -131,7 +152,7 @@ bool material_at(const geometry::Stock& stock, double x_mm, double y_mm) {
   m.cutting = true;
   m.axial_depth_mm = 1.0;
   probe.moves.push_back(m);
-  const auto profile = geometry::compute_engagement(probe, stock, kProbeRadiusMm, {.ds_mm = 1.0});
+  const auto profile = geometry::compute_engagement(probe, near, kProbeRadiusMm, {.ds_mm = 1.0});
   return profile.samples.front().engagement_rad > 0;
 }
 
