@@ -133,11 +133,12 @@ bool may_reach(const geometry::SweptMove& swept, double x_mm, double y_mm, doubl
   return x_mm >= lo_x - grow && x_mm <= hi_x + grow && y_mm >= lo_y - grow && y_mm <= hi_y + grow;
 }
 
-// Material at (x, y) on the layer 5 mm above the pocket floor, probed with a tiny tool: engaged means
-// material within 5 µm. Only the removed moves that can reach the probe are kept (speed; the others
-// cannot change the answer).
-bool material_at(const geometry::Stock& stock, double x_mm, double y_mm) {
-  constexpr double kProbeRadiusMm = 0.005;
+constexpr double kProbeRadiusMm = 0.5;
+
+// Engaged angle of a probe tool of radius 0.5 mm centred at (x, y), on the layers from 5 mm above the
+// pocket floor up: 0 where the disc holds no material, 2π where it is all material. Only the removed
+// moves that can reach the probe are kept (speed; the others cannot change the answer).
+double material_angle_rad(const geometry::Stock& stock, double x_mm, double y_mm) {
   geometry::Stock near = stock;
   near.removed.clear();
   for (const auto& swept : stock.removed) {
@@ -153,7 +154,7 @@ bool material_at(const geometry::Stock& stock, double x_mm, double y_mm) {
   m.axial_depth_mm = 1.0;
   probe.moves.push_back(m);
   const auto profile = geometry::compute_engagement(probe, near, kProbeRadiusMm, {.ds_mm = 1.0});
-  return profile.samples.front().engagement_rad > 0;
+  return profile.samples.front().engagement_rad;
 }
 
 // Point on the spec's rounded rectangle at parameter u ∈ [0, 1) along its outline, and its outward
@@ -185,28 +186,28 @@ OutlinePoint outline_point(const PocketSpec& spec, double u) {
   return {spec.center.x_mm + p.x, spec.center.y_mm + p.y, p.nx, p.ny};
 }
 
+// Probe discs of radius ρ = 0.5 mm kept δ = 0.02 mm off the outline on either side: inside, none of
+// the disc may hold material (nothing left); outside, all of it must (nothing overcut).
 TEST(PocketCornerEngagement, TheFinishedOutlineIsExactlyTheSpecsRoundedRectangle) {
   constexpr double kToleranceMm = 0.02;
+  constexpr double kOffsetMm = kToleranceMm + kProbeRadiusMm;
   for (const PocketSpec& spec : {sample_pocket(), sample_pocket(Direction::kCw)}) {
     const Cycle cycle = generate_pocket(spec, kTool);
     const geometry::Stock after = geometry::after_cutting(cycle.stock, cycle.path, kToolRadiusMm);
-    constexpr int kProbes = 400;
-    int wrong = 0;
+    constexpr int kProbes = 200;
     for (int i = 0; i < kProbes; ++i) {
       const OutlinePoint p = outline_point(spec, (i + 0.5) / kProbes);
-      const bool inside_cut = !material_at(after, p.x - kToleranceMm * p.nx, p.y - kToleranceMm * p.ny);
-      const bool outside_left = material_at(after, p.x + kToleranceMm * p.nx, p.y + kToleranceMm * p.ny);
-      EXPECT_TRUE(inside_cut) << "material left at " << p.x << ", " << p.y;
-      EXPECT_TRUE(outside_left) << "overcut at " << p.x << ", " << p.y;
-      wrong += !inside_cut + !outside_left;
+      EXPECT_EQ(material_angle_rad(after, p.x - kOffsetMm * p.nx, p.y - kOffsetMm * p.ny), 0.0)
+          << "material left near " << p.x << ", " << p.y;
+      EXPECT_NEAR(material_angle_rad(after, p.x + kOffsetMm * p.nx, p.y + kOffsetMm * p.ny), kTwoPi, 1e-9)
+          << "overcut near " << p.x << ", " << p.y;
     }
-    EXPECT_EQ(wrong, 0);
-    // And nothing is left anywhere inside: a grid over the pocket, kept 0.1 mm from the outline.
-    for (double x = -29.5; x <= 29.5; x += 1.0) {
-      for (double y = -19.5; y <= 19.5; y += 1.0) {
+    // And nothing is left anywhere inside: a grid over the pocket, the probes kept off the outline.
+    for (double x = -28.0; x <= 28.0; x += 2.0) {
+      for (double y = -18.0; y <= 18.0; y += 2.0) {
         const double dx = std::max(std::abs(x) - 22.0, 0.0), dy = std::max(std::abs(y) - 12.0, 0.0);
-        if (std::hypot(dx, dy) > 8.0 - 0.1) continue;
-        EXPECT_FALSE(material_at(after, x, y)) << x << ", " << y;
+        if (std::hypot(dx, dy) > 8.0 - kOffsetMm) continue;
+        EXPECT_EQ(material_angle_rad(after, x, y), 0.0) << x << ", " << y;
       }
     }
   }
