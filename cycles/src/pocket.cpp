@@ -11,6 +11,8 @@
 #include "feedplan/cycles/spiral.hpp"
 #include "feedplan/cycles/trochoid.hpp"
 #include "path_builder.hpp"
+#include "pocket_corner_clean_up.hpp"
+#include "pocket_wall_stock.hpp"
 #include "problems.hpp"
 
 namespace feedplan::cycles {
@@ -29,6 +31,14 @@ constexpr double kBorePerDiameter = 1.6;
 constexpr double kBoreRoomPerDiameter = 0.1;
 // Below this the spiral would expand the bore by less than a micrometre: bore to size instead.
 constexpr double kMinSpiralGrowthMm = 1e-3;
+// Largest engagement the corner clean-up, the semi-finishing contours and the wall pass are laid out
+// for (docs/method.md §5.1 forms). The roughing of the sample pocket already runs at up to 56° (the
+// spiral's first turn); the sample model (S50C, Ø10, 10 mm deep) holds 300 N at the machine's minimum
+// feed up to about 71°, so 55° leaves the planner room to feed above its minimum.
+constexpr double kMaxEngagementRad = deg_to_rad(55.0);
+// Smallest corner radius of a semi-finishing contour's tool-centre path, per tool radius, where the
+// concentric one (R_c − r − offset) would be smaller or vanish.
+constexpr double kMinContourCornerPerRadius = 0.1;
 
 struct PocketPlan {
   double r = 0, d = 0;
@@ -43,6 +53,9 @@ struct PocketPlan {
   double slot_length = 0;     // (L − S) / 2: last loop centre from C
   double loop_radius = 0;     // R_t = R_s − r
   bool reduced_trochoid_pitch = false;
+  detail::CornerCleanUp clean_up;      // corner trochoids before the wall passes
+  double thickest_wall_stock = 0;      // on the walls after roughing and clean-up
+  std::vector<double> contour_offsets; // semi-finishing contours, allowance left on the walls, outermost first
 };
 
 double short_side_of(const PocketSpec& spec) { return std::min(spec.width_mm, spec.height_mm); }
@@ -86,6 +99,51 @@ PocketPlan plan_of(const PocketSpec& spec, const geometry::Tool& tool) {
   p.trochoid_pitch = std::min(trochoid_pitch, 0.5 * p.loop_radius);
   p.reduced_trochoid_pitch = p.trochoid_pitch < trochoid_pitch;
   return p;
+}
+
+// The corner centres Q_i and slot end centres O_i in the canonical frame of the wall pass (a along
+// the long axis, b along its normal), in the wall pass's corner order.
+struct CornerPoint {
+  double a, b;
+};
+std::vector<CornerPoint> corner_centres(const PocketSpec& spec, const PocketPlan& p) {
+  const double qa = 0.5 * p.long_side - spec.corner_radius_mm, qb = 0.5 * p.short_side - spec.corner_radius_mm;
+  return {{qa, -qb}, {qa, qb}, {-qa, qb}, {-qa, -qb}};
+}
+std::vector<CornerPoint> slot_ends(const PocketPlan& p) {
+  return {{p.slot_length, 0}, {p.slot_length, 0}, {-p.slot_length, 0}, {-p.slot_length, 0}};
+}
+
+// The corner clean-up (pocket_corner_clean_up.hpp), canonical frame; and the semi-finishing contours
+// that bring the thickest wall stock down to the allowance a in steps of at most r(1 − cos α_max)
+// (docs/method.md §5.1, straight cut).
+void plan_finishing(const PocketSpec& spec, PocketPlan& p) {
+  std::vector<Point2> corners, ends;
+  for (const auto& q : corner_centres(spec, p)) corners.push_back({q.a, q.b});
+  for (const auto& o : slot_ends(p)) ends.push_back({o.a, o.b});
+  p.clean_up = detail::plan_corner_clean_up(corners, ends, p.rough_radius, spec.corner_radius_mm, p.r, p.trochoid_pitch,
+                                            kMaxEngagementRad);
+  detail::QuarterPocket quarter{0.5 * p.long_side, 0.5 * p.short_side, spec.corner_radius_mm, p.slot_length,
+                                p.rough_radius};
+  // All four corners are alike (symmetric about both axes): corner 2 is the quarter's.
+  for (const auto& t : p.clean_up.trochoids) {
+    if (t.end.x_mm > 0 && t.end.y_mm > 0) {
+      quarter.clean_up_start_x_mm = t.start.x_mm;
+      quarter.clean_up_start_y_mm = t.start.y_mm;
+      quarter.clean_up_reach_mm = p.clean_up.reach_mm;
+    }
+  }
+  p.thickest_wall_stock = detail::thickest_wall_stock_mm(quarter);
+  const double step_max = p.r * (1.0 - std::cos(kMaxEngagementRad));
+  if (p.thickest_wall_stock > p.allowance + 1e-6) {
+    const int n = static_cast<int>(std::ceil((p.thickest_wall_stock - p.allowance) / step_max - 1e-9));
+    const double step = (p.thickest_wall_stock - p.allowance) / n;
+    for (int k = n - 1; k >= 0; --k) {
+      const double offset = p.allowance + k * step;
+      // A contour needs room inside the pocket: its tool centre at least ρ_min from the centre line.
+      if (0.5 * p.short_side - p.r - offset >= kMinContourCornerPerRadius * p.r) p.contour_offsets.push_back(offset);
+    }
+  }
 }
 
 }  // namespace
@@ -205,19 +263,23 @@ void cut_slots(const PocketSpec& spec, const PocketPlan& p, const geometry::Tool
   }
 }
 
-// The wall pass's canonical coordinates: a along the long axis, b along its left normal, mirrored for
-// kCw; positions at the cutting depth z_c.
+// A contour's canonical coordinates: a along the long axis, b along its left normal, mirrored for
+// kCw; positions at the cutting depth z_c. The contour runs `offset` inside the finished walls (tool
+// centre r + offset from them) with corner arcs of radius `corner` (the wall pass: offset 0,
+// corner R_c − r).
 struct WallFrame {
-  WallFrame(const PocketSpec& spec, const PocketPlan& p, const ZLevels& z)
+  WallFrame(const PocketSpec& spec, const PocketPlan& p, const ZLevels& z, double offset, double corner)
       : c(spec.center),
         ex(p.ex),
         ey(p.ey),
         sign(spec.direction == Direction::kCcw ? 1.0 : -1.0),
         z_cut(z.top_z_mm - spec.depth_mm),
-        hx(0.5 * p.long_side - p.r),
-        hy(0.5 * p.short_side - p.r),
-        sx(hx - (spec.corner_radius_mm - p.r)),
-        sy(hy - (spec.corner_radius_mm - p.r)) {}
+        hx(0.5 * p.long_side - p.r - offset),
+        hy(0.5 * p.short_side - p.r - offset),
+        sx(hx - corner),
+        sy(hy - corner) {}
+  WallFrame(const PocketSpec& spec, const PocketPlan& p, const ZLevels& z)
+      : WallFrame(spec, p, z, 0.0, spec.corner_radius_mm - p.r) {}
   bool ccw() const { return sign > 0; }
   Point2 xy(double a, double b) const {
     return Point2{c.x_mm + a * ex.x_mm + sign * b * ey.x_mm, c.y_mm + a * ex.y_mm + sign * b * ey.y_mm};
@@ -230,28 +292,53 @@ struct WallFrame {
   Point2 c, ex, ey;  // pocket centre C, long axis, its left normal
   double sign;       // +1 for kCcw, −1 for kCw
   double z_cut;      // z_c = top − depth
-  double hx, hy;     // half sizes of the tool-centre contour (walls inset by r)
-  double sx, sy;     // corner centres of the contour (radius R_c − r)
+  double hx, hy;     // half sizes of the tool-centre contour
+  double sx, sy;     // corner centres of the contour
 };
 
-// Motion step 4: down at C to z_c, then the lead-in: the semicircle with diameter C–E, tangent to
-// wall 1 at E. The tool stays inside the roughed disc of radius R_s about C while its centre is within
-// R_s − r = hy − a of C, i.e. for the first ψ_t = 2·asin((hy − a) / hy) of the sweep.
+// Motion step 4: the corner clean-up, one trochoid per corner that needs one, in the wall pass's
+// corner order (pocket_corner_clean_up.hpp).
+void clean_corners(const PocketSpec& spec, const PocketPlan& p, const geometry::Tool& tool, const ZLevels& z,
+                   Cycle& cycle) {
+  const WallFrame w(spec, p, z);
+  const auto corners = corner_centres(spec, p);
+  for (std::size_t i = 0; i < corners.size(); ++i) {
+    for (const auto& t : p.clean_up.trochoids) {
+      if (std::abs(t.end.x_mm - corners[i].a) > 1e-12 || std::abs(t.end.y_mm - corners[i].b) > 1e-12) continue;
+      const Cycle trochoid = generate_trochoid({w.xy(t.start.x_mm, t.start.y_mm), w.xy(t.end.x_mm, t.end.y_mm),
+                                                p.clean_up.loop_radius_mm, p.clean_up.pitch_mm, spec.direction},
+                                               tool, spec.depth_mm, z);
+      append_sub_cycle(cycle, trochoid, "corner " + std::to_string(i + 1) + ": ");
+    }
+  }
+  if (!p.clean_up.trochoids.empty()) {
+    cycle.notes.push_back("corners: trochoids of loop radius " + six_digit_number_text(p.clean_up.loop_radius_mm) +
+                          " mm leave " + six_digit_number_text(spec.corner_radius_mm - p.clean_up.reach_mm) +
+                          " mm in the corners for the wall pass");
+  }
+}
+
+// Down at C to z_c, then the lead-in: the semicircle with diameter C–E, tangent to wall 1 at E. The
+// tool stays inside the roughed disc of radius R_s about C while its centre is within R_s − r of C,
+// i.e. for the first ψ_t = 2·asin((R_s − r) / hy) of the sweep (all of it when the contour lies
+// inside that disc).
 void enter_walls(detail::PathBuilder& b, const WallFrame& w, const PocketPlan& p, const ZLevels& z, double depth) {
   const double hy = w.hy;
   b.begin_part("entry");
   b.enter(w.c, z, w.z_cut);
   const double lead_radius = 0.5 * hy;
   const Point2 lead_center = w.xy(0, -lead_radius);
-  const double air_sweep = 2.0 * std::asin((hy - p.allowance) / hy);
+  const double air_sweep = 2.0 * std::asin(std::min((p.rough_radius - p.r) / hy, 1.0));
   const double touch_angle = 0.5 * kPi + air_sweep;
   b.arc_to(w.at(lead_radius * std::cos(touch_angle), -lead_radius + lead_radius * std::sin(touch_angle)), lead_center,
            w.ccw(), air_sweep, false, 0);
-  b.begin_part("lead-in");
-  b.arc_to(w.at(0, -hy), lead_center, w.ccw(), kPi - air_sweep, true, depth);
+  if (kPi - air_sweep > 1e-12) {
+    b.begin_part("lead-in");
+    b.arc_to(w.at(0, -hy), lead_center, w.ccw(), kPi - air_sweep, true, depth);
+  }
 }
 
-// Motion step 5: from E along wall 1, the corners and the other walls, and back to E.
+// From E along wall 1, the corners and the other walls, and back to E.
 void follow_walls(detail::PathBuilder& b, const WallFrame& w, double depth) {
   const bool ccw = w.ccw();
   const double hx = w.hx, hy = w.hy, sx = w.sx, sy = w.sy;
@@ -276,29 +363,45 @@ void follow_walls(detail::PathBuilder& b, const WallFrame& w, double depth) {
   b.line_to(w.at(0, -hy), true, depth);
 }
 
-// Motion step 6: back to C in air, up to the clearance height.
+// Back to C in air, up to the clearance height.
 void leave_walls(detail::PathBuilder& b, const WallFrame& w, const ZLevels& z) {
   b.begin_part("exit");
   b.line_to(w.at(0, 0), false, 0);
   b.retract(z);
 }
 
-// Motion steps 4–6: the wall pass, and a note when the corners hold more than the allowance.
-void finish_walls(const PocketSpec& spec, const PocketPlan& p, const ZLevels& z, Cycle& cycle) {
-  const WallFrame w(spec, p, z);
+// One closed contour `offset` inside the finished walls, entered and left as the wall pass is.
+geometry::ToolPath contour(const PocketSpec& spec, const PocketPlan& p, const ZLevels& z, const WallFrame& w) {
   detail::PathBuilder b({});
   enter_walls(b, w, p, z, spec.depth_mm);
   follow_walls(b, w, spec.depth_mm);
   leave_walls(b, w, z);
-  detail::append(cycle.path, b.finish(), "walls: ");
-  // Thickest wall stock: at the corners, measured from the slot end centre (round slot ends).
-  const double s2 = 0.5 * p.short_side;
-  const double thickest = std::sqrt(2.0) * (s2 - spec.corner_radius_mm) + spec.corner_radius_mm - p.rough_radius;
-  if (thickest > p.allowance + 1e-6) {
-    cycle.notes.push_back("walls: the roughing leaves up to " + six_digit_number_text(thickest) +
-                          " mm on the walls at the corners (" + six_digit_number_text(p.allowance) +
-                          " mm on the long walls); the wall pass takes it with a larger engagement");
+  return b.finish();
+}
+
+// Motion step 5: the semi-finishing contours, outermost first, each leaving its offset on the walls;
+// corner arcs concentric with the finished corners where they can be (radius R_c − r − offset), else
+// of radius ρ_min, which cuts no deeper into the corner (its centre lies farther from the walls).
+void semi_finish_walls(const PocketSpec& spec, const PocketPlan& p, const ZLevels& z, Cycle& cycle) {
+  for (std::size_t k = 0; k < p.contour_offsets.size(); ++k) {
+    const double offset = p.contour_offsets[k];
+    const double hy = 0.5 * p.short_side - p.r - offset;
+    const double corner =
+        std::min(std::max(spec.corner_radius_mm - p.r - offset, kMinContourCornerPerRadius * p.r), hy);
+    const WallFrame w(spec, p, z, offset, corner);
+    detail::append(cycle.path, contour(spec, p, z, w), "semi-finish " + std::to_string(k + 1) + ": ");
   }
+  if (!p.contour_offsets.empty()) {
+    cycle.notes.push_back("walls: the roughing and the corner clean-up leave up to " +
+                          six_digit_number_text(p.thickest_wall_stock) + " mm on the walls; " +
+                          std::to_string(p.contour_offsets.size()) + " semi-finishing contour(s) bring it to " +
+                          six_digit_number_text(p.allowance) + " mm");
+  }
+}
+
+// Motion step 6: the wall pass.
+void finish_walls(const PocketSpec& spec, const PocketPlan& p, const ZLevels& z, Cycle& cycle) {
+  detail::append(cycle.path, contour(spec, p, z, WallFrame(spec, p, z)), "walls: ");
 }
 
 // The solid block before any sub-cycle: the pocket's rectangle grown by 2·D on each side.
@@ -315,12 +418,15 @@ geometry::Stock pocket_stock(const PocketSpec& spec, const PocketPlan& p, const 
 
 Cycle generate_pocket(const PocketSpec& spec, const geometry::Tool& tool, const ZLevels& z) {
   if (auto problems = validate(spec, tool); !problems.empty()) throw InputError(std::move(problems));
-  const PocketPlan p = plan_of(spec, tool);
+  PocketPlan p = plan_of(spec, tool);
+  plan_finishing(spec, p);
   Cycle cycle;
   cycle.tool = tool;
   bore_centre(spec, p, tool, z, cycle);
   if (p.spiral) expand_bore(spec, p, tool, z, cycle);
   if (p.slot_length > 1e-9) cut_slots(spec, p, tool, z, cycle);
+  clean_corners(spec, p, tool, z, cycle);
+  semi_finish_walls(spec, p, z, cycle);
   finish_walls(spec, p, z, cycle);
   cycle.stock = pocket_stock(spec, p, z);
   return cycle;

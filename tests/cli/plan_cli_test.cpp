@@ -64,6 +64,25 @@ TEST_F(PlanCliTest, TrochoidProgramReportCsvAndPlot) {
   EXPECT_NE(read_text(plot).find("<svg"), std::string::npos);
 }
 
+// Regression: the pocket's wall pass met up to 144° of material in the corners, more than any feed
+// holds at 300 N with 10 mm depth ("target not met"). With the corner clean-up and the semi-finishing
+// contour the sample plans at its own target.
+TEST_F(PlanCliTest, PocketSamplePlansAtItsTarget) {
+  const fs::path program = dir_ / "p.nc";
+  const RunResult r = run_feedplan(plan_args("pocket.yaml", program) + " --json");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  // The JSON summary on stdout; the notes on stderr follow it.
+  const std::size_t begin = r.output.find('{');
+  const std::size_t end = r.output.find("\n}\n", begin);
+  ASSERT_NE(end, std::string::npos) << r.output;
+  const auto summary = nlohmann::json::parse(r.output.substr(begin, end + 2 - begin));
+  const std::string status = summary["status"].get<std::string>();
+  EXPECT_TRUE(status == "ok" || status == "extrapolated") << status;
+  EXPECT_EQ(summary["target_force_n"].get<double>(), 300.0);
+  EXPECT_LE(summary["max_predicted_force_n"].get<double>(), 300.0 + 0.5);
+  EXPECT_TRUE(fs::exists(program));
+}
+
 // --target-sweep: one plan per target, printed as JSON, the curve drawn; no program. The cycle times fall as
 // the target rises, and each matches a plan made at that target alone. Bad ranges, and flags that write a
 // plan, are bad input.

@@ -75,7 +75,8 @@ TEST(Pocket, SubCyclesFollowFig3) {
   const PocketSpec spec = pocket(60, 40, 8);
   const Cycle cycle = generate_pocket(spec, kTool);
   EXPECT_TRUE(geometry::consistency_defects(cycle.path).empty());
-  const std::vector<std::string> expected = {"boring", "spiral", "slot +x", "slot -x", "walls"};
+  const std::vector<std::string> expected = {"boring",   "spiral",   "slot +x",  "slot -x",       "corner 1",
+                                             "corner 2", "corner 3", "corner 4", "semi-finish 1", "walls"};
   EXPECT_EQ(sub_cycle_order(cycle.path), expected);
   const std::vector<std::string> walls = {"walls: entry",    "walls: lead-in", "walls: wall 1",  "walls: corner 1",
                                           "walls: wall 2",   "walls: corner 2", "walls: wall 3", "walls: corner 3",
@@ -155,7 +156,8 @@ TEST(Pocket, TallPocketSlotsAlongYAndFinishesFromTheRightWall) {
   const PocketSpec spec = pocket(40, 60, 8);
   const Cycle cycle = generate_pocket(spec, kTool);
   EXPECT_TRUE(geometry::consistency_defects(cycle.path).empty());
-  const std::vector<std::string> expected = {"boring", "spiral", "slot +y", "slot -y", "walls"};
+  const std::vector<std::string> expected = {"boring",   "spiral",   "slot +y",  "slot -y",       "corner 1",
+                                             "corner 2", "corner 3", "corner 4", "semi-finish 1", "walls"};
   EXPECT_EQ(sub_cycle_order(cycle.path), expected);
   expect_wall_pass_one_radius_inside(spec, cycle);
   const auto& wall1 = cycle.path.moves[moves_of(cycle.path, "walls: wall 1").at(0)];
@@ -178,7 +180,8 @@ TEST(Pocket, NarrowPocketBoresToWidthAndShrinksTheTrochoidPitch) {
   const PocketSpec spec = pocket(14, 40, 6);
   const Cycle cycle = generate_pocket(spec, kTool);
   EXPECT_TRUE(geometry::consistency_defects(cycle.path).empty());
-  const std::vector<std::string> expected = {"boring", "slot +y", "slot -y", "walls"};
+  const std::vector<std::string> expected = {"boring",   "slot +y",  "slot -y",  "corner 1",
+                                             "corner 2", "corner 3", "corner 4", "walls"};
   EXPECT_EQ(sub_cycle_order(cycle.path), expected);
   const auto& helix = cycle.path.moves[moves_of(cycle.path, "boring: helix turn 1").at(0)];
   EXPECT_NEAR(geometry::arc_radius_mm(helix), 0.5, kTol);
