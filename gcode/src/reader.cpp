@@ -50,7 +50,7 @@ constexpr int kG3 = 30;
 constexpr int kG4 = 40;
 constexpr int kG17 = 170;
 constexpr int kG18 = 180;
-constexpr int kG19 = 190;
+// G19 (190) is the plane that is neither of these.
 constexpr int kG20 = 200;
 constexpr int kG40 = 400;
 constexpr int kG41 = 410;
