@@ -809,13 +809,7 @@ class Interpreter {
   void move(const Block& block, int motion) {
     const int line = block.line;
     note_resolution(block);
-    Point3 end = position_mm_;
-    auto axis = [&](char letter, double start_mm, double& target_mm) {
-      if (const Word* w = block.word(letter)) target_mm = (absolute_ ? 0.0 : start_mm) + w->value * unit_mm();
-    };
-    axis('X', position_mm_.x_mm, end.x_mm);
-    axis('Y', position_mm_.y_mm, end.y_mm);
-    axis('Z', position_mm_.z_mm, end.z_mm);
+    Point3 end = programmed_end(block);
     if (is_arc(motion) && plane_ != kG17) {
       plane_arc_move(block, motion, end);
       return;
@@ -1147,15 +1141,22 @@ class Interpreter {
 
   // G28, G30: LinuxCNC goes to the intermediate point of the axis words first (in the distance mode in
   // effect), then to the stored machine position, which the reader does not know: it parks instead.
+  // Where the block's X Y Z words put the tool (absolute or incremental, in the units in effect), mm; axes
+  // without a word keep the programmed position.
+  Point3 programmed_end(const Block& block) const {
+    Point3 end = position_mm_;
+    auto axis = [&](char letter, double start_mm, double& target_mm) {
+      if (const Word* w = block.word(letter)) target_mm = (absolute_ ? 0.0 : start_mm) + w->value * unit_mm();
+    };
+    axis('X', position_mm_.x_mm, end.x_mm);
+    axis('Y', position_mm_.y_mm, end.y_mm);
+    axis('Z', position_mm_.z_mm, end.z_mm);
+    return end;
+  }
+
   void go_home(const Block& block) {
     if (block.has('X') || block.has('Y') || block.has('Z')) {
-      Point3 end = position_mm_;
-      auto axis = [&](char letter, double start_mm, double& target_mm) {
-        if (const Word* w = block.word(letter)) target_mm = (absolute_ ? 0.0 : start_mm) + w->value * unit_mm();
-      };
-      axis('X', position_mm_.x_mm, end.x_mm);
-      axis('Y', position_mm_.y_mm, end.y_mm);
-      axis('Z', position_mm_.z_mm, end.z_mm);
+      const Point3 end = programmed_end(block);
       const Point3 start{path_end_xy_.x_mm, path_end_xy_.y_mm, position_mm_.z_mm};
       if ((end.x_mm != start.x_mm || end.y_mm != start.y_mm || end.z_mm != start.z_mm) && room_for_move(block.line)) {
         Move m;
