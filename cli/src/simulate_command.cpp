@@ -370,14 +370,9 @@ std::string peaks_with_tools(const std::vector<force_log::RevolutionPeak>& revol
   return out;
 }
 
-void print_simulation_json(const SimulateOptions& options, const geometry::Tool& tool, const std::string& material,
-                           const SimulationJob& job, const SimulationRun& run) {
-  const sim::SimulationResult& result = run.result;
-  const auto& s = result.summary;
-  nlohmann::json out;
-  out["job"] = job.name;
-  out["tool"] = {{"name", tool.name}, {"diameter_mm", tool.diameter_mm}, {"flutes", tool.flutes}, {"helix_deg", tool.helix_deg}};
-  out["material"] = material;
+// The figures a run of one tool and a run of several share (sim::SimulationSummary, ToolRunSimulation's).
+template <typename Summary>
+void add_summary_json(const Summary& s, nlohmann::json& out) {
   out["cycle_time_s"] = s.cycle_time_s;
   out["cutting_time_s"] = s.cutting_time_s;
   out["air_time_s"] = s.air_time_s;
@@ -386,6 +381,17 @@ void print_simulation_json(const SimulateOptions& options, const geometry::Tool&
   out["mean_force_in_contact_n"] = s.mean_force_in_contact_n;
   out["max_force_z_n"] = s.max_force_z_n;
   out["steps"] = s.steps;
+}
+
+void print_simulation_json(const SimulateOptions& options, const geometry::Tool& tool, const std::string& material,
+                           const SimulationJob& job, const SimulationRun& run) {
+  const sim::SimulationResult& result = run.result;
+  const auto& s = result.summary;
+  nlohmann::json out;
+  out["job"] = job.name;
+  out["tool"] = {{"name", tool.name}, {"diameter_mm", tool.diameter_mm}, {"flutes", tool.flutes}, {"helix_deg", tool.helix_deg}};
+  out["material"] = material;
+  add_summary_json(s, out);
   out["step_s"] = s.step_s;
   out["stock_layers"] = s.stock_layers;
   out["engagement_bands"] = s.engagement_bands;
@@ -457,14 +463,7 @@ void print_tool_runs_json(const SimulateOptions& options, const std::string& mat
   out["job"] = job.name;
   out["tools"] = options.tools_path;
   out["material"] = material;
-  out["cycle_time_s"] = s.cycle_time_s;
-  out["cutting_time_s"] = s.cutting_time_s;
-  out["air_time_s"] = s.air_time_s;
-  out["time_in_contact_s"] = s.time_in_contact_s;
-  out["max_revolution_peak_n"] = s.max_revolution_peak_n;
-  out["mean_force_in_contact_n"] = s.mean_force_in_contact_n;
-  out["max_force_z_n"] = s.max_force_z_n;
-  out["steps"] = s.steps;
+  add_summary_json(s, out);
   out["engagement_bands"] = s.engagement_bands;
   out["log"] = options.log_path;
   out["log_rows"] = s.log_rows;
