@@ -40,9 +40,9 @@ struct TurningProcessParameters {
   //! the chip of one revolution is cut; Masory & Koren (CIRP Annals 29(1), 1980, seed 000 ref. 26) use a
   //! time constant of the order of a spindle revolution: 0.12 s is one revolution at 500 rev/min.
   double process_time_constant_s = 0.12;
-  //! ω_n of Eq. 2, rad/s (> 0). The seeds give none; 30 rad/s (4.8 Hz) is a velocity loop of the era's
-  //! CNC lathes, about twice seed 002's 2.3 Hz feed-drive bandwidth, and well below the 5 Hz Nyquist
-  //! frequency of the seeds' Δt = 0.1 s only in that the servo settles within one period.
+  //! ω_n of Eq. 2, rad/s (> 0). The seeds give none; 30 rad/s (4.8 Hz) is about twice the 2.3 Hz
+  //! velocity-loop bandwidth seed 002 measured on a FANUC feed drive, so that the servo mostly settles
+  //! within the seeds' Δt = 0.1 s, as the seeds' choice of sampling period presumes.
   double servo_natural_frequency_rad_per_s = 30.0;
   //! ξ of Eq. 2 (> 0): 0.7, the usual design damping of a position servo (Koren 1983, seed 000 ref. 1).
   double servo_damping_ratio = 0.7;
