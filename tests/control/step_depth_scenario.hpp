@@ -21,9 +21,8 @@ namespace feedplan::control::test {
 inline constexpr double kPeriodS = 0.1;               // the seeds' Δt
 inline constexpr double kReferenceForceN = 1000.0;    // F_R
 inline constexpr double kProgrammedFeedMmPerMin = 200.0;
-inline constexpr double kSegmentS = 5.0;
 inline constexpr std::array<double, 5> kDepthsMm{1.0, 2.0, 4.0, 2.0, 1.0};
-inline constexpr int kStepsPerSegment = 50;           // kSegmentS / kPeriodS
+inline constexpr int kStepsPerSegment = 50;           // 5 s per depth at kPeriodS
 inline constexpr int kSteps = kStepsPerSegment * static_cast<int>(kDepthsMm.size());
 
 //! The depth in effect over step k (k = 0 … kSteps − 1).

@@ -31,20 +31,21 @@ namespace feedplan::control {
 
 //! The numbers the seeds leave out, with where each default comes from.
 struct TurningProcessParameters {
-  //! k_s, N/mm² (> 0): force per chip area. 2000 N/mm² is the order of Kienzle's k_c1.1 for plain carbon
-  //! steels in the machining handbooks (e.g. König & Klocke, Fertigungsverfahren 1: C45 ≈ 1.5–2.2 kN/mm²).
+  //! k_s, N/mm² (> 0): force per chip area. The seeds give none; 2000 N/mm² is the order of Kienzle's
+  //! specific cutting force k_c1.1 for plain carbon steels in the machining handbooks (about 1.5–2.2 kN/mm²
+  //! for C45).
   double specific_cutting_force_n_per_mm2 = 2000.0;
   //! n, rev/min (> 0): the spindle speed, which turns the feed rate into a feed per revolution.
   double spindle_rpm = 500.0;
-  //! τ of Eq. 1, s (≥ 0; 0: the force follows the feed at once). The force of a turning tool builds up as
-  //! the chip of one revolution is cut; Masory & Koren (CIRP Annals 29(1), 1980, seed 000 ref. 26) use a
-  //! time constant of the order of a spindle revolution: 0.12 s is one revolution at 500 rev/min.
+  //! τ of Eq. 1, s (≥ 0; 0: the force follows the feed at once). The seeds give none. A new feed or depth
+  //! is fully in the chip after one spindle revolution, so τ is taken as one revolution: 0.12 s at
+  //! 500 rev/min (a choice made here, not a number from the seeds or their references).
   double process_time_constant_s = 0.12;
   //! ω_n of Eq. 2, rad/s (> 0). The seeds give none; 30 rad/s (4.8 Hz) is about twice the 2.3 Hz
   //! velocity-loop bandwidth seed 002 measured on a FANUC feed drive, so that the servo mostly settles
   //! within the seeds' Δt = 0.1 s, as the seeds' choice of sampling period presumes.
   double servo_natural_frequency_rad_per_s = 30.0;
-  //! ξ of Eq. 2 (> 0): 0.7, the usual design damping of a position servo (Koren 1983, seed 000 ref. 1).
+  //! ξ of Eq. 2 (> 0). The seeds give none; 0.7, the common design damping of a position servo.
   double servo_damping_ratio = 0.7;
   //! K_s / ω_n², feed per command in steady state (> 0): 1 when the command is the feed in mm/min.
   double servo_dc_gain = 1.0;
