@@ -42,8 +42,9 @@ int segment_end(int segment) { return (segment + 1) * kStepsPerSegment; }
 // ≈ 23 /s where the dominant poles leave the unit circle (fixed_gain_poles_test.cpp). The oscillation grows
 // until the override hits its 0 % stop, and then goes on at that size: over the whole 4 mm segment the
 // error never falls below 30 % of F_R within any second, and the feed is stopped (override 0) again and
-// again. At 2 mm (loop gain 16 /s, |z| = 0.90) the same controller settles: within 1 % of F_R over the last
-// second of that segment — 1 % is ten times what the |z| = 0.90 decay leaves of a 56 % step after 4 s.
+// again. At 2 mm (loop gain 16 /s, |z| = 0.90) the same controller settles: the 0.90-per-sample decay
+// leaves about 1.5 % (0.90^40) of the step's first error of ≈ 560 N after 4 s, ≈ 9 N; the bound is 30 N
+// (3 % of F_R), ten times below the 4 mm segment's floor.
 TEST(VariableGainStepDepth, FixedGainOscillatesWithoutEndAtTheLargeDepth) {
   const test::ScenarioRun fixed = run(scenario_parameters(0.0, 0.0));
   const int deep = 2;
@@ -54,7 +55,7 @@ TEST(VariableGainStepDepth, FixedGainOscillatesWithoutEndAtTheLargeDepth) {
   int feed_stops = 0;
   for (int k = segment_start(deep); k < segment_end(deep); ++k) feed_stops += fixed.override_ratio[static_cast<std::size_t>(k)] == 0.0;
   EXPECT_GE(feed_stops, 5);
-  EXPECT_LT(test::max_error_n(fixed, segment_end(1) - 10, segment_end(1)), 0.01 * kReferenceForceN);
+  EXPECT_LT(test::max_error_n(fixed, segment_end(1) - 10, segment_end(1)), 0.03 * kReferenceForceN);
 }
 
 // Fig. 6. With c1 = 0.001, c2 = 0.5 the loop is stable at every depth. At 1 and 2 mm each segment ends
