@@ -1,0 +1,33 @@
+#pragma once
+// What a feed override can express: a ratio of the programmed feed between 0 and a maximum, either
+// continuous or in fixed steps. Seed 001 (Ulsoy & Koren, NSF report UM-MEAM-82-7) describes both on its
+// lab machines: the NC lathe's override electronics move the feed "in discrete steps of 15 % of the full
+// programmed feedrate from 0 % to 150 %", the CNC mill's "continuously … in the range 0 % to 150 %".
+// Seed 002 (Kim & Kim) sends 0–255 % as an 8-bit number.
+
+#include <string>
+#include <vector>
+
+#include "feedplan/core/input_error.hpp"
+
+namespace feedplan::control {
+
+//! The range and resolution of the override a controller commands.
+struct OverrideRange {
+  double max_ratio = 1.5;   //!< largest ratio, > 0 (1.5 = 150 %, seed 001's machines)
+  double step_ratio = 0.0;  //!< resolution, ≥ 0 and ≤ max_ratio; 0: continuous, 0.15: seed 001's lathe
+};
+
+//! Seed 001's NC lathe: 0–150 % in steps of 15 %.
+inline constexpr OverrideRange kLatheOverrideSteps{1.5, 0.15};
+
+//! Every problem with the range, each named "<field_prefix><field>" with its value and the rule
+//! ("override.step_ratio = -0.1: must be finite and ≥ 0"). Empty when the range is usable.
+std::vector<InputProblem> validate(const OverrideRange& range, const std::string& field_prefix = "override.");
+
+//! The override the machine applies for the wish `ratio`: clamped to [0, max_ratio], then, with steps,
+//! rounded to the nearest multiple of step_ratio that does not exceed max_ratio. Needs a range that passes
+//! validate() and a ratio that is not NaN (asserted).
+double applied_override(const OverrideRange& range, double ratio);
+
+}  // namespace feedplan::control

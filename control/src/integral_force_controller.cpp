@@ -1,0 +1,53 @@
+#include "feedplan/control/integral_force_controller.hpp"
+
+#include <algorithm>
+#include <cassert>
+#include <cmath>
+
+#include "feedplan/core/number_text.hpp"
+#include "feedplan/core/problem_list.hpp"
+
+namespace feedplan::control {
+
+std::vector<InputProblem> validate(const IntegralControllerParameters& parameters, const std::string& field_prefix) {
+  ProblemList problems(field_prefix);
+  problems.positive("reference_force_n", parameters.reference_force_n);
+  problems.non_negative("controller_gain_mm_per_min_per_n_s", parameters.controller_gain_mm_per_min_per_n_s);
+  problems.positive("programmed_feed_mm_per_min", parameters.programmed_feed_mm_per_min);
+  const std::vector<InputProblem> range = validate(parameters.override_range, field_prefix + "override_range.");
+  problems.add_all(range);
+  const double top = parameters.override_range.max_ratio * parameters.programmed_feed_mm_per_min;
+  const double initial = parameters.initial_feed_mm_per_min;
+  if (!std::isfinite(initial) || initial < 0.0) {
+    problems.add_value("initial_feed_mm_per_min", shortest_number_text(initial), "must be finite and ≥ 0");
+  } else if (range.empty() && std::isfinite(top) && initial > top) {
+    problems.add_value("initial_feed_mm_per_min", shortest_number_text(initial),
+                       "must be ≤ override_range.max_ratio × programmed_feed_mm_per_min = " + shortest_number_text(top));
+  }
+  return problems.take();
+}
+
+IntegralForceController::IntegralForceController(const IntegralControllerParameters& parameters)
+    : parameters_(parameters) {
+  ProblemList problems;
+  problems.add_all(validate(parameters));
+  problems.throw_if_any();
+  integrator_mm_per_min_ = parameters.initial_feed_mm_per_min;
+  applied_feed_mm_per_min_ =
+      parameters.programmed_feed_mm_per_min *
+      applied_override(parameters.override_range, integrator_mm_per_min_ / parameters.programmed_feed_mm_per_min);
+}
+
+double IntegralForceController::step(double measured_force_n, double dt_s) {
+  assert(std::isfinite(measured_force_n) && std::isfinite(dt_s) && dt_s > 0.0);
+  const double programmed = parameters_.programmed_feed_mm_per_min;
+  const double error_n = parameters_.reference_force_n - measured_force_n;
+  integrator_mm_per_min_ = std::clamp(
+      integrator_mm_per_min_ + parameters_.controller_gain_mm_per_min_per_n_s * dt_s * error_n, 0.0,
+      parameters_.override_range.max_ratio * programmed);
+  const double ratio = applied_override(parameters_.override_range, integrator_mm_per_min_ / programmed);
+  applied_feed_mm_per_min_ = ratio * programmed;
+  return ratio;
+}
+
+}  // namespace feedplan::control
