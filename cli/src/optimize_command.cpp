@@ -327,7 +327,8 @@ void add_optimize_command(CLI::App& app, OptimizeOptions& o) {
   add_number_flag(cmd, "--feed-step", o.feed_step,
                   "F levels this far apart, blocks cut from the feed limits (default 0.02; 0: every acceleration ramp "
                   "written out)");
-  add_number_flag(cmd, "--min-block-s", o.min_block_duration_s, "shortest block with --feed-step, s (default 0.02)");
+  add_number_flag(cmd, "--min-block-s", o.min_block_duration_s,
+                  "shortest block with --feed-step, s (default 0.008: at most 125 F changes a second)");
 }
 
 int run_optimize_command(const OptimizeOptions& o) {

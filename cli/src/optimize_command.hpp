@@ -10,6 +10,8 @@
 #include <optional>
 #include <string>
 
+#include "feedplan/planner/feed_plan.hpp"
+
 namespace feedplan::cli {
 
 struct OptimizeOptions {
@@ -29,8 +31,10 @@ struct OptimizeOptions {
   std::string model_kind;                //!< --model-kind mechanistic|response-surface (empty: model_kind_choice.hpp)
   std::optional<double> model_uncertainty;  //!< --cautious r
   double ds_mm = 0.05;                //!< --ds
-  double feed_step = 0.02;            //!< --feed-step: controller-friendly F levels (0: blocks follow the command profile)
-  double min_block_duration_s = 0.02; //!< --min-block-s: shortest block of the controller-friendly rule, s
+  //! --feed-step: controller-friendly F levels (0: blocks follow the command profile)
+  double feed_step = planner::kControllerFriendlyFeedStep;
+  //! --min-block-s: shortest block of the controller-friendly rule, s
+  double min_block_duration_s = planner::kControllerFriendlyMinBlockS;
 };
 
 //! Registers the subcommand.

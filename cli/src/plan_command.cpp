@@ -201,6 +201,11 @@ PlannedCycle plan_cycle(const PlanCommandOptions& o, const PlanInputs& in, const
   planned.settings = plan_settings(o, in, model);
   planned.result = planner::plan(planned.geometry, planned.settings);
   const auto finished = std::chrono::steady_clock::now();
+  if (planned.settings.options.feed_step > 0.0) {
+    planner::PlanSettings ramps = planned.settings;
+    ramps.options.feed_step = 0.0;
+    planned.ramps_written_out_s = planner::plan(planned.geometry, ramps).summary.cycle_time_s;
+  }
   planned.analyse_s = std::chrono::duration<double>(analysed - started).count();
   planned.plan_s = std::chrono::duration<double>(finished - analysed).count();
   return planned;
@@ -378,10 +383,11 @@ void add_plan_command(CLI::App& app, PlanCommandOptions& options) {
   add_number_flag(cmd, "--air-feed", options.air_feed_mm_per_min, "Feed through air, mm/min (default: the machine's maximum)");
   add_number_flag(cmd, "--merge-tolerance", options.merge_tolerance, "Relative feed spread merged into one block (default 0.02)");
   add_number_flag(cmd, "--feed-step", options.feed_step,
-                  "Controller-friendly blocks: F on levels this far apart (e.g. 0.05), cut from the feed limits, each "
-                  "lasting at least --min-block-s (default 0: off)");
+                  "Controller-friendly blocks: F on levels this far apart, cut from the feed limits, each lasting at "
+                  "least --min-block-s (default 0.02; 0: every acceleration ramp written out as F words)");
   add_number_flag(cmd, "--min-block-s", options.min_block_duration_s,
-                  "Shortest block with --feed-step, s (default 0.1: at most 10 F changes a second)");
+                  "Shortest block with --feed-step, s (default 0.008: at most 125 F changes a second; the spec's "
+                  "block_time_min_s when longer)");
   add_number_flag(cmd, "--feed-resolution", options.feed_resolution_mm_per_min, "F resolution, mm/min (default 1)");
   add_number_flag(cmd, "--jerk", options.jerk_limit_mm_per_s3, "Path jerk limit, mm/s³ (default: none)");
   add_number_flag(cmd, "--ds", options.ds_mm, "Engagement sample spacing, mm (default 0.05)");

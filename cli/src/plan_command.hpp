@@ -9,6 +9,8 @@
 #include <optional>
 #include <string>
 
+#include "feedplan/planner/feed_plan.hpp"
+
 namespace feedplan::cli {
 
 struct PlanCommandOptions {
@@ -24,8 +26,9 @@ struct PlanCommandOptions {
   std::optional<double> air_feed_mm_per_min;  //!< --air-feed; unset: the machine's maximum feed
   double merge_tolerance = 0.02;      //!< --merge-tolerance
   double feed_resolution_mm_per_min = 1.0;  //!< --feed-resolution
-  double feed_step = 0.0;             //!< --feed-step: controller-friendly F levels (0: off)
-  double min_block_duration_s = 0.1;  //!< --min-block-s: shortest block of the controller-friendly rule
+  double feed_step = planner::kControllerFriendlyFeedStep;  //!< --feed-step: controller-friendly F levels (0: off)
+  //! --min-block-s: shortest block of the controller-friendly rule, s
+  double min_block_duration_s = planner::kControllerFriendlyMinBlockS;
   std::optional<double> jerk_limit_mm_per_s3;  //!< --jerk; unset: no jerk limit
   double ds_mm = 0.05;                //!< --ds: engagement sample spacing
   std::optional<std::int64_t> model_id;  //!< --model-id; unset: the closest active model

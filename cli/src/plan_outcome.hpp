@@ -49,6 +49,9 @@ struct PlannedCycle {
   planner::PlanResult result;       //!< the plan
   double analyse_s = 0.0;           //!< wall time of the engagement analysis, s
   double plan_s = 0.0;              //!< wall time of the planning, s
+  //! With controller-friendly blocks: the cycle time of the same plan with every acceleration ramp
+  //! written out (PlanOptions::feed_step 0), s — what the coarser blocks cost.
+  std::optional<double> ramps_written_out_s;
 };
 
 //! Which program is written: the plan's when the target can be met everywhere, or the constant-feed one.

@@ -90,7 +90,7 @@ void split_move(int move_index, int a, int b, const std::vector<double>& s, cons
   }
   for (std::size_t k = first_of_move; k < out.size(); ++k) {
     out[k].feed_mm_per_min = round_down(out[k].feed_mm_per_min, settings);
-    if (out[k].length_mm / (out[k].feed_mm_per_min / 60.0) < settings.block_time_min_s) ++short_blocks;
+    if (out[k].length_mm / (out[k].feed_mm_per_min / 60.0) < settings.short_block_s) ++short_blocks;
   }
 }
 
@@ -156,7 +156,7 @@ void split_move_least_time(int move_index, int a, int b, const std::vector<doubl
     first = end;
   }
   for (std::size_t k = out.size(); k-- > 0 && out[k].move_index == move_index;) {
-    if (out[k].length_mm / (out[k].feed_mm_per_min / 60.0) < settings.block_time_min_s) ++short_blocks;
+    if (out[k].length_mm / (out[k].feed_mm_per_min / 60.0) < settings.short_block_s) ++short_blocks;
   }
 }
 

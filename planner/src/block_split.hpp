@@ -13,6 +13,9 @@ struct BlockSplitSettings {
   double merge_tolerance = 0.02;            //!< relative spread merged into one block
   double feed_resolution_mm_per_min = 1.0;  //!< F rounded down to a multiple of this, mm/min
   double block_time_min_s = 0.002;          //!< shortest block, s (whole moves may be shorter)
+  //! Blocks lasting less than this are counted as short (the machine's block time; the controller-friendly
+  //! rule's longer shortest block is a choice, not a limit of the machine), s.
+  double short_block_s = 0.002;
   double min_feed_mm_per_min = 10.0;        //!< no F below this, mm/min
   double accel_mm_per_s2 = 6500.0;          //!< for the pass over neighbouring blocks, mm/s²
   //! The controller-friendly rule (PlanOptions::feed_step > 0): each move cut into the blocks of least time

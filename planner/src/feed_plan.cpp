@@ -476,6 +476,7 @@ void split_into_blocks(const PlanContext& c, const CommandProfile& command, cons
   split.merge_tolerance = options.merge_tolerance;
   split.feed_resolution_mm_per_min = options.feed_resolution_mm_per_min;
   split.block_time_min_s = machine.block_time_min_s;
+  split.short_block_s = machine.block_time_min_s;
   split.min_feed_mm_per_min = machine.min_feed_mm_per_min;
   split.accel_mm_per_s2 = command.accel_mm_per_s2;
   if (options.feed_step > 0.0) {
