@@ -68,7 +68,7 @@ void expect_files_agree_with_the_summary(const RunResult& r, const fs::path& rep
                                          std::size_t runs) {
   const std::vector<double> cycle = printed_numbers(r.output, "planned cycle time ");
   ASSERT_EQ(cycle.size(), 1u) << r.output;
-  const std::vector<double> peaks = printed_numbers(r.output, "predicted peak ");
+  const std::vector<double> peaks = printed_numbers(r.output, " s), predicted peak ");
   ASSERT_EQ(peaks.size(), runs) << r.output;
   const std::vector<double> input_cycles = printed_numbers(r.output, "input: cycle time ");
   ASSERT_EQ(input_cycles.size(), runs) << r.output;
