@@ -265,7 +265,7 @@ std::string program_text(const PlanCommandOptions& o, const PlanInputs& in, cons
     const geometry::Program constant =
         planner::constant_feed_program(planned.cycle.path, *o.constant_feed_mm_per_min, in.spec.spindle_rpm);
     gcode::WriterOptions explained = writer;
-    if (o.explain) explained.feed_comments.assign(constant.path.moves.size(), "constant feed (--constant-feed)");
+    if (o.explain) explained.feed_comments.assign(constant.path.moves.size(), "constant feed, --constant-feed");
     return gcode::write_gcode(constant, explained);
   }
   gcode::WriterOptions explained = writer;
