@@ -12,6 +12,8 @@
 #include "database_path.hpp"
 #include "model_choice.hpp"
 #include "model_kind_choice.hpp"
+#include "operation_figures.hpp"
+#include "optimize_outputs.hpp"
 #include "program_operations.hpp"
 #include "number_flag.hpp"
 #include "output_files.hpp"
@@ -25,6 +27,7 @@
 #include "feedplan/gcode/reader.hpp"
 #include "feedplan/gcode/refeed.hpp"
 #include "feedplan/model_db/store.hpp"
+#include "feedplan/planner/block_feed_reason.hpp"
 #include "feedplan/planner/feed_prediction.hpp"
 #include "feedplan/planner/feed_plan.hpp"
 
@@ -36,8 +39,7 @@ namespace mdb = model_db;
 constexpr int kExitFailed = 1;
 
 // --stock-box X0,Y0,Z0,X1,Y1,Z1: a block of material, corners in any order.
-geometry::Stock stock_box(const std::string& text, std::vector<InputProblem>& problems) {
-  std::vector<double> v;
+geometry::Stock stock_box(const std::string& text, std::vector<InputProblem>& problems, std::vector<double>& v) {
   std::stringstream items(text);
   std::string item;
   while (std::getline(items, item, ',')) {
@@ -74,6 +76,7 @@ struct OptimizeInputs {
   std::vector<gcode::WrittenMove> written;    // how each move's line was written
   std::vector<ToolRun> runs;                  // in program order
   geometry::Stock stock;
+  std::vector<double> stock_box_mm;           // --stock-box's six numbers (empty with --stock)
   geometry::MachineLimits machine;
 };
 
@@ -127,7 +130,7 @@ OptimizeInputs read_inputs(const OptimizeOptions& o) {
   check_flag(problems, "--min-block-s", o.min_block_duration_s, {0.0, true, 10.0, true}, "s");
   std::optional<geometry::Tool> tool;
   if (!o.tool_text.empty()) tool = parse_tool(o.tool_text, problems);
-  if (!o.stock_box.empty()) in.stock = stock_box(o.stock_box, problems);
+  if (!o.stock_box.empty()) in.stock = stock_box(o.stock_box, problems, in.stock_box_mm);
   if (o.max_feed_mm_per_min) in.machine.max_feed_mm_per_min = *o.max_feed_mm_per_min;
   if (o.min_feed_mm_per_min) in.machine.min_feed_mm_per_min = *o.min_feed_mm_per_min;
   for (InputProblem problem : geometry::validate(in.machine)) {
@@ -138,7 +141,8 @@ OptimizeInputs read_inputs(const OptimizeOptions& o) {
   }
   check_outputs({{"PROGRAM", o.program_path}, {"--db", database_path(o.db_path)}, {"--stock", o.stock_path},
                  {"--tools", o.tools_path}},
-                {{"-o", o.output_path}}, problems);
+                {{"-o", o.output_path}, {"--report", o.report_path}, {"--csv", o.csv_path}, {"--plot", o.plot_path}},
+                problems);
   if (!problems.empty()) throw InputError(std::move(problems));
   const std::map<int, geometry::Tool> library =
       o.tools_path.empty() ? std::map<int, geometry::Tool>{} : cycles::load_tool_library(o.tools_path);
@@ -215,15 +219,69 @@ std::optional<PlannedRun> plan_run(const OptimizeOptions& o, const OptimizeInput
   return planned;
 }
 
-// The planner's blocks of feed moves as pieces of the program's moves (the run starting at `first`).
+// The planner's blocks of feed moves as pieces of the program's moves (the run starting at `first`), each
+// with the reason of its feed when `reasons` has one per block (--explain).
 void add_feed_pieces(const planner::PlanResult& result, std::size_t first, const std::vector<gcode::WrittenMove>& written,
-                     std::vector<gcode::FeedPiece>& pieces) {
+                     const std::vector<std::string>& reasons, std::vector<gcode::FeedPiece>& pieces) {
   for (std::size_t k = 0; k < result.blocks.size(); ++k) {
     const planner::PlannedBlock& block = result.blocks[k];
     if (!(block.feed_mm_per_min > 0.0)) continue;
     if (written[first + static_cast<std::size_t>(block.move_index)].fixed_feed) continue;  // a drilling cycle's F
-    pieces.push_back({block.move_index + static_cast<int>(first), result.program.path.moves[k], block.feed_mm_per_min});
+    pieces.push_back({block.move_index + static_cast<int>(first), result.program.path.moves[k], block.feed_mm_per_min,
+                      k < reasons.size() ? reasons[k] : std::string()});
   }
+}
+
+// A tool run with its text lines, as the output files see it (the plan moved in when there is one).
+RecordedRun recorded_run(const OptimizeOptions& o, const OptimizeInputs& in, const ToolRun& run) {
+  RecordedRun r;
+  r.run = run;
+  r.first_line = in.written[run.first].line;
+  r.last_line = in.written[run.end - 1].line;
+  r.drilling = true;
+  r.context.tool = run.tool;
+  r.context.material = o.material;
+  return r;
+}
+
+// The report context of a planned run: the input program as its source, the re-fed one as its program.
+planner::PlanReportContext run_context(const OptimizeOptions& o, const ToolRun& run, const PlannedRun& p) {
+  const mdb::ModelRecord& record = p.kind.mechanistic ? *p.kind.mechanistic : p.chosen.record;
+  planner::PlanReportContext context;
+  context.spec_path = stored_path(o.program_path);
+  context.cycle = "program";
+  context.tool = run.tool;
+  context.material = o.material;
+  context.model_id = record.id;
+  context.model_version = record.version;
+  context.model_tool = record.tool_name;
+  context.model_material = record.material_name;
+  context.model_match = p.chosen.explanation;
+  context.model_match_status = model_db::to_string(p.chosen.borrowing.status);
+  for (const model_db::ModelDifference& d : p.chosen.borrowing.differences) {
+    context.model_differences.push_back(d.property + " " + d.used + " for " + d.wanted);
+  }
+  context.model_relative_uncertainty = p.settings.uncertainty ? planning_uncertainty(p.kind, o.model_uncertainty) : 0.0;
+  context.model_kind_reason = p.kind.reason;
+  context.database_path = stored_path(database_path(o.db_path));
+  context.program_path = o.output_path;
+  context.dialect = "as read";
+  return context;
+}
+
+// The planned run moved into its record for the output files.
+void record_plan(const OptimizeOptions& o, const OptimizeInputs& in, const ToolRun& run, PlannedRun&& p, RecordedRun& r) {
+  r.drilling = false;
+  r.model_kind_reason = p.kind.reason;
+  r.context = run_context(o, run, p);
+  r.input_cycle_time_s = p.input.cycle_time_s;
+  r.input_peak_force_n = p.input.peak_force_n;
+  r.sample_lines.reserve(p.result.samples.size());
+  for (const planner::PlannedSample& sample : p.result.samples) {
+    r.sample_lines.push_back(in.written[run.first + static_cast<std::size_t>(sample.move_index)].line);
+  }
+  r.settings = std::move(p.settings);
+  r.result = std::move(p.result);
 }
 
 std::string seconds(double s) { return fixed_number_text(s, 2) + " s"; }
@@ -257,31 +315,6 @@ void print_run(const OptimizeOptions& o, const OptimizeInputs& in, const ToolRun
               100.0 * (result.summary.cycle_time_s - p.input.cycle_time_s) / p.input.cycle_time_s);
 }
 
-// One operation's time and largest predicted force, at the input's feeds and at the plan's.
-struct OperationFigures {
-  double input_s = 0.0, refed_s = 0.0;
-  double input_peak_n = 0.0, refed_peak_n = 0.0;
-  bool planned = false;   // its moves were planned
-  bool drilling = false;  // it holds drilling cycles, whose feeds are kept
-};
-
-// Adds run `run`'s samples to the figures of the operations their moves belong to (`operation_of_move`).
-void add_operation_figures(const ToolRun& run, const PlannedRun& p, const std::vector<std::size_t>& operation_of_move,
-                           std::vector<OperationFigures>& figures) {
-  const auto& samples = p.geometry.engagement.samples;
-  const auto& planned = p.result.samples;
-  for (std::size_t i = 0; i < samples.size(); ++i) {
-    OperationFigures& f = figures[operation_of_move[run.first + static_cast<std::size_t>(samples[i].move_index)]];
-    f.planned = true;
-    f.input_peak_n = std::max(f.input_peak_n, p.input.force_n[i]);
-    if (i < planned.size()) f.refed_peak_n = std::max(f.refed_peak_n, planned[i].predicted_force_n);
-    if (i + 1 < samples.size()) {
-      f.input_s += p.input.time_s[i + 1] - p.input.time_s[i];
-      if (i + 1 < planned.size()) f.refed_s += planned[i + 1].time_s - planned[i].time_s;
-    }
-  }
-}
-
 void print_operations(const std::vector<ProgramOperation>& operations, const std::vector<OperationFigures>& figures) {
   std::printf("per operation (predicted): time input → re-fed, peak force input → re-fed\n");
   for (std::size_t k = 0; k < operations.size(); ++k) {
@@ -296,6 +329,43 @@ void print_operations(const std::vector<ProgramOperation>& operations, const std
     std::printf("%s → %s, %s → %s N\n", seconds(f.input_s).c_str(), seconds(f.refed_s).c_str(),
                 fixed_number_text(f.input_peak_n, 1).c_str(), fixed_number_text(f.refed_peak_n, 1).c_str());
   }
+}
+
+// The record the output files show, before any run is planned.
+OptimizeRecord new_record(const OptimizeOptions& o, const OptimizeInputs& in) {
+  OptimizeRecord record;
+  record.program_path = o.program_path;
+  record.output_path = o.output_path;
+  record.material = o.material;
+  record.target_force_n = *o.target_force_n;
+  record.stock_path = o.stock_path;
+  record.stock = in.stock;
+  if (!in.stock_box_mm.empty()) record.stock_box_mm = in.stock_box_mm;
+  record.operations = program_operations(in.text, in.written);
+  record.figures.resize(record.operations.size());
+  return record;
+}
+
+// The re-fed program (unless a plan was refused) with --report, --csv and --plot, staged and put in place
+// together; a refused plan writes only the files that do not exist yet. Returns the exit code.
+int write_optimize_outputs(const OptimizeOptions& o, const OptimizeRecord& record, const std::string& refed_text) {
+  OutputFiles outputs;
+  if (!record.refused) outputs.add(o.output_path, refed_text);
+  stage_optimize_files(o, record, outputs);
+  const std::string error = outputs.commit(record.refused ? ExistingFile::kKeep : ExistingFile::kReplace);
+  for (const std::string& path : outputs.kept()) {
+    std::cerr << "feedplan: note: " << path << " exists: left as it was (a run that fails writes only new files)\n";
+  }
+  if (!error.empty()) {
+    std::cerr << "feedplan: failed: " << error << "\n";
+    return kExitFailed;
+  }
+  if (record.refused) {
+    std::printf("not written: the target cannot be met everywhere, or the safety check refuses a plan (above)\n");
+    return kExitFailed;
+  }
+  for (const std::string& path : outputs.written()) std::printf("wrote %s\n", path.c_str());
+  return 0;
 }
 
 }  // namespace
@@ -329,6 +399,17 @@ void add_optimize_command(CLI::App& app, OptimizeOptions& o) {
                   "written out)");
   add_number_flag(cmd, "--min-block-s", o.min_block_duration_s,
                   "shortest block with --feed-step, s (default 0.008: at most 125 F changes a second)");
+  cmd->add_flag("--explain", o.explain,
+                "write why every new F is what it is as a comment with it: (F: force 300 N at 58 deg engagement),\n"
+                "(F: plunge limit 0.025 mm/tooth), (F: model range, chip 0.120 mm), (F: machine max feed), (F: air),\n"
+                "(F: acceleration); before the line's own comments, which LinuxCNC keeps acting on");
+  cmd->add_option("--report", o.report_path,
+                  "write the report (JSON): the input, tools, material, stock, target, each tool run's plan and model, "
+                  "and the per-operation table");
+  cmd->add_option("--csv", o.csv_path,
+                  "write every tool run's plan per sample (CSV, one file: the plan CSV's columns, then tool and line)");
+  cmd->add_option("--plot", o.plot_path,
+                  "write engagement, feed and predicted force along the path (SVG, the tool runs one after the other)");
 }
 
 int run_optimize_command(const OptimizeOptions& o) {
@@ -339,38 +420,47 @@ int run_optimize_command(const OptimizeOptions& o) {
               static_cast<std::size_t>(std::count(in.text.begin(), in.text.end(), '\n')),
               shortest_number_text(*o.target_force_n).c_str(), in.runs.size(), in.runs.size() == 1 ? "" : " runs");
   for (const std::string& note : in.program.notes) std::printf("note: %s\n", note.c_str());
+  // What --report, --csv and --plot show: the plans are kept only when one of them is asked for.
+  const bool record_plans = !o.report_path.empty() || !o.csv_path.empty() || !o.plot_path.empty();
+  OptimizeRecord record = new_record(o, in);
   // Each tool's moves on the material the tools before it left.
   geometry::Stock stock = in.stock;
   std::vector<gcode::FeedPiece> pieces;
   double cycle_time_s = 0.0;
-  bool refused = false;
-  const std::vector<ProgramOperation> operations = program_operations(in.text, in.written);
   std::vector<std::size_t> operation_of_move(in.written.size());
-  for (std::size_t k = 0; k < operations.size(); ++k) {
-    for (std::size_t m = operations[k].first_move; m < operations[k].end_move; ++m) operation_of_move[m] = k;
+  for (std::size_t k = 0; k < record.operations.size(); ++k) {
+    for (std::size_t m = record.operations[k].first_move; m < record.operations[k].end_move; ++m) operation_of_move[m] = k;
   }
-  std::vector<OperationFigures> figures(operations.size());
   for (const ToolRun& run : in.runs) {
     if (rapids_only(in.program, run)) continue;
+    RecordedRun recorded = recorded_run(o, in, run);
     if (feeds_kept(in.program, in.written, run)) {  // a drilling tool: its holes come out of the stock, its feeds stay
       std::printf("%s, lines %d–%d: drilling cycles, feeds kept as written; holes of Ø%s mm cut from the stock\n",
                   run_name(run).c_str(), in.written[run.first].line,
                   in.written[run.end - 1].line, shortest_number_text(run.tool.diameter_mm).c_str());
       stock = geometry::after_cutting(stock, run_path(in.program, run), run.tool.radius_mm());
-      for (std::size_t m = run.first; m < run.end; ++m) figures[operation_of_move[m]].drilling = true;
+      for (std::size_t m = run.first; m < run.end; ++m) record.figures[operation_of_move[m]].drilling = true;
+      if (record_plans) record.runs.push_back(std::move(recorded));
       continue;
     }
-    const std::optional<PlannedRun> planned = plan_run(o, in, run, store, stock);
+    std::optional<PlannedRun> planned = plan_run(o, in, run, store, stock);
     if (!planned) return kExitFailed;
     print_run(o, in, run, *planned);
-    add_operation_figures(run, *planned, operation_of_move, figures);
-    add_feed_pieces(planned->result, run.first, in.written, pieces);
+    add_operation_figures(run, planned->result, planned->input, operation_of_move, record.figures);
+    const std::vector<std::string> reasons =
+        o.explain ? planner::block_feed_reason_texts(planned->geometry, planned->settings, planned->result)
+                  : std::vector<std::string>{};
+    add_feed_pieces(planned->result, run.first, in.written, reasons, pieces);
     cycle_time_s += planned->result.summary.cycle_time_s;
-    refused = refused || planned->result.status == planner::PlanStatus::kTargetNotMet ||
-              planned->result.status == planner::PlanStatus::kUnsafe;
+    record.refused = record.refused || planned->result.status == planner::PlanStatus::kTargetNotMet ||
+                     planned->result.status == planner::PlanStatus::kUnsafe;
     stock = geometry::after_cutting(stock, planned->geometry.path, run.tool.radius_mm());
+    if (record_plans) {
+      record_plan(o, in, run, std::move(*planned), recorded);
+      record.runs.push_back(std::move(recorded));
+    }
   }
-  print_operations(operations, figures);
+  print_operations(record.operations, record.figures);
   const gcode::RefeedResult refed = gcode::refeed_text(in.text, in.program, in.written, pieces);
   const double wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
   std::printf("planned cycle time %s; re-fed: %d lines changed, %d lines added (%d moves split where their feed "
@@ -378,18 +468,9 @@ int run_optimize_command(const OptimizeOptions& o) {
               "moves of a line); %.2f s\n",
               seconds(cycle_time_s).c_str(), refed.lines_changed, refed.lines_added, refed.moves_split,
               refed.moves_at_lowest_feed, wall_s);
-  if (refused) {
-    std::printf("not written: the target cannot be met everywhere, or the safety check refuses a plan (above)\n");
-    return kExitFailed;
-  }
-  OutputFiles outputs;
-  outputs.add(o.output_path, refed.text);
-  if (const std::string error = outputs.commit(); !error.empty()) {
-    std::cerr << "feedplan: failed: " << error << "\n";
-    return kExitFailed;
-  }
-  std::printf("wrote %s\n", o.output_path.c_str());
-  return 0;
+  record.refed = {std::string(), refed.lines_changed, refed.lines_added, refed.moves_split, refed.moves_at_lowest_feed};
+  if (record.refused) record.output_path.clear();
+  return write_optimize_outputs(o, record, refed.text);
 }
 
 }  // namespace feedplan::cli

@@ -35,13 +35,20 @@ struct OptimizeOptions {
   double feed_step = planner::kControllerFriendlyFeedStep;
   //! --min-block-s: shortest block of the controller-friendly rule, s
   double min_block_duration_s = planner::kControllerFriendlyMinBlockS;
+  bool explain = false;               //!< --explain: `(F: <reason>)` with every F word written
+  std::string report_path;            //!< --report: the optimize report (JSON, optimize_outputs.hpp)
+  std::string csv_path;               //!< --csv: every tool run's plan per sample (CSV)
+  std::string plot_path;              //!< --plot: engagement, feed and predicted force along the path (SVG)
 };
 
 //! Registers the subcommand.
 void add_optimize_command(CLI::App& app, OptimizeOptions& options);
 
 //! Runs the command: 0 written, 1 failed (no model, the target cannot be met, an output cannot be
-//! written); throws InputError on bad input before anything is written.
+//! written); throws InputError on bad input before anything is written. The re-fed program, --report, --csv
+//! and --plot are staged and put in place together: an error leaves every existing output as it was. When
+//! the target cannot be met (or the safety check refuses a plan) the program is not written, and the
+//! report, CSV and plot go only to files that do not exist yet.
 int run_optimize_command(const OptimizeOptions& options);
 
 }  // namespace feedplan::cli

@@ -32,6 +32,7 @@
 #include "feedplan/model_db/closest_model.hpp"
 #include "feedplan/model_db/engagement_groups.hpp"
 #include "feedplan/model_db/store.hpp"
+#include "feedplan/planner/block_feed_reason.hpp"
 #include "feedplan/planner/constant_feed.hpp"
 #include "feedplan/planner/feed_plan.hpp"
 #include "feedplan/planner/plan_plot.hpp"
@@ -108,6 +109,8 @@ PlanInputs read_plan_inputs(const PlanCommandOptions& o) {
                                       {"--report", !o.report_path.empty()},
                                       {"--csv", !o.csv_path.empty()},
                                       {"--simulate", o.simulate},
+                                      {"--explain", o.explain},
+                                      {"--part-comments", o.part_comments},
                                       {"--constant-feed", o.constant_feed_mm_per_min.has_value()},
                                       {"--target-force", o.target_force_n.has_value()}}) {
       if (given) problems.push_back({flag, "is not used with --target-sweep, which plans at many targets and writes no "
@@ -254,6 +257,7 @@ gcode::WriterOptions program_writer(const PlanCommandOptions& o, const PlanInput
   }
   writer.header_comments.push_back({"feedplan", FEEDPLAN_VERSION});
   writer.retract_z_mm = std::nullopt;
+  writer.part_comments = o.part_comments;
   return writer;
 }
 
@@ -263,10 +267,15 @@ std::string program_text(const PlanCommandOptions& o, const PlanInputs& in, cons
   if (!program.any()) return "";
   if (program.constant) {
     // --constant-feed: the cycle's own moves, one F on every feed move (what the baseline is).
-    return gcode::write_gcode(
-        planner::constant_feed_program(planned.cycle.path, *o.constant_feed_mm_per_min, in.spec.spindle_rpm), writer);
+    const geometry::Program constant =
+        planner::constant_feed_program(planned.cycle.path, *o.constant_feed_mm_per_min, in.spec.spindle_rpm);
+    gcode::WriterOptions explained = writer;
+    if (o.explain) explained.feed_comments.assign(constant.path.moves.size(), "constant feed, --constant-feed");
+    return gcode::write_gcode(constant, explained);
   }
-  return gcode::write_gcode(planned.result.program, writer);
+  gcode::WriterOptions explained = writer;
+  if (o.explain) explained.feed_comments = planner::block_feed_reason_texts(planned.geometry, planned.settings, planned.result);
+  return gcode::write_gcode(planned.result.program, explained);
 }
 
 planner::PlanReportContext report_context(const PlanCommandOptions& o, const PlanInputs& in, const PlanModel& model,
@@ -414,6 +423,12 @@ void add_plan_command(CLI::App& app, PlanCommandOptions& options) {
   add_number_flag(cmd, "--constant-feed", options.constant_feed_mm_per_min,
                   "Write the constant-feed program instead: this F (mm/min) on every feed move (a baseline to compare)");
   cmd->add_option("--materials", options.materials_path, "Materials file of the virtual machine (default: the bundled one)");
+  cmd->add_flag("--explain", options.explain,
+                "Write why every F is what it is as a comment on its line: (F: force 300 N at 58 deg engagement),\n"
+                "(F: plunge limit 0.025 mm/tooth), (F: model range, chip 0.120 mm), (F: machine max feed), (F: air),\n"
+                "(F: acceleration) where the machine's ramp sets it, (F: arc R 2.500 mm, acceleration)");
+  cmd->add_flag("--part-comments", options.part_comments,
+                "Write a comment line (part: <name>) before the first block of each cycle part (approach, loop 3, ...)");
   cmd->add_option("--target-sweep", options.target_sweep,
                   "FROM:TO:STEP in N, e.g. 250:500:25: plan at each target and print the cycle time and largest\n"
                   "predicted peak of each (--plot draws the curve); writes no program");

@@ -45,6 +45,8 @@ struct PlanCommandOptions {
   std::optional<double> constant_feed_mm_per_min;  //!< --constant-feed: write this one F on every feed move instead
   std::string materials_path;         //!< --materials: the virtual machine's materials file
   std::string target_sweep;           //!< --target-sweep FROM:TO:STEP: plan at each target, print the curve, write no program
+  bool explain = false;               //!< --explain: `(F: <reason>)` beside every F word of the program
+  bool part_comments = false;         //!< --part-comments: a comment line before the first block of each cycle part
 };
 
 //! Registers the subcommand.

@@ -8,6 +8,7 @@
 #include <stdexcept>
 #include <string_view>
 
+#include "comment_text.hpp"
 #include "line_lexer.hpp"
 #include "problem_log.hpp"
 
@@ -19,6 +20,10 @@ constexpr double kMmPerInch = 25.4;
 constexpr double kPi = 3.14159265358979323846;
 // Pieces shorter than this are not written, mm.
 constexpr double kShortestPieceMm = 1e-6;
+// Longest feed comment text inside its parentheses (Fanuc and Haas: a 60-character comment), characters.
+constexpr std::size_t kFeedCommentLength = 58;
+// Longest line LinuxCNC reads (its LINELEN), characters: no feed comment makes a line longer.
+constexpr std::size_t kLongestLine = 255;
 
 // A line of the text without its ending, and the ending ("\n", "\r\n" or "" on the last line).
 struct TextLine {
@@ -115,6 +120,57 @@ std::string with_words(const std::string& body, const std::string& words) {
   return out;
 }
 
+// How feed comments are written (refeed.hpp): upper case when the program's own comments are.
+struct FeedComments {
+  bool upper_case = false;
+
+  // `(F: <reason>)`, made safe; "" without a reason.
+  std::string of(const FeedPiece& piece) const {
+    if (piece.reason.empty()) return "";
+    std::string body = "F: ";
+    body += piece.reason;
+    std::string comment = "(";
+    comment += detail::safe_comment_text(body, upper_case, kFeedCommentLength);
+    comment += ')';
+    return comment;
+  }
+};
+
+// True when no comment of `text` ("(…)" or "; …") holds a lower-case letter: a Fanuc or Haas post's program.
+bool comments_upper_case(const std::string& text) {
+  bool in_paren = false;
+  bool in_semicolon = false;
+  for (const char c : text) {
+    if (c == '\n') {
+      in_paren = in_semicolon = false;
+    } else if (in_paren || in_semicolon) {
+      if (std::islower(static_cast<unsigned char>(c))) return false;
+      if (c == ')') in_paren = false;
+    } else if (c == '(') {
+      in_paren = true;
+    } else if (c == ';') {
+      in_semicolon = true;
+    }
+  }
+  return true;
+}
+
+// `body` with `comment` right before its first comment, else after its last word (before a ';' comment);
+// `body` as it is when `comment` is empty or the line would grow past kLongestLine.
+std::string with_comment(const std::string& body, const std::string& comment) {
+  if (comment.empty() || body.size() + comment.size() + 1 > kLongestLine) return body;
+  for (std::size_t i = 0; i < body.size() && body[i] != ';'; ++i) {
+    if (body[i] != '(') continue;
+    std::string out = body.substr(0, i);
+    if (!out.empty() && out.back() != ' ' && out.back() != '\t') out += ' ';
+    out += comment;
+    out += ' ';
+    out.append(body, i, std::string::npos);
+    return out;
+  }
+  return with_words(body, comment);
+}
+
 // `value` with `decimals` decimals, trailing zeros trimmed, always a decimal point, no "-0.".
 std::string number_text(double value, int decimals) {
   char buffer[64];
@@ -200,7 +256,8 @@ double as_written(double mm, const Units& units) {
 // The words of one piece ending inside the move: X Y (Z when it moves in Z), the arc words, F. `start`
 // is where the controller is (as written); returns the written end.
 std::string inner_piece_words(const geometry::Move& piece, const WrittenMove& w, const Units& units,
-                              geometry::Point2& start, OutputState& state, double feed_mm_per_min) {
+                              geometry::Point2& start, OutputState& state, double feed_mm_per_min,
+                              const std::string& comment) {
   std::string words = "X";
   words += units.length(piece.end.x_mm);
   words += " Y";
@@ -217,6 +274,10 @@ std::string inner_piece_words(const geometry::Move& piece, const WrittenMove& w,
   if (!f.empty()) {
     words += ' ';
     words += f;
+    if (!comment.empty()) {
+      words += ' ';
+      words += comment;
+    }
   }
   start = {as_written(piece.end.x_mm, units), as_written(piece.end.y_mm, units)};
   return words;
@@ -277,12 +338,13 @@ std::vector<std::vector<const FeedPiece*>> pieces_by_move(const geometry::Progra
 }
 
 // Writes `line` into `out` with only its F word changed: the feed `feed_mm_per_min` for all of it.
-void rewrite_feed_only(const TextLine& line, const Units& units, double feed_mm_per_min, OutputState& state,
-                       RefeedResult& result, std::vector<TextLine>& out) {
+// With the F word, `comment` (FeedComments::of) before the line's first comment.
+void rewrite_feed_only(const TextLine& line, const Units& units, double feed_mm_per_min, const std::string& comment,
+                       OutputState& state, RefeedResult& result, std::vector<TextLine>& out) {
   std::string body = without_words(line.body, "F");
   if (resets_feed(line.body)) state.feed_mm_per_min = 0.0;
   const std::string f = feed_word(feed_mm_per_min, units, state);
-  if (!f.empty()) body = with_words(body, f);
+  if (!f.empty()) body = with_comment(with_words(body, f), comment);
   if (body != line.body) ++result.lines_changed;
   out.push_back({body, line.ending});
 }
@@ -291,10 +353,11 @@ void rewrite_feed_only(const TextLine& line, const Units& units, double feed_mm_
 // order): at the lowest feed of all their pieces, only its F word changed. A line without pieces is copied.
 void rewrite_whole_line(const TextLine& line, int line_number, const std::vector<int>& moves,
                         const std::vector<WrittenMove>& written,
-                        const std::vector<std::vector<const FeedPiece*>>& by_move, OutputState& state,
-                        RefeedResult& result, std::vector<TextLine>& out) {
+                        const std::vector<std::vector<const FeedPiece*>>& by_move, const FeedComments& comments,
+                        OutputState& state, RefeedResult& result, std::vector<TextLine>& out) {
   const Units units{written[static_cast<std::size_t>(moves.front())].inch};
   std::optional<double> lowest;
+  const FeedPiece* slowest = nullptr;
   int moves_with_pieces = 0;
   bool same_feed = true;
   for (const int m : moves) {
@@ -302,6 +365,7 @@ void rewrite_whole_line(const TextLine& line, int line_number, const std::vector
     if (!pieces.empty()) ++moves_with_pieces;
     for (const FeedPiece* p : pieces) {
       if (lowest && units.feed_as_written(p->feed_mm_per_min) != units.feed_as_written(*lowest)) same_feed = false;
+      if (!lowest || p->feed_mm_per_min < *lowest) slowest = p;
       lowest = lowest ? std::min(*lowest, p->feed_mm_per_min) : p->feed_mm_per_min;
     }
   }
@@ -312,12 +376,12 @@ void rewrite_whole_line(const TextLine& line, int line_number, const std::vector
   }
   state.inch = units.inch;
   if (!same_feed) result.moves_at_lowest_feed += moves_with_pieces;
-  rewrite_feed_only(line, units, *lowest, state, result, out);
+  rewrite_feed_only(line, units, *lowest, comments.of(*slowest), state, result, out);
 }
 
 // Rewrites the line of move `m` (its pieces `pieces`, at least one) into `out`.
 void rewrite_move(const TextLine& line, const WrittenMove& w, const std::vector<const FeedPiece*>& all_pieces,
-                  OutputState& state, RefeedResult& result, std::vector<TextLine>& out) {
+                  const FeedComments& comments, OutputState& state, RefeedResult& result, std::vector<TextLine>& out) {
   const Units units{w.inch};
   state.inch = w.inch;
   std::vector<const FeedPiece*> pieces;
@@ -327,8 +391,10 @@ void rewrite_move(const TextLine& line, const WrittenMove& w, const std::vector<
   if (pieces.empty()) pieces.push_back(all_pieces.front());
   bool single = pieces.size() == 1;
   double lowest = pieces.front()->feed_mm_per_min;
+  const FeedPiece* slowest = pieces.front();
   bool same_feed = true;
   for (const FeedPiece* p : pieces) {
+    if (p->feed_mm_per_min < lowest) slowest = p;
     lowest = std::min(lowest, p->feed_mm_per_min);
     same_feed = same_feed && units.feed_as_written(p->feed_mm_per_min) == units.feed_as_written(lowest);
   }
@@ -337,7 +403,7 @@ void rewrite_move(const TextLine& line, const WrittenMove& w, const std::vector<
     single = true;
   }
   if (single || same_feed) {
-    rewrite_feed_only(line, units, lowest, state, result, out);
+    rewrite_feed_only(line, units, lowest, comments.of(*slowest), state, result, out);
     return;
   }
   ++result.moves_split;
@@ -352,12 +418,17 @@ void rewrite_move(const TextLine& line, const WrittenMove& w, const std::vector<
     words += code;
     words += ' ';
   }
-  words += inner_piece_words(pieces.front()->move, w, units, start, state, pieces.front()->feed_mm_per_min);
-  out.push_back({with_words(first, words), line.ending});
+  const std::string first_comment = comments.of(*pieces.front());
+  const double feed_before = state.feed_mm_per_min;
+  words += inner_piece_words(pieces.front()->move, w, units, start, state, pieces.front()->feed_mm_per_min, "");
+  first = with_words(first, words);
+  if (state.feed_mm_per_min != feed_before) first = with_comment(first, first_comment);
+  out.push_back({first, line.ending});
   for (std::size_t k = 1; k + 1 < pieces.size(); ++k) {
     std::string middle = code;
     middle += ' ';
-    middle += inner_piece_words(pieces[k]->move, w, units, start, state, pieces[k]->feed_mm_per_min);
+    middle += inner_piece_words(pieces[k]->move, w, units, start, state, pieces[k]->feed_mm_per_min,
+                                comments.of(*pieces[k]));
     out.push_back({middle, line.ending});
     ++result.lines_added;
   }
@@ -374,6 +445,7 @@ void rewrite_move(const TextLine& line, const WrittenMove& w, const std::vector<
   if (!f.empty()) {
     tail += ' ';
     tail += f;
+    tail = with_comment(tail, comments.of(*pieces.back()));
   }
   out.push_back({tail, line.ending});
   ++result.lines_added;
@@ -399,16 +471,17 @@ RefeedResult refeed_text(const std::string& text, const geometry::Program& progr
   out.reserve(lines.size() + pieces.size());
   RefeedResult result;
   OutputState state;
+  const FeedComments comments{comments_upper_case(text)};
   for (std::size_t i = 0; i < lines.size(); ++i) {
     const int line_number = static_cast<int>(i) + 1;
     const std::vector<int> none;
     const std::vector<int>& moves = i + 1 < moves_of_line.size() ? moves_of_line[i + 1] : none;
     const bool whole = moves.size() > 1 || (moves.size() == 1 && written[static_cast<std::size_t>(moves[0])].keep_whole);
     if (whole) {
-      rewrite_whole_line(lines[i], line_number, moves, written, by_move, state, result, out);
+      rewrite_whole_line(lines[i], line_number, moves, written, by_move, comments, state, result, out);
     } else if (moves.size() == 1 && !by_move[static_cast<std::size_t>(moves[0])].empty()) {
       const auto move = static_cast<std::size_t>(moves[0]);
-      rewrite_move(lines[i], written[move], by_move[move], state, result, out);
+      rewrite_move(lines[i], written[move], by_move[move], comments, state, result, out);
     } else {
       follow_copied_line(lines[i].body, line_number, state);
       out.push_back(lines[i]);

@@ -162,7 +162,7 @@ void check_block(const BlockCommand& b, MoveKind kind, std::size_t i, ProblemLis
 }
 
 // Everything write_gcode needs from the program (the header lists it).
-void check_program(const geometry::Program& program, ProblemList& problems) {
+void check_program(const geometry::Program& program, const WriterOptions& options, ProblemList& problems) {
   const auto& moves = program.path.moves;
   const auto& blocks = program.blocks;
   if (blocks.size() != moves.size()) {
@@ -181,6 +181,10 @@ void check_program(const geometry::Program& program, ProblemList& problems) {
     check_continuity(moves, i, field, problems);
     if (m.kind == MoveKind::kArc) check_arc(m, field, problems);
     if (i < blocks.size()) check_block(blocks[i], m.kind, i, problems);
+  }
+  if (!options.feed_comments.empty() && options.feed_comments.size() != moves.size()) {
+    problems.add("feed_comments", "has " + std::to_string(options.feed_comments.size()) + " entries for " +
+                                      std::to_string(moves.size()) + " moves: one per move, or none");
   }
   if (!std::isfinite(program.dwell_at_end_s) || program.dwell_at_end_s < 0.0) {
     problems.add("program.dwell_at_end_s", "= " + number(program.dwell_at_end_s) + ": must be finite and ≥ 0 s");
@@ -206,14 +210,18 @@ class Writer {
       return b.spindle != SpindleDirection::kOff;
     });
     if (coolant_pending_ && !spindle_runs) write_coolant_on();
+    std::vector<bool> part_named(program.path.part_names.size(), false);
     for (std::size_t i = 0; i < moves.size(); ++i) {
       const BlockCommand& command = program.blocks[i];
       if (i == 0) {
         write_approach(moves.front().start);
+        write_part_comment(program.path, moves[i].part, part_named);
       } else {
+        write_part_comment(program.path, moves[i].part, part_named);
         write_spindle(command);
       }
       write_dwell(command.dwell_before_s);
+      feed_comment_ = i < options_.feed_comments.size() ? options_.feed_comments[i] : std::string();
       write_move(moves[i], command.feed_mm_per_min);
     }
     write_dwell(program.dwell_at_end_s);
@@ -248,6 +256,16 @@ class Writer {
   void comment(const std::string& body) {
     const std::string text = safe(body);
     if (!text.empty()) raw_line("(" + text + ")");
+  }
+
+  // `(part: <name>)` before the first block of part `part` (WriterOptions::part_comments), once per part.
+  void write_part_comment(const geometry::ToolPath& path, int part, std::vector<bool>& named) {
+    if (!options_.part_comments || part < 0 || static_cast<std::size_t>(part) >= named.size()) return;
+    if (named[static_cast<std::size_t>(part)]) return;
+    named[static_cast<std::size_t>(part)] = true;
+    std::string body = "part: ";
+    body += path.part_names[static_cast<std::size_t>(part)];
+    comment(body);
   }
 
   std::string g_code(int number) const {
@@ -377,7 +395,19 @@ class Writer {
     const long long steps = detail::to_grid(feed_mm_per_min, kFeedDecimals);
     if (feed_ && *feed_ == steps) return "";
     feed_ = steps;
-    return " F" + detail::grid_text(steps, kFeedDecimals);
+    std::string word = " F";
+    word += detail::grid_text(steps, kFeedDecimals);
+    // The move's feed comment goes with its F word, the last word of the block (WriterOptions::feed_comments).
+    std::string body = "F: ";
+    body += feed_comment_;
+    const std::string text = feed_comment_.empty() ? std::string() : safe(body);
+    if (!text.empty()) {
+      word += " (";
+      word += text;
+      word += ')';
+    }
+    feed_comment_.clear();
+    return word;
   }
 
   // Joins a motion word and further words (each starting with a space) into one block.
@@ -526,6 +556,7 @@ class Writer {
   std::optional<long long> spindle_rpm_;              // S as written
   SpindleDirection spindle_ = SpindleDirection::kOff;
   bool coolant_pending_ = false;  // M8 is still to be written
+  std::string feed_comment_;      // the current move's feed comment, until its F word is written
 };
 
 }  // namespace
@@ -582,7 +613,7 @@ std::vector<InputProblem> validate(const WriterOptions& options) {
 std::string write_gcode(const geometry::Program& program, const WriterOptions& options) {
   ProblemList problems = ProblemList::capped(kMaxProblems, ProblemCap::kStopAfter, "program");
   problems.add_all(validate(options));
-  check_program(program, problems);
+  check_program(program, options, problems);
   problems.throw_if_any();
   return Writer(options).write(program);
 }

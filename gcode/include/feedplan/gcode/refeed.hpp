@@ -24,8 +24,17 @@
 // differs from the planned one, in the units in effect (mm/min, or in/min under G20), rounded down to
 // 0.1 mm/min or 0.001 in/min — never faster than planned. Rapids and every other line are copied byte
 // for byte; line endings (LF or CR LF) are kept.
+//
+// Feed comments (FeedPiece::reason, `feedplan optimize --explain`): a line that writes a piece's F word
+// also gets `(F: <reason>)` — the reason of the piece whose feed the F is (the lowest, on a line run at its
+// lowest feed), made safe as the writer makes user text (writer.hpp), upper-cased when the program's own
+// comments have no lower-case letter (as Fanuc and Haas posts write them), at most 58 characters. It goes
+// right before the line's first comment — LinuxCNC acts on the last comment of a line only, so an existing
+// one (a `(MSG, …)` too) stays the one it acts on — or, on a line without one, after its last word (before
+// a `;` comment). A line that would pass 255 characters with it (LinuxCNC's longest) gets none.
 
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "feedplan/gcode/reader.hpp"
@@ -36,9 +45,15 @@ namespace feedplan::gcode {
 
 //! A stretch of one move of the program run at one feed (a planner's block).
 struct FeedPiece {
+  FeedPiece() = default;
+  //! A piece without a reason unless one is given (the reason is what `--explain` adds).
+  FeedPiece(int move_index, geometry::Move move, double feed_mm_per_min, std::string reason = {})
+      : move_index(move_index), move(std::move(move)), feed_mm_per_min(feed_mm_per_min), reason(std::move(reason)) {}
+
   int move_index = 0;               //!< the move of the read program it is part of
   geometry::Move move;              //!< the stretch; the pieces of a move follow one another end to start
   double feed_mm_per_min = 0.0;     //!< its F, mm/min (> 0)
+  std::string reason;               //!< why the feed is what it is, written as `(F: <reason>)` with its F word; "" for none
 };
 
 //! The re-fed text and what changed.

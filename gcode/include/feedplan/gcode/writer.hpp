@@ -64,6 +64,13 @@
 // parentheses, Fanuc and Haas 58 so that a comment line stays within 60 — and a cut one ends in
 // "...".
 //
+// Feed comments (feed_comments, `--explain`): the line that writes a move's F word ends in `(F: <text>)`,
+// the move's entry made safe as user text is; moves whose F is modal (no F word) get none, so every F
+// change carries one. Part comments (part_comments): a comment line `(part: <name>)` before the first
+// block of each cycle part (Move::part into ToolPath::part_names), once per part, in path order — after the
+// approach for the first move, before a spindle change or dwell of the move otherwise. Both are plain
+// comments opened by writer-chosen text, one per line at most, on all three dialects.
+//
 // Line numbers (line_numbers): every line with a block (not `%`, the O line, or comment lines)
 // starts with N; N counts up by line_number_step and wraps back to line_number_step before it
 // would pass 99999, the largest N Fanuc and LinuxCNC accept.
@@ -101,6 +108,11 @@ struct WriterOptions {
   int work_offset = 54;
   double max_arc_sweep_deg = 180.0;    //!< arcs and helices sweeping more than this, deg, are split
                                        //!< into equal sub-arcs; 1..360
+  //! Why each move's F is what it is (see "Feed comments" above): one entry per program move ("" for none),
+  //! or empty for no feed comments at all.
+  std::vector<std::string> feed_comments;
+  //! A comment line `(part: <name>)` before the first block of each cycle part (see above).
+  bool part_comments = false;
 };
 
 //! Checks `options`: dialect one of the three; decimals in 1..6; line_number_step in 1..99999;
@@ -118,7 +130,8 @@ std::vector<InputProblem> validate(const WriterOptions& options);
 //! coordinates within ±99999 mm (8 digits at 3 decimals, the longest number Fanuc takes); each move
 //! starting within 1 µm of the previous end; arcs with a radius > 1 µm, start and end radii equal
 //! within 1 µm, a finite sweep > 0 that reaches the end point; feed moves (lines, arcs) with a finite
-//! F ≥ 0.05 mm/min (it must not print as F0.); spindle rpm and dwells finite and ≥ 0. Blocks of
+//! F ≥ 0.05 mm/min (it must not print as F0.); spindle rpm and dwells finite and ≥ 0; options.feed_comments
+//! empty or one per move. Blocks of
 //! rapids may have any feed (it is not written). Throws one feedplan::InputError listing every
 //! problem with the options and the program (up to 50), e.g.
 //! `program.blocks[3].feed_mm_per_min = 0: a feed move (G1) needs a finite F ≥ 0.05 mm/min`.
