@@ -392,12 +392,15 @@ void rewrite_move(const TextLine& line, const WrittenMove& w, const std::vector<
   bool single = pieces.size() == 1;
   double lowest = pieces.front()->feed_mm_per_min;
   const FeedPiece* slowest = pieces.front();
-  bool same_feed = true;
   for (const FeedPiece* p : pieces) {
     if (p->feed_mm_per_min < lowest) slowest = p;
     lowest = std::min(lowest, p->feed_mm_per_min);
-    same_feed = same_feed && units.feed_as_written(p->feed_mm_per_min) == units.feed_as_written(lowest);
   }
+  // One F for the line only when every piece writes the lowest one (pieces that slow down along the move
+  // are split too).
+  const bool same_feed = std::all_of(pieces.begin(), pieces.end(), [&](const FeedPiece* p) {
+    return units.feed_as_written(p->feed_mm_per_min) == units.feed_as_written(lowest);
+  });
   if (!single && !same_feed && (w.turns || w.incremental)) {
     ++result.moves_at_lowest_feed;
     single = true;

@@ -94,6 +94,7 @@ struct SpecFigures {
   double target_force_n = 0.0;
   double flutes = 0.0;
   double spindle_rpm = 0.0;
+  double feed_step = 0.0;  // the plan's F levels (--feed-step): F may lie one level under the limit it names
 };
 
 std::string check_comment(const FeedWord& word, const CsvTable& csv, const BlockRows& block, const SpecFigures& spec) {
@@ -101,14 +102,16 @@ std::string check_comment(const FeedWord& word, const CsvTable& csv, const Block
   const CsvReason expected = csv_reason(csv, block);
   const std::string& c = word.comment;
   EXPECT_NEAR(word.feed, block.feed, 0.051) << "line " << word.line;
+  // The smallest limit rounded down onto the F levels (one level at most) and to 1 mm/min.
+  const double rounded_limit = expected.min_limit / (1.0 + spec.feed_step);
   if (c == "acceleration") {
-    // The ramp: F below the smallest limit inside the block by more than the rounding down to 1 mm/min.
-    EXPECT_LT(block.feed, expected.min_limit - 1.0) << "line " << word.line << ": " << c;
+    // The ramp: F below the smallest limit inside the block by more than the rounding down.
+    EXPECT_LT(block.feed, rounded_limit - 1.0) << "line " << word.line << ": " << c;
     return c;
   }
-  // The limit itself: F is the smallest limit, rounded down to 1 mm/min.
+  // The limit itself: F is the smallest limit, rounded down.
   EXPECT_LE(block.feed, expected.min_limit + 1e-3) << "line " << word.line << ": " << c;
-  EXPECT_GE(block.feed, std::floor(expected.min_limit) - 1.0) << "line " << word.line << ": " << c;
+  EXPECT_GE(block.feed, std::floor(rounded_limit) - 1.0) << "line " << word.line << ": " << c;
   const std::string force_prefix = "force " + std::to_string(static_cast<int>(target_force_n)) + " N at ";
   if (c.rfind(force_prefix, 0) == 0) {
     EXPECT_TRUE(expected.reasons.count("force")) << "line " << word.line << ": " << c;
@@ -171,31 +174,40 @@ void expect_explained_feeds_agree(const std::string& program_text, const std::st
   }
 }
 
+// `plan`'s default --feed-step (its --help says so).
+constexpr double kDefaultFeedStep = 0.02;
+
 TEST_F(ExplainCliTest, EveryExplainedFeedAgreesWithThePlanCsv) {
-  std::map<std::string, int> all_counts;  // a reason seen in one sample at least
-  for (const char* sample : {"trochoid.yaml", "corner.yaml", "helical_boring.yaml", "spiral.yaml"}) {
-    SCOPED_TRACE(sample);
-    const fs::path program = dir_ / "p.nc";
-    const fs::path csv = dir_ / "p.csv";
-    const RunResult r = run_feedplan(plan_args(sample, program) + " --explain --csv " + csv.string());
-    ASSERT_EQ(r.exit_code, 0) << r.output;
-    std::map<std::string, int> counts;
-    const std::string text = read_text(kSamples + "/" + sample);  // the spec's target, flutes and speed
-    const auto figure = [&](const std::string& key) {
-      const std::size_t at = text.find(key);
-      EXPECT_NE(at, std::string::npos) << key;
-      return at == std::string::npos ? 0.0 : std::stod(text.substr(at + key.size()));
-    };
-    const SpecFigures spec{figure("\ntarget_force_n: "), figure("flutes: "), figure("\nspindle_rpm: ")};
-    expect_explained_feeds_agree(read_text(program), read_text(csv), spec, counts);
-    std::string seen;
-    for (const auto& [reason, n] : counts) seen += reason + " " + std::to_string(n) + "; ";
-    std::printf("%s: explained F words by reason: %s\n", sample, seen.c_str());
-    EXPECT_GT(counts["force"], 0) << seen;
-    EXPECT_GT(counts["acceleration"], 0) << seen;
-    all_counts.merge(counts);
+  // Both block rules: every acceleration ramp written out, and the default controller-friendly levels.
+  for (const double feed_step : {0.0, kDefaultFeedStep}) {
+    std::map<std::string, int> all_counts;  // a reason seen in one sample at least
+    for (const char* sample : {"trochoid.yaml", "corner.yaml", "helical_boring.yaml", "spiral.yaml"}) {
+      SCOPED_TRACE(std::string(sample) + (feed_step > 0.0 ? " (default blocks)" : " (--feed-step 0)"));
+      const fs::path program = dir_ / "p.nc";
+      const fs::path csv = dir_ / "p.csv";
+      const std::string blocks = feed_step > 0.0 ? "" : " --feed-step 0";
+      const RunResult r = run_feedplan(plan_args(sample, program) + blocks + " --explain --csv " + csv.string());
+      ASSERT_EQ(r.exit_code, 0) << r.output;
+      std::map<std::string, int> counts;
+      const std::string text = read_text(kSamples + "/" + sample);  // the spec's target, flutes and speed
+      const auto figure = [&](const std::string& key) {
+        const std::size_t at = text.find(key);
+        EXPECT_NE(at, std::string::npos) << key;
+        return at == std::string::npos ? 0.0 : std::stod(text.substr(at + key.size()));
+      };
+      const SpecFigures spec{figure("\ntarget_force_n: "), figure("flutes: "), figure("\nspindle_rpm: "), feed_step};
+      expect_explained_feeds_agree(read_text(program), read_text(csv), spec, counts);
+      std::string seen;
+      for (const auto& [reason, n] : counts) seen += reason + " " + std::to_string(n) + "; ";
+      std::printf("%s, feed step %g: explained F words by reason: %s\n", sample, feed_step, seen.c_str());
+      EXPECT_GT(counts["force"], 0) << seen;
+      if (feed_step == 0.0) {
+        EXPECT_GT(counts["acceleration"], 0) << seen;  // the ramps written out
+      }
+      all_counts.merge(counts);
+    }
+    for (const char* reason : {"air", "model range", "centripetal"}) EXPECT_GT(all_counts[reason], 0) << reason;
   }
-  for (const char* reason : {"air", "model range", "centripetal"}) EXPECT_GT(all_counts[reason], 0) << reason;
 }
 
 TEST_F(ExplainCliTest, WithTheReasonsTakenOutTheProgramIsTheOneWrittenWithout) {
