@@ -29,6 +29,13 @@ struct ReferenceOde {
   double natural_frequency_rad_per_s = 1.0;
 };
 
+//! What a β-FROH holds over one period: f(kT + τ) = value + β (value − previous) τ/T.
+struct HeldSamples {
+  double value = 0.0;
+  double previous = 0.0;
+  double beta = 0.0;
+};
+
 //! Plant and reference model side by side, from rest.
 struct ContinuousTruth {
   std::array<double, 2> plant{0.0, 0.0};      // f_a (mm/s), F_p (N)
@@ -40,13 +47,21 @@ struct ContinuousTruth {
   //! reference model under the constant `reference_input_n`. Returns F_p at the period's end.
   double step(const PlantOde& p, const ReferenceOde& r, double command, double previous_command, double beta,
               double reference_input_n, double period_s, int substeps) {
+    return step(p, r, {command, previous_command, beta}, {reference_input_n, reference_input_n, 0.0}, period_s, substeps);
+  }
+
+  //! One period as above with the reference model behind its own hold `reference_input`.
+  double step(const PlantOde& p, const ReferenceOde& r, const HeldSamples& command, const HeldSamples& reference_input,
+              double period_s, int substeps) {
     const double h = period_s / substeps;
     const double wn = r.natural_frequency_rad_per_s;
     using State = std::array<double, 4>;
     auto rate = [&](const State& s, double tau_s) {
-      const double feed = command + beta * (command - previous_command) * tau_s / period_s;
+      const double fraction = tau_s / period_s;
+      const double feed = command.value + command.beta * (command.value - command.previous) * fraction;
+      const double force = reference_input.value + reference_input.beta * (reference_input.value - reference_input.previous) * fraction;
       return State{(feed - s[0]) / p.feed_drive_time_constant_s, (p.gain_n_s_per_mm * s[0] - s[1]) / p.cutting_time_constant_s,
-                   s[3], wn * wn * (reference_input_n - s[2]) - 2.0 * r.damping_ratio * wn * s[3]};
+                   s[3], wn * wn * (force - s[2]) - 2.0 * r.damping_ratio * wn * s[3]};
     };
     auto plus = [](const State& a, const State& b, double f) {
       return State{a[0] + f * b[0], a[1] + f * b[1], a[2] + f * b[2], a[3] + f * b[3]};
