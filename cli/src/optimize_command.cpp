@@ -398,7 +398,7 @@ void add_optimize_command(CLI::App& app, OptimizeOptions& o) {
                   "F levels this far apart, blocks cut from the feed limits (default 0.02; 0: every acceleration ramp "
                   "written out)");
   add_number_flag(cmd, "--min-block-s", o.min_block_duration_s,
-                  "shortest block with --feed-step, s (default 0.008: at most 125 F changes a second)");
+                  "shortest block with --feed-step, s (default 0.006: at most 167 F changes a second)");
   cmd->add_flag("--explain", o.explain,
                 "write why every new F is what it is as a comment with it: (F: force 300 N at 58 deg engagement),\n"
                 "(F: plunge limit 0.025 mm/tooth), (F: model range, chip 0.120 mm), (F: machine max feed), (F: air),\n"

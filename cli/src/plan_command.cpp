@@ -395,7 +395,7 @@ void add_plan_command(CLI::App& app, PlanCommandOptions& options) {
                   "Controller-friendly blocks: F on levels this far apart, cut from the feed limits, each lasting at "
                   "least --min-block-s (default 0.02; 0: every acceleration ramp written out as F words)");
   add_number_flag(cmd, "--min-block-s", options.min_block_duration_s,
-                  "Shortest block with --feed-step, s (default 0.008: at most 125 F changes a second; the spec's "
+                  "Shortest block with --feed-step, s (default 0.006: at most 167 F changes a second; the spec's "
                   "block_time_min_s when longer)");
   add_number_flag(cmd, "--feed-resolution", options.feed_resolution_mm_per_min, "F resolution, mm/min (default 1)");
   add_number_flag(cmd, "--jerk", options.jerk_limit_mm_per_s3, "Path jerk limit, mm/s³ (default: none)");

@@ -64,7 +64,7 @@ void print_predicted_baselines(const planner::PlanSummary& s, const PlanBaseline
                s.baseline.feed_mm_per_min, " predicted by the model", s.baseline.cycle_time_s, s.cycle_time_s);
 }
 
-// "  blocks: F levels 2 % apart, each at least 0.008 s: +1.4 % time against every acceleration ramp written out
+// "  blocks: F levels 2 % apart, each at least 0.006 s: +1.0 % time against every acceleration ramp written out
 // (30.64 s, --feed-step 0)".
 void print_block_cost(const planner::PlanOptions& options, const planner::PlanSummary& s, double ramps_written_out_s) {
   std::printf("  blocks: F levels %s %% apart, each at least %s s: %+.1f %% time against every acceleration ramp "

@@ -238,6 +238,7 @@ struct PlanContext {
   const double air_feed;                      // mm/min
   const ForceUncertainty* const uncertainty;  // null: the plain model
   const geometry::Tool& tool;
+  const double stock_top_z_mm;                // the top of the stock the path cuts
   std::vector<double> s;                      // s_mm of every sample
   std::vector<int> move_first;                // first_samples(path, engagement)
   SampleForceModel forces;                    // the force model of either kind at the samples
@@ -260,6 +261,7 @@ PlanContext::PlanContext(const PlanGeometry& geometry, const PlanSettings& setti
                                                           : settings.machine.max_feed_mm_per_min),
       uncertainty(settings.uncertainty ? &*settings.uncertainty : nullptr),
       tool(geometry.tool),
+      stock_top_z_mm(geometry.stock.z_top_mm),
       s(n),
       move_first(first_samples(path, engagement)),
       forces(settings.model, settings.mechanistic ? &*settings.mechanistic : nullptr, geometry.engagement, geometry.tool,
@@ -339,7 +341,9 @@ double feed_limit_at(const PlanContext& c, const std::vector<double>& centripeta
       reason = FeedLimitReason::kModelRange;
     }
   }
-  if (meets_material(sample)) {
+  // A descent meeting material, or below the stock's top (a plunge beside the part, where a stock a little
+  // larger than modelled would be met), runs at the tool's plunge feed, as a CAM post writes it.
+  if (meets_material(sample) || (move.end.z_mm < move.start.z_mm && sample.position.z_mm < c.stock_top_z_mm)) {
     const double plunge =
         plunge_feed_limit_mm_per_min(move, c.tool, c.rpm, c.settings.options.coordinate_resolution_mm);
     if (plunge < feed) {

@@ -91,14 +91,17 @@ TEST_F(OptimizeCliTest, EachToolIsPlannedOnWhatTheToolsBeforeItLeft) {
   for (const char* kept : {"M6 T1", "G43 H1", "M6 T2", "G43 H2", "M5"}) {
     EXPECT_NE(std::find(out.begin(), out.end(), kept), out.end()) << kept;
   }
-  // The second tool's slot: after its tool change, its moves run at F10000 (in air).
+  // The second tool's slot: after its tool change, it runs at F10000 (in air); its plunge beside the stock,
+  // below the stock's top, at the tool's plunge feed all the same.
   const auto change = std::find(out.begin(), out.end(), "M6 T2");
   ASSERT_NE(change, out.end());
-  bool second_slot_in_air = false;
+  bool second_slot_in_air = false, plunge_at_plunge_feed = false;
   for (auto it = change; it != out.end(); ++it) {
-    if (it->rfind("G1 X-10.000 Y0.000 Z-5.000", 0) == 0) second_slot_in_air = it->find("F10000") != std::string::npos;
+    if (it->rfind("G1 X30.000 Y0.000 Z-5.000", 0) == 0) second_slot_in_air = it->find("F10000") != std::string::npos;
+    if (it->rfind("G1 X-10.000 Y0.000 Z-5.000", 0) == 0) plunge_at_plunge_feed = it->find("F10000") == std::string::npos;
   }
   EXPECT_TRUE(second_slot_in_air) << read_text(output);
+  EXPECT_TRUE(plunge_at_plunge_feed) << read_text(output);
   const RunResult without = run_feedplan(args + " --tool diameter_mm=10,flutes=4");
   EXPECT_EQ(without.exit_code, 2) << without.output;
   EXPECT_NE(without.output.find("--tools is required: the program changes tools (T1 from line 8, T2 from line 18)"),

@@ -22,7 +22,8 @@ echo "consumer of the installed library:"
 echo "$consumer"
 
 "$feedplan" db import "$models" --db "$work/cli.db" > /dev/null
-cli=$("$feedplan" plan "$spec" --db "$work/cli.db" -o "$work/trochoid.nc" --json)
+# The consumer plans with the library's defaults (blocks that write every ramp out): --feed-step 0 is that.
+cli=$("$feedplan" plan "$spec" --db "$work/cli.db" -o "$work/trochoid.nc" --feed-step 0 --json)
 # Top-level members of the pretty-printed JSON stand two spaces in.
 expected=$(printf '%s\n' "$cli" | awk -F'[:,]' '
   /^  "status"/ { gsub(/[ "]/, "", $2); status = $2 }

@@ -282,11 +282,12 @@ TEST(FeedPlan, RegulateModeTracksCloserWithBoundedOvershoot) {
 // Controller-friendly blocks on the three samples: every F at most the smallest feed limit of step 1 in its
 // block, on the grid of levels below the machine's largest feed (to the F resolution), every block that
 // is not a whole move lasting at least the shortest duration at its F; far fewer blocks than the plan
-// with every ramp written out, the safety check satisfied. The time it costs: measured 3.4 % on the corner
-// and 1.0 % on the spiral; 11 % on the trochoid, whose limits change within a millimetre at the loops'
+// with every ramp written out, the safety check satisfied. The time it costs: measured 5.3 % on the corner
+// (its plunge beside the stock, below the stock's top, runs at the plunge feed: a block of its own) and 1.8 %
+// on the spiral; 11 % on the trochoid, whose limits change within a millimetre at the loops'
 // entries and exits, where 20 ms blocks cannot follow them (2 ms blocks can).
 TEST(FeedPlan, ControllerFriendlyBlocksAreFewLongAndNeverAboveTheLimits) {
-  for (const auto& [sample, time_ratio] : {std::pair<const char*, double>{"corner.yaml", 1.05}, {"trochoid.yaml", 1.15},
+  for (const auto& [sample, time_ratio] : {std::pair<const char*, double>{"corner.yaml", 1.06}, {"trochoid.yaml", 1.15},
                                            {"spiral.yaml", 1.02}}) {
     SCOPED_TRACE(sample);
     const cycles::CycleSpec spec = cycles::load_cycle_spec(std::string(FEEDPLAN_SAMPLES_DIR) + "/" + sample);
