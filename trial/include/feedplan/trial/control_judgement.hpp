@@ -5,7 +5,7 @@
 
 #include <vector>
 
-#include "feedplan/force_log/revolution_peaks.hpp"
+#include "feedplan/sim/milling_simulation.hpp"  // force_log::RevolutionPeak, the simulation's true peaks
 
 namespace feedplan::trial {
 

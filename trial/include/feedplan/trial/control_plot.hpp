@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "feedplan/force_log/revolution_peaks.hpp"
+#include "feedplan/sim/milling_simulation.hpp"  // force_log::RevolutionPeak, the simulation's true peaks
 #include "feedplan/trial/override_control.hpp"
 
 namespace feedplan::trial {
