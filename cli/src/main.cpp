@@ -12,6 +12,7 @@
 #include "cycle_command.hpp"
 #include "db_command.hpp"
 #include "calibration_command.hpp"
+#include "control_command.hpp"
 #include "learn_command.hpp"
 #include "loop_command.hpp"
 #include "plan_command.hpp"
@@ -53,6 +54,8 @@ int run_command_line(int argc, char** argv) {
   feedplan::cli::add_learn_command(app, learn_options);
   feedplan::cli::LoopOptions loop_options;
   feedplan::cli::add_loop_command(app, loop_options);
+  feedplan::cli::ControlOptions control_options;
+  feedplan::cli::add_control_command(app, control_options);
   feedplan::cli::DbOptions db_options;
   feedplan::cli::add_db_command(app, db_options);
 
@@ -79,6 +82,7 @@ int run_command_line(int argc, char** argv) {
     if (app.got_subcommand("calibrate-currents")) return feedplan::cli::run_calibration_command(calibration_options);
     if (app.got_subcommand("learn")) return feedplan::cli::run_learn_command(learn_options);
     if (app.got_subcommand("loop")) return feedplan::cli::run_loop_command(loop_options);
+    if (app.got_subcommand("control")) return feedplan::cli::run_control_command(control_options);
     if (app.got_subcommand("db")) return feedplan::cli::run_db_command(app, db_options);
   } catch (const feedplan::InputError& e) {
     return bad_input(e);

@@ -4,6 +4,7 @@
 #include "number_flag.hpp"
 #include "output_files.hpp"
 #include "output_path.hpp"
+#include "program_stock.hpp"
 #include "progress_bar.hpp"
 #include "tool_flag.hpp"
 #include "tool_run_simulation.hpp"
@@ -59,33 +60,6 @@ std::vector<double> parse_runout(const std::string& text, std::vector<InputProbl
     values.push_back(value);
   }
   return values;
-}
-
-// A solid block around every feed move, grown by the tool diameter, from below the lowest feed move
-// up to z = 0 — what a program with no stock given is assumed to cut (the worst case: full material).
-geometry::Stock default_stock(const geometry::Program& program, double tool_radius_mm) {
-  double x0 = 1e300, y0 = 1e300, x1 = -1e300, y1 = -1e300, z_low = 0.0;
-  for (const auto& move : program.path.moves) {
-    if (move.kind == geometry::MoveKind::kRapid) continue;
-    for (double f = 0.0; f <= 1.0; f += 0.125) {
-      const auto p = geometry::point_at(move, f);
-      x0 = std::min(x0, p.x_mm);
-      y0 = std::min(y0, p.y_mm);
-      x1 = std::max(x1, p.x_mm);
-      y1 = std::max(y1, p.y_mm);
-      z_low = std::min(z_low, p.z_mm);
-    }
-  }
-  geometry::Stock stock;
-  if (x0 > x1) {
-    x0 = y0 = -1.0;
-    x1 = y1 = 1.0;
-  }
-  const double grow = 4.0 * tool_radius_mm;
-  stock.regions.push_back({geometry::Contour::rectangle({x0 - grow, y0 - grow}, {x1 + grow, y1 + grow}), {}});
-  stock.z_top_mm = 0.0;
-  stock.z_bottom_mm = z_low - 5.0;
-  return stock;
 }
 
 // What the job runs with: flags, else the spec.
@@ -293,8 +267,7 @@ geometry::Stock program_stock(const SimulateOptions& options, const SimulateInpu
     job.notes.push_back("stock: the one " + options.spec_path + " implies");
     return cycles::generate(*in.spec).stock;
   }
-  job.notes.push_back("no --stock given: assuming a solid block around the program's feed moves below z = 0 "
-                      "(every feed move below z = 0 cuts full material)");
+  job.notes.push_back(kDefaultStockNote);
   return default_stock(p.program, largest_tool_radius_mm(p.runs));
 }
 

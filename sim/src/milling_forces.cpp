@@ -173,6 +173,7 @@ void add_slice_force(Force3& force, const CutterGeometry& cutter, const CuttingC
     force.fx_n += -ft * s_part - fr * c_part;
     force.fy_n += ft * c_part - fr * s_part;
     force.fz_n += fa;
+    force.torque_nmm += ft * (cutter.runout_mm.empty() ? cutter.radius_mm : cutter.radius_mm + cutter.runout_mm[j]);
   }
 }
 

@@ -193,6 +193,7 @@ double fastest_sensor_hz(const SensorOptions& sensors) {
   double fastest_hz = sensors.dynamometer.bandwidth_hz;
   if (sensors.spindle_sensor.enabled) fastest_hz = std::max(fastest_hz, sensors.spindle_sensor.bandwidth_hz);
   if (sensors.servo_current.enabled) fastest_hz = std::max(fastest_hz, sensors.servo_current.bandwidth_hz);
+  if (sensors.spindle_power.enabled) fastest_hz = std::max(fastest_hz, sensors.spindle_power.bandwidth_hz);
   return fastest_hz;
 }
 
@@ -332,7 +333,9 @@ ContactTotals MachineRun::run() {
     const detail::ContactForce cut =
         now.rpm > 0.0 ? contact_.force(step, now.motion, omega_angle_, last_direction_) : detail::ContactForce{};
     const double fxy = std::hypot(cut.force.fx_n, cut.force.fy_n);
-    const SensorReading reading = sensors_.update(cut.force.fx_n, cut.force.fy_n, cut.force.fz_n);
+    // P = M ω: torque in N·mm, ω in rad/s.
+    const double power_w = cut.force.torque_nmm * 1e-3 * now.rpm * kTwoPi / 60.0;
+    const SensorReading reading = sensors_.update(cut.force.fx_n, cut.force.fy_n, cut.force.fz_n, power_w);
     revolutions_.add(now.t_s, omega_angle_, fxy);
     record_statistics(cut, fxy);
     log_.add(log_row(now, reading));

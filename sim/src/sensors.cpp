@@ -54,6 +54,10 @@ std::vector<FilterSpec> enabled_filters(const SensorOptions& options) {
     filters.push_back({"sensors.servo_current", options.servo_current.bandwidth_hz,
                        options.servo_current.damping_ratio});
   }
+  if (options.spindle_power.enabled) {
+    filters.push_back({"sensors.spindle_power", options.spindle_power.bandwidth_hz,
+                       options.spindle_power.damping_ratio});
+  }
   return filters;
 }
 
@@ -92,6 +96,10 @@ std::vector<InputProblem> validate(const SensorOptions& options) {
       check_positive(problems, path + ".b_amp_per_n", axis->b_amp_per_n, "A/N",
                      "current per newton of axis force (seed 002: x 0.00362, y 0.00450, z 0.00289)");
     }
+  }
+  if (options.spindle_power.enabled) {
+    check_non_negative(problems, "sensors.spindle_power.noise_w", options.spindle_power.noise_w, "W",
+                       "RMS noise of the power reading (0 = none)");
   }
   return problems;
 }
@@ -171,12 +179,16 @@ Sensors::Sensors(const SensorOptions& options, double step_s) : options_(options
     const Biquad current = low_pass(options.servo_current.bandwidth_hz, options.servo_current.damping_ratio, step_s);
     for (auto& f : current_) f = current;
   }
+  if (options.spindle_power.enabled) {
+    power_ = low_pass(options.spindle_power.bandwidth_hz, options.spindle_power.damping_ratio, step_s);
+  }
   dynamometer_noise_.engine = engine_for(options.seed, 0);
   spindle_noise_.engine = engine_for(options.seed, 1);
   current_noise_.engine = engine_for(options.seed, 2);
+  power_noise_.engine = engine_for(options.seed, 3);
 }
 
-SensorReading Sensors::update(double fx_n, double fy_n, double fz_n) {
+SensorReading Sensors::update(double fx_n, double fy_n, double fz_n, double spindle_power_w) {
   SensorReading r;
   const double dynamometer_noise = options_.dynamometer.noise_n;
   auto noisy = [](Noise& noise, double sigma) { return sigma > 0.0 ? sigma * noise.next() : 0.0; };
@@ -204,6 +216,10 @@ SensorReading Sensors::update(double fx_n, double fy_n, double fz_n) {
     r.iy_a = kNaN;
     r.iz_a = kNaN;
   }
+
+  r.spindle_power_w = options_.spindle_power.enabled
+                          ? power_.step(spindle_power_w) + noisy(power_noise_, options_.spindle_power.noise_w)
+                          : kNaN;
   return r;
 }
 

@@ -97,6 +97,50 @@ TEST(MillingSimulation, CuttingTestsMatchTheClosedFormMeanForces) {
   }
 }
 
+TEST(MillingSimulation, SpindlePowerMatchesTheClosedFormMeanTorque) {
+  // The spindle's cutting power on a straight down cut (a_e 1.5 mm of a D10 Z4 at 2800 rev/min, S50C-like
+  // with edge forces) against the mean torque of dF_t = (K_tc h + K_te) dz over a revolution:
+  // M̄ = N a r / (2π) [K_tc c (cos φ_st − cos φ_ex) + K_te (φ_ex − φ_st)], P̄ = M̄ ω. The readings come through
+  // the override loop's input, every step (the power is not in the force log).
+  const double rpm = 2800.0, c = 1000.0 / (4 * 2800);
+  SimulationRequest request = cutting_test_request(1.5, MillingMode::kDown, c, rpm);
+  request.coefficients = CuttingCoefficients{};
+  request.coefficients.ktc_n_per_mm2 = 2000;
+  request.coefficients.krc_n_per_mm2 = 600;
+  request.coefficients.kte_n_per_mm = 20;
+  request.sensors.spindle_power.enabled = true;
+  std::vector<std::pair<double, double>> power;  // t, W
+  request.override_loop.period_s = 1e-9;        // every step
+  request.override_loop.controller = [&power](const ControlInput& in) {
+    power.emplace_back(in.t_s, in.reading.spindle_power_w);
+    return 1.0;
+  };
+  const SimulationResult result = simulate(request);
+  double t0 = -1.0, t1 = -1.0;
+  for (const auto& row : result.log.rows) {
+    if (row.x_mm >= 7.0 && row.x_mm <= 33.0 && std::abs(row.feed_mm_per_min - 1000.0) < 1e-6) {
+      if (t0 < 0) t0 = row.t_s;
+      t1 = row.t_s;
+    }
+  }
+  const double revolution_s = 60.0 / rpm;
+  t1 = t0 + std::floor((t1 - t0) / revolution_s) * revolution_s;
+  ASSERT_GT(t1 - t0, 10 * revolution_s);
+  double sum = 0.0;
+  int count = 0;
+  for (const auto& [t, w] : power) {
+    if (t < t0 || t >= t1) continue;
+    sum += w;
+    ++count;
+  }
+  const double st = kPi - std::acos(0.7), ex = kPi, a_mm = 10.0, r_mm = 5.0;
+  const double torque_nmm = 4 * a_mm * r_mm / (2 * kPi) *
+                            (2000.0 * c * (std::cos(st) - std::cos(ex)) + 20.0 * (ex - st));
+  const double truth_w = torque_nmm * 1e-3 * rpm * 2 * kPi / 60.0;
+  std::printf("spindle power: simulated mean %.1f W, closed form %.1f W\n", sum / count, truth_w);
+  EXPECT_NEAR(sum / count, truth_w, 0.01 * truth_w);
+}
+
 // Largest relative spread (max − min) / mean of the per-revolution peaks of the revolutions that
 // lie wholly inside [t_lo, t_hi].
 double peak_spread(const SimulationResult& result, double t_lo, double t_hi, int& count) {

@@ -45,8 +45,10 @@ sim::SimulationResult simulate_on(const geometry::Program& program, const Virtua
   request.sensors = machine.sensors;
   request.options.runout_mm = machine.runout_mm;
   request.progress = machine.progress;
+  request.override_loop = machine.override_loop;
   RowsDropped dropped;
   if (!machine.keep_log) request.log_sink = &dropped;
+  if (machine.log_sink) request.log_sink = machine.log_sink;
   return sim::simulate(request);
 }
 

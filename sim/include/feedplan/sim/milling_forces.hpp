@@ -31,11 +31,14 @@ struct ForceSlice {
   std::span<const geometry::EngagedInterval> engaged;
 };
 
-//! Force on the tool, N, in machine axes.
+//! Force on the tool, N, in machine axes, and the torque its tangential components load the spindle with.
 struct Force3 {
   double fx_n = 0.0;
   double fy_n = 0.0;
   double fz_n = 0.0;
+  //! Torque about the tool axis against the rotation, N·mm: every element's tangential force dF_t times the
+  //! radius its tooth cuts at (with runout, r + runout of that tooth). Spindle power = torque × ω.
+  double torque_nmm = 0.0;
 };
 
 //! The state of the cutter needed for the chip thickness.
@@ -61,7 +64,8 @@ struct CutterState {
 //! element is in the cut when q lies in the engaged arcs of its layer and h > 0; then
 //! dF_t = (K_tc h + K_te) dz, dF_r = (K_rc h + K_re) dz, dF_a = (K_ac h + K_ae) dz, with the cutting
 //! coefficients scaled by (h / h_ref)^(−m_c) when the size effect is on, and
-//! F = −dF_t·(sin θ, −cos θ) − dF_r·(cos θ, sin θ), F_z = dF_a (docs/method.md §6.1 with feed along +x).
+//! F = −dF_t·(sin θ, −cos θ) − dF_r·(cos θ, sin θ), F_z = dF_a (docs/method.md §6.1 with feed along +x), and the
+//! spindle torque Σ dF_t · r_j.
 Force3 milling_force(const CutterGeometry& cutter, const CuttingCoefficients& coefficients, const CutterState& state,
                      std::span<const ForceSlice> slices);
 

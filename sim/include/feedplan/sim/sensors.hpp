@@ -34,6 +34,13 @@
 // 255 (s + 139) / (s² + 155 s + 35500), has −3 dB at 68 Hz but a +6.3 dB peak at 28 Hz, which
 // contradicts its own "within 8 %" agreement at 20 Hz tooth frequency (Fig. 6); so the current
 // loop uses the same flat second-order low pass as the other sensors.
+//
+// Spindle power: the power the cutting draws from the spindle motor, P = M ω with M the torque of the
+// tangential forces (milling_forces.hpp) and ω the spindle speed, as a load monitor on the spindle drive
+// reads it — with the drive's idle power tared off (what such monitors display as cutting power), low
+// passed by the monitor's filter. Its 20 Hz default is a choice made here: spindle load monitors filter the
+// drive's power over some 10 ms so that the reading does not follow the tooth passes, which makes the
+// reading close to the mean power of a revolution at the spindle speeds of milling.
 
 #include <cstdint>
 #include <random>
@@ -58,6 +65,14 @@ struct SpindleSensorOptions {
   double noise_n = 0.0;                       //!< RMS white noise added to each axis, N
 };
 
+//! Spindle load monitor: the cutting power the spindle drive delivers.
+struct SpindlePowerOptions {
+  bool enabled = false;                        //!< read the spindle power at all
+  double bandwidth_hz = 20.0;                  //!< −3 dB frequency of the monitor's filter, Hz (see the top)
+  double damping_ratio = 0.7071067811865476;   //!< ζ of the second-order low pass, in (0, 2]
+  double noise_w = 0.0;                        //!< RMS white noise added to the reading, W
+};
+
 //! Static characteristic I = a + b·|F| of one feed axis.
 struct ServoCurrentAxis {
   double a_amp = 0.0;         //!< current with the axis moving and no cutting force, A
@@ -80,6 +95,7 @@ struct SensorOptions {
   DynamometerOptions dynamometer;       //!< table dynamometer
   SpindleSensorOptions spindle_sensor;  //!< spindle-deflection sensor
   ServoCurrentOptions servo_current;    //!< feed-drive currents
+  SpindlePowerOptions spindle_power;    //!< spindle load monitor
   std::uint64_t seed = 1;               //!< seed of the noise generators; same seed → same readings
 };
 
@@ -93,10 +109,11 @@ struct SensorReading {
   double ix_a = 0.0;              //!< x-axis servo current, A (NaN when disabled)
   double iy_a = 0.0;              //!< y-axis servo current, A (NaN when disabled)
   double iz_a = 0.0;              //!< z-axis servo current, A (NaN when disabled)
+  double spindle_power_w = 0.0;   //!< cutting power of the spindle, W (NaN when disabled)
 };
 
 //! Problems with `options` that do not depend on the step: every bandwidth finite and > 0, every
-//! damping ratio in (0, 2], every noise finite and ≥ 0, each current axis with a finite a_amp ≥ 0
+//! damping ratio in (0, 2], every noise (N, A or W) finite and ≥ 0, each current axis with a finite a_amp ≥ 0
 //! and b_amp_per_n finite and > 0. Fields are named "sensors.dynamometer.bandwidth_hz" etc.; a disabled
 //! sensor is not checked. Empty when all is well.
 std::vector<InputProblem> validate(const SensorOptions& options);
@@ -112,9 +129,9 @@ class Sensors {
   //! feedplan::InputError with every problem validate(options, step_s) finds.
   Sensors(const SensorOptions& options, double step_s);
 
-  //! Advances every sensor by one step with the true force (N) acting during it and returns the
-  //! readings at the end of the step.
-  SensorReading update(double fx_n, double fy_n, double fz_n);
+  //! Advances every sensor by one step with the true force (N) and the true cutting power of the spindle
+  //! (W) acting during it and returns the readings at the end of the step.
+  SensorReading update(double fx_n, double fy_n, double fz_n, double spindle_power_w = 0.0);
 
   //! The step the filters were discretised for, s.
   double step_s() const { return step_s_; }
@@ -141,9 +158,11 @@ class Sensors {
   Biquad dynamometer_[3];
   Biquad spindle_[2];
   Biquad current_[3];
+  Biquad power_;
   Noise dynamometer_noise_;
   Noise spindle_noise_;
   Noise current_noise_;
+  Noise power_noise_;
 };
 
 }  // namespace feedplan::sim

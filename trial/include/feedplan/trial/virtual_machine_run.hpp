@@ -30,6 +30,11 @@ struct VirtualMachine {
   //! Keep the force log's rows in the run (learning reads them); false: only its header, the
   //! per-revolution peaks and the summary — what `plan --simulate` needs, in bounded memory.
   bool keep_log = true;
+  //! Where the force log's rows go as they are recorded (must outlive the run); null: kept or dropped as
+  //! keep_log says.
+  force_log::ForceLogSink* log_sink = nullptr;
+  //! A feedback controller on the feed override (override_control.hpp); empty controller: none.
+  sim::OverrideLoop override_loop;
   //! Called with the fraction of the simulation done (sim::SimulationRequest::progress); may be empty.
   std::function<void(double)> progress;
 };
@@ -49,8 +54,8 @@ struct VirtualMachineRun {
   planner::PeakComparison comparison;     //!< true peaks against the target along the plan
 };
 
-//! Simulates `program` on `machine`: its tool, true physics, stock, limits, spindle speed and sensors; the
-//! log's rows are kept only with machine.keep_log. Throws InputError on an invalid request (sim::validate).
+//! Simulates `program` on `machine`: its tool, true physics, stock, limits, spindle speed, sensors and
+//! override loop; the log's rows go to machine.log_sink when set, else are kept only with machine.keep_log. Throws InputError on an invalid request (sim::validate).
 sim::SimulationResult simulate_on(const geometry::Program& program, const VirtualMachine& machine);
 
 //! Simulates `program` on `machine` and places every simulated revolution on the plan's path: the

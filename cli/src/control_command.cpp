@@ -1,0 +1,413 @@
+#include "control_command.hpp"
+
+#include <nlohmann/json.hpp>
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <iostream>
+#include <optional>
+
+#include "data_path.hpp"
+#include "database_path.hpp"
+#include "model_choice.hpp"
+#include "number_flag.hpp"
+#include "output_files.hpp"
+#include "output_path.hpp"
+#include "program_stock.hpp"
+#include "progress_bar.hpp"
+#include "tool_flag.hpp"
+#include "tool_runs.hpp"
+#include "feedplan/core/bounded_read.hpp"
+#include "feedplan/core/input_error.hpp"
+#include "feedplan/core/number_text.hpp"
+#include "feedplan/cycles/cycle.hpp"
+#include "feedplan/cycles/spec_reader.hpp"
+#include "feedplan/force_log/force_log_file_writer.hpp"
+#include "feedplan/gcode/reader.hpp"
+#include "feedplan/planner/constant_feed.hpp"
+#include "feedplan/planner/feed_plan.hpp"
+#include "feedplan/sim/machine_file.hpp"
+#include "feedplan/sim/material.hpp"
+#include "feedplan/trial/control_plot.hpp"
+#include "feedplan/trial/controlled_run.hpp"
+
+namespace feedplan::cli {
+
+void add_control_command(CLI::App& app, ControlOptions& options) {
+  auto* cmd = app.add_subcommand(
+      "control",
+      "Run a feedback force controller of the source papers on the virtual machine's feed override: alone on\n"
+      "the spec's constant-feed program (or a PROGRAM), or with --hybrid trimming the plan's own program;\n"
+      "prints how well the true per-revolution peaks held the target");
+  cmd->add_option("input", options.input_path, "Cycle spec (.yaml) or G-code program (.nc, .ngc)")->required();
+  cmd->add_option("--controller", options.controller,
+                  "integral | variable-gain | variable-gain-lathe | robust-servo (seeds 000/001 and 002)")
+      ->required();
+  add_number_flag(cmd, "--target-force", options.target_force_n,
+                  "Force to hold, N (default: the spec's target_force_n): the per-revolution peak |F_xy| for the\n"
+                  "dynamometer and the currents, the tangential force for the spindle");
+  cmd->add_option("--sensor", options.sensor,
+                  "What the controller reads: dynamometer (default) | spindle (spindle power) | currents (feed-drive\n"
+                  "currents, seed 002)");
+  cmd->add_option("--machine", options.machine_path,
+                  "Machine file (data/machines/*.yaml) to cut on; conflicts with --machine-scale and --material");
+  add_number_flag(cmd, "--machine-scale", options.machine_scale,
+                  "The virtual machine's cutting coefficients × this (default 1: the material's as the file gives them)");
+  cmd->add_flag("--hybrid", options.hybrid,
+                "Run the feed-forward plan's program (planned with the database model, as `plan` does) with the\n"
+                "controller trimming the override within 70–130 %; SPEC only");
+  cmd->add_option("--log", options.log_path, "Force log to write (CSV, docs/method.md §4)");
+  cmd->add_option("--plot", options.plot_path, "Plot of force and override against time to write (SVG)");
+  cmd->add_flag("--json", options.json, "Print the summary as JSON");
+  cmd->add_option("--db", options.db_path, "Model database for --hybrid (default: $FEEDPLAN_DB, else the sample database)");
+  cmd->add_option("--materials", options.materials_path, "Materials file (default: the bundled data/materials.yaml)");
+  cmd->add_option("--tool", options.tool_text, "PROGRAM only: the end mill, diameter_mm=10,flutes=4,helix_deg=30[,name=…]");
+  cmd->add_option("--stock", options.stock_path,
+                  "PROGRAM only: a stock YAML or a cycle spec; default: a solid block around the program below z = 0");
+  cmd->add_option("--material", options.material_name, "PROGRAM only: the workpiece material (name or alias)");
+  add_number_flag(cmd, "--spindle-rpm", options.spindle_rpm, "PROGRAM only: spindle speed for blocks without S, rev/min");
+}
+
+namespace {
+
+// Whether the input is a G-code program (by its extension) rather than a cycle spec.
+bool is_program(const std::string& path) {
+  const std::string ext = std::filesystem::path(path).extension().string();
+  return ext == ".nc" || ext == ".ngc" || ext == ".NC" || ext == ".NGC";
+}
+
+bool is_spec(const std::string& path) {
+  const std::string ext = std::filesystem::path(path).extension().string();
+  return ext == ".yaml" || ext == ".yml" || ext == ".YAML" || ext == ".YML";
+}
+
+std::string quoted_list(const auto& names) {
+  std::string text;
+  for (const auto& name : names) {
+    if (!text.empty()) text += ", ";
+    text += name;
+  }
+  return text;
+}
+
+// The flags, checked all at once, and what they choose.
+struct ControlChoice {
+  trial::ControllerKind controller = trial::ControllerKind::kRobustServo;
+  trial::ForceSensor sensor = trial::ForceSensor::kDynamometer;
+  bool program = false;  // a G-code program, not a spec
+};
+
+void check_program_only_flags(const ControlOptions& o, bool program, std::vector<InputProblem>& problems) {
+  if (program) {
+    if (o.hybrid) {
+      problems.push_back({"--hybrid", "applies to a cycle spec (it runs the plan made for it); a PROGRAM is run as written"});
+    }
+    if (o.tool_text.empty()) problems.push_back({"--tool", "is required with a PROGRAM, e.g. --tool diameter_mm=10,flutes=4,helix_deg=30"});
+    if (o.material_name.empty() && o.machine_path.empty()) {
+      problems.push_back({"--material", "is required with a PROGRAM (or --machine MACHINE.yaml), e.g. --material S50C"});
+    }
+    if (!o.target_force_n) problems.push_back({"--target-force", "is required with a PROGRAM (a spec gives its own)"});
+    return;
+  }
+  const std::pair<const char*, bool> program_flags[] = {{"--tool", !o.tool_text.empty()},
+                                                        {"--stock", !o.stock_path.empty()},
+                                                        {"--material", !o.material_name.empty()},
+                                                        {"--spindle-rpm", o.spindle_rpm.has_value()}};
+  for (const auto& [flag, given] : program_flags) {
+    if (given) problems.push_back({flag, "only applies to a PROGRAM; a cycle spec gives its own"});
+  }
+}
+
+ControlChoice read_control_choice(const ControlOptions& o) {
+  std::vector<InputProblem> problems;
+  ControlChoice choice;
+  if (const auto kind = trial::controller_named(o.controller)) {
+    choice.controller = *kind;
+  } else {
+    problems.push_back({"--controller", "= '" + o.controller + "': must be one of " + quoted_list(trial::kControllerNames)});
+  }
+  if (const auto sensor = trial::force_sensor_named(o.sensor)) {
+    choice.sensor = *sensor;
+  } else {
+    problems.push_back({"--sensor", "= '" + o.sensor + "': must be one of dynamometer, spindle, currents"});
+  }
+  choice.program = is_program(o.input_path);
+  if (!choice.program && !is_spec(o.input_path)) {
+    problems.push_back({"input", "= '" + o.input_path + "': must be a cycle spec (.yaml, .yml) or a G-code program (.nc, .ngc)"});
+  }
+  check_program_only_flags(o, choice.program, problems);
+  check_flag(problems, "--target-force", o.target_force_n, {0.0, false}, "the force to hold, N");
+  check_flag(problems, "--machine-scale", o.machine_scale, {0.1, false, 10.0, false},
+             "the virtual machine's forces over the material's");
+  check_flag(problems, "--spindle-rpm", o.spindle_rpm, {0.0, false}, "rev/min");
+  if (!o.machine_path.empty()) {
+    const std::string why = "conflicts with --machine " + o.machine_path + ", which sets ";
+    if (o.machine_scale) problems.push_back({"--machine-scale", why + "the machine's physics; give one of them"});
+    if (!o.material_name.empty()) problems.push_back({"--material", why + "the material; give one of them"});
+  }
+  if (!o.db_path.empty() && !o.hybrid) problems.push_back({"--db", "only applies with --hybrid (the plan needs a model)"});
+  check_outputs({{"input", o.input_path},
+                 {"--machine", o.machine_path},
+                 {"--stock", o.stock_path},
+                 {"--db", o.hybrid ? database_path(o.db_path) : ""},
+                 {"--materials", o.materials_path.empty() ? bundled_materials_path() : o.materials_path}},
+                {{"--log", o.log_path}, {"--plot", o.plot_path}}, problems);
+  if (!problems.empty()) throw InputError(std::move(problems));
+  return choice;
+}
+
+// What runs: the program, the machine it runs on, the target; with --hybrid, the plan alone too.
+struct ControlJob {
+  std::string name;                 // in words
+  geometry::Program program;        // run under control
+  trial::VirtualMachine machine;    // without the controller
+  double target_force_n = 0.0;
+  std::string machine_text;         // the machine's physics in words
+  std::vector<std::string> notes;
+  bool hybrid = false;
+  std::optional<double> planned_cycle_time_s;  // --hybrid: the plan's own prediction
+};
+
+// The virtual machine's physics: --machine's file on `tool`, else the material × --machine-scale.
+void set_physics(const ControlOptions& o, const sim::MaterialLibrary& materials, const std::string& material,
+                 const std::string& material_field, const geometry::Tool& tool, ControlJob& job) {
+  job.machine.tool = tool;
+  if (!o.machine_path.empty()) {
+    trial::use_machine_file(job.machine, sim::load_machine_file(o.machine_path, materials), tool);
+    job.machine_text = "virtual machine " + o.machine_path;
+    return;
+  }
+  const double scale = o.machine_scale.value_or(1.0);
+  const sim::Material& m = materials.get(material, material_field);
+  job.machine.coefficients = sim::scaled(m.coefficients, scale);
+  job.machine_text = "virtual machine: " + m.name + (scale == 1.0 ? "" : " × " + shortest_number_text(scale));
+}
+
+ControlJob spec_job(const ControlOptions& o, const sim::MaterialLibrary& materials) {
+  const cycles::CycleSpec spec = cycles::load_cycle_spec(o.input_path);
+  std::vector<InputProblem> problems;
+  if (!o.target_force_n && !(spec.target_force_n > 0.0)) {
+    problems.push_back({"--target-force", "is required: the spec has no target_force_n"});
+  }
+  if (!(spec.spindle_rpm > 0.0)) problems.push_back({o.input_path + ": spindle_rpm", "is required (rev/min > 0)"});
+  if (!o.hybrid && !spec.feed_mm_per_min) {
+    problems.push_back({o.input_path + ": feed_mm_per_min",
+                        "is not in the spec: the controller alone runs the spec's constant-feed program — add "
+                        "feed_mm_per_min, or give --hybrid to run the plan's program"});
+  }
+  if (!problems.empty()) throw InputError(std::move(problems));
+  const cycles::Cycle cycle = cycles::generate(spec);
+  ControlJob job;
+  job.target_force_n = o.target_force_n.value_or(spec.target_force_n);
+  set_physics(o, materials, spec.material, o.input_path + ": material", spec.tool, job);
+  job.machine.stock = cycle.stock;
+  job.machine.machine = spec.machine;
+  job.machine.spindle_rpm = spec.spindle_rpm;
+  job.hybrid = o.hybrid;
+  if (!o.hybrid) {
+    job.program = planner::constant_feed_program(cycle.path, *spec.feed_mm_per_min, spec.spindle_rpm);
+    job.name = o.input_path + " (" + spec.cycle + "): constant feed " + shortest_number_text(*spec.feed_mm_per_min) +
+               " mm/min under the controller";
+    return job;
+  }
+  const model_db::Store store = model_db::Store::open(database_path(o.db_path), model_db::OpenMode::kReadOnly);
+  const std::optional<ChosenModel> chosen = choose_model(store, spec, std::nullopt);
+  if (!chosen) throw std::runtime_error("no model in the database for the spec's tool and material (see above)");
+  planner::PlanSettings settings;
+  settings.model = chosen->record.model;
+  settings.uncertainty = cautious_bound(chosen->record, planning_uncertainty(*chosen, std::nullopt));
+  settings.target_force_n = job.target_force_n;
+  settings.spindle_rpm = spec.spindle_rpm;
+  settings.machine = spec.machine;
+  const planner::PlanResult plan = planner::plan(planner::analyse(cycle.path, cycle.stock, spec.tool), settings);
+  job.program = plan.program;
+  job.planned_cycle_time_s = plan.summary.cycle_time_s;
+  job.name = o.input_path + " (" + spec.cycle + "): the plan's program (model id " + std::to_string(chosen->record.id) +
+             " v" + std::to_string(chosen->record.version) + ") trimmed by the controller within 70–130 %";
+  job.notes.push_back("model: " + model_db::describe(chosen->borrowing));
+  return job;
+}
+
+ControlJob program_job(const ControlOptions& o, const sim::MaterialLibrary& materials) {
+  std::vector<InputProblem> problems;
+  const geometry::Tool tool = parse_tool(o.tool_text, problems);
+  if (!problems.empty()) throw InputError(std::move(problems));
+  const gcode::ReaderOptions reader = tool_change_reader({}, tool);
+  const std::string text =
+      read_input_file(o.input_path, {"a G-code program of a milling job", reader.max_file_bytes, "ReaderOptions::max_file_bytes"});
+  ControlJob job;
+  job.program = gcode::read_program(text, o.input_path, reader);
+  job.notes = job.program.notes;
+  job.target_force_n = *o.target_force_n;
+  set_physics(o, materials, o.material_name, "--material", tool, job);
+  if (!o.stock_path.empty()) {
+    job.machine.stock = cycles::load_stock_spec(o.stock_path);
+  } else {
+    job.machine.stock = default_stock(job.program, tool.radius_mm());
+    job.notes.push_back(kDefaultStockNote);
+  }
+  job.machine.spindle_rpm = o.spindle_rpm.value_or(0.0);
+  job.name = o.input_path + " under the controller";
+  return job;
+}
+
+// The sensor as the controller reads it: the tool's radius for the spindle, the currents' calibration the
+// virtual machine's drives follow (seed 002 Eqs. 12–13, sim::ServoCurrentOptions).
+trial::ForceSensorSettings sensor_settings(trial::ForceSensor sensor, const geometry::Tool& tool) {
+  trial::ForceSensorSettings settings;
+  settings.sensor = sensor;
+  settings.tool_radius_mm = tool.radius_mm();
+  const sim::ServoCurrentOptions drives;
+  settings.calibration.x = {drives.x.a_amp, drives.x.b_amp_per_n, 1.0, 0};
+  settings.calibration.y = {drives.y.a_amp, drives.y.b_amp_per_n, 1.0, 0};
+  return settings;
+}
+
+std::string sensor_text(trial::ForceSensor sensor) {
+  switch (sensor) {
+    case trial::ForceSensor::kDynamometer: return "dynamometer (per-revolution peak |F_xy|)";
+    case trial::ForceSensor::kSpindlePower: return "spindle power (tangential force P / (ω r))";
+    case trial::ForceSensor::kServoCurrents: return "feed-drive currents (|F_xy| through I = a + b·|F|)";
+  }
+  return "";
+}
+
+// The run and, with --hybrid, the plan's program alone on the same machine.
+struct ControlOutcome {
+  trial::ControlledRun run;
+  std::optional<trial::ControlJudgement> plan_alone;
+};
+
+nlohmann::json judgement_json(const trial::ControlJudgement& j) {
+  return {{"max_peak_n", j.max_peak_n},
+          {"max_overshoot_percent", j.max_overshoot_percent},
+          {"in_cut_revolutions", j.in_cut_revolutions},
+          {"rms_error_n", j.rms_error_n},
+          {"rms_error_percent", j.rms_error_percent},
+          {"within_5_percent_share", j.within_5_percent_share},
+          {"time_above_target_s", j.time_above_target_s},
+          {"cycle_time_s", j.cycle_time_s}};
+}
+
+void print_json(const ControlOptions& o, const ControlChoice& choice, const ControlJob& job, const ControlOutcome& out) {
+  nlohmann::json json;
+  json["job"] = job.name;
+  json["controller"] = std::string(trial::to_string(choice.controller));
+  json["sensor"] = std::string(trial::to_string(choice.sensor));
+  json["target_force_n"] = job.target_force_n;
+  json["hybrid"] = job.hybrid;
+  json["machine"] = job.machine_text;
+  json["result"] = judgement_json(out.run.judgement);
+  if (out.plan_alone) json["plan_alone"] = judgement_json(*out.plan_alone);
+  if (job.planned_cycle_time_s) json["planned_cycle_time_s"] = *job.planned_cycle_time_s;
+  int stepped = 0;
+  for (const trial::ControlStep& step : out.run.trace.steps) stepped += step.in_cut ? 1 : 0;
+  json["controller_steps"] = stepped;
+  if (!o.log_path.empty()) json["log"] = o.log_path;
+  if (!o.plot_path.empty()) json["plot"] = o.plot_path;
+  json["notes"] = job.notes;
+  json["warnings"] = out.run.simulation.warnings;
+  std::cout << json.dump(2) << "\n";
+}
+
+void print_judgement(const char* what, const trial::ControlJudgement& j) {
+  std::printf("%s: largest per-revolution peak %.1f N (%+.1f %% of the target); in cut %d revolutions: RMS error "
+              "%.1f N (%.1f %%), %.0f %% within ±5 %%; cycle time %.3f s, %.3f s above the target\n",
+              what, j.max_peak_n, j.max_overshoot_percent, j.in_cut_revolutions, j.rms_error_n, j.rms_error_percent,
+              100.0 * j.within_5_percent_share, j.cycle_time_s, j.time_above_target_s);
+}
+
+void print_text(const ControlOptions& o, const ControlChoice& choice, const ControlJob& job, const ControlOutcome& out) {
+  std::printf("%s\n", job.name.c_str());
+  std::printf("controller %s on the %s, target %s N; %s\n", std::string(trial::to_string(choice.controller)).c_str(),
+              sensor_text(choice.sensor).c_str(), shortest_number_text(job.target_force_n).c_str(), job.machine_text.c_str());
+  print_judgement("under control", out.run.judgement);
+  if (out.plan_alone) print_judgement("plan alone   ", *out.plan_alone);
+  if (job.planned_cycle_time_s) std::printf("the plan predicted %.3f s\n", *job.planned_cycle_time_s);
+  if (!o.log_path.empty()) std::printf("force log written to %s\n", o.log_path.c_str());
+  if (!o.plot_path.empty()) std::printf("plot written to %s\n", o.plot_path.c_str());
+  for (const std::string& note : job.notes) std::printf("note: %s\n", note.c_str());
+}
+
+}  // namespace
+
+int run_control_command(const ControlOptions& o) {
+  const ControlChoice choice = read_control_choice(o);
+  const std::string materials_path = o.materials_path.empty() ? bundled_materials_path() : o.materials_path;
+  const sim::MaterialLibrary materials = sim::load_materials(materials_path);
+  ControlJob job = choice.program ? program_job(o, materials) : spec_job(o, materials);
+
+  trial::ControllerSettings controller;
+  controller.kind = choice.controller;
+  controller.target_force_n = job.target_force_n;
+  trial::OverrideControlSettings settings;
+  const trial::ForceSensorSettings sensor = sensor_settings(choice.sensor, job.machine.tool);
+  if (job.hybrid) {
+    settings = trial::hybrid_override_settings(sensor, job.target_force_n);
+  } else {
+    settings.sensor = sensor;
+    settings.target_force_n = job.target_force_n;
+  }
+  controller.max_ratio = settings.max_ratio;
+  const trial::ControlLaw law = trial::make_control_law(controller);
+
+  ControlOutcome out;
+  std::optional<force_log::ForceLogFileWriter> log_file;
+  if (!o.log_path.empty()) {
+    log_file.emplace(o.log_path);
+    if (!log_file->error().empty()) {
+      std::cerr << "feedplan: failed: " << log_file->error() << "\n";
+      return 1;
+    }
+  }
+  {
+    ProgressBar progress(job.hybrid ? "plan alone, then under control, on the virtual machine"
+                                    : "under control on the virtual machine");
+    trial::VirtualMachine machine = job.machine;
+    if (job.hybrid) {
+      machine.keep_log = false;
+      machine.progress = [&progress](double f) { progress(0.5 * f); };
+      const sim::SimulationResult alone = trial::simulate_on(job.program, machine);
+      out.plan_alone = trial::judge_control(alone.revolutions, job.target_force_n, alone.summary.cycle_time_s);
+      machine.progress = [&progress](double f) { progress(0.5 + 0.5 * f); };
+    } else {
+      machine.progress = [&progress](double f) { progress(f); };
+    }
+    machine.keep_log = false;
+    if (log_file) machine.log_sink = &*log_file;
+    out.run = trial::run_under_control(job.program, machine, settings, law);
+  }
+
+  OutputFiles files;
+  if (!o.plot_path.empty()) {
+    trial::ControlPlotOptions plot;
+    plot.title = std::string(trial::to_string(choice.controller)) + " on the " + std::string(trial::to_string(choice.sensor)) +
+                 (job.hybrid ? ", trimming the plan" : "") + ": force and feed override";
+    plot.sensed_label = std::string("sensed per revolution (") + std::string(trial::to_string(choice.sensor)) + ")";
+    files.add(o.plot_path, trial::control_plot_svg(out.run.trace, out.run.simulation.revolutions, job.target_force_n, plot));
+  }
+  if (!files.error().empty()) {
+    std::cerr << "feedplan: failed: " << files.error() << "\n";
+    return 1;
+  }
+  if (log_file) {
+    if (const std::string error = log_file->finish(); !error.empty()) {
+      std::cerr << "feedplan: failed: " << error << "\n";
+      return 1;
+    }
+  }
+  if (const std::string error = files.commit(); !error.empty()) {
+    std::cerr << "feedplan: failed: " << error << "\n";
+    return 1;
+  }
+  if (o.json) {
+    print_json(o, choice, job, out);
+  } else {
+    print_text(o, choice, job, out);
+  }
+  for (const std::string& warning : out.run.simulation.warnings) std::cerr << "feedplan: warning: " << warning << "\n";
+  return 0;
+}
+
+}  // namespace feedplan::cli
