@@ -40,11 +40,11 @@
 //      travel on a LinuxCNC mill, as the home switch usually sets it); G28 goes to the reference
 //      point through the intermediate point of its axis words, which G91 with Z0. makes the point the
 //      tool is at, so that Z rises alone; G90 restores absolute distances for whatever runs next.
-//      The machine position is the controlled point (the spindle nose), not the tool tip: in
-//      program coordinates the tool ends at 0 minus the work offset's Z and the tool length. The
-//      return comes before M5 as in the posts of the major CAM systems (the spindle turns until
-//      the program ends there), so the tool never leaves the part stopped when there is no
-//      retract_z_mm; a reader has no machine positions and reads it as a park (reader.hpp).
+//      Machine positions are the spindle's gauge line, not the tool tip: in program coordinates
+//      the tip ends at 0 minus the work offset's Z and the tool length. The return comes before
+//      M5, as in Autodesk's Fanuc and LinuxCNC posts (whose M30 stops the spindle after it), so that
+//      without retract_z_mm a tool ending in the cut leaves it turning rather than dragged out at
+//      rest. A reader has no machine positions: ours reads the return as a park (reader.hpp).
 //
 // Numbers. X Y Z I J are rounded to `decimals`, F to 0.1 mm/min, S to whole rpm; every X Y Z I J F
 // carries a decimal point (Fanuc reads `X10` as 10 least increments, 10 µm, on many controls:
