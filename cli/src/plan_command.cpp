@@ -62,6 +62,7 @@ gcode::WriterOptions writer_options(const PlanCommandOptions& o, const std::opti
   writer.decimals = o.decimals;
   writer.line_numbers = o.line_numbers;
   writer.coolant = o.coolant;
+  writer.safe_return = !o.no_safe_return;
   writer.tool_number = o.tool_number;
   writer.program_number = o.program_number;
   writer.work_offset = o.work_offset;
@@ -412,6 +413,10 @@ void add_plan_command(CLI::App& app, PlanCommandOptions& options) {
   add_integer_flag(cmd, "--decimals", options.decimals, "Digits after the point in X Y Z I J (default 3)");
   cmd->add_flag("--line-numbers", options.line_numbers, "Number the blocks (N words)");
   cmd->add_flag("--coolant", options.coolant, "Flood coolant on (M8) while cutting");
+  cmd->add_flag("--no-safe-return", options.no_safe_return,
+                "End without the return to the machine's Z home (by default the program ends with G53 G0 Z0.,\n"
+                "on Fanuc and Haas G91 G28 Z0. then G90, before M5): for a machine whose Z home is not safe to go\n"
+                "to, or a program run inside another");
   add_integer_flag(cmd, "--tool-number", options.tool_number, "Tool number for T and H (default 1)");
   add_integer_flag(cmd, "--work-offset", options.work_offset, "Work offset G54..G59 as 54..59 (default 54; 0: none)");
   add_integer_flag(cmd, "--program-number", options.program_number, "Program number for the O word of Fanuc/Haas (default 1000)");

@@ -37,6 +37,7 @@ struct PlanCommandOptions {
   int decimals = 3;                   //!< --decimals
   bool line_numbers = false;          //!< --line-numbers
   bool coolant = false;               //!< --coolant
+  bool no_safe_return = false;        //!< --no-safe-return: end without the return to the machine's Z home
   int tool_number = 1;                //!< --tool-number
   int work_offset = 54;               //!< --work-offset (54..59, 0: none)
   int program_number = 1000;          //!< --program-number (Fanuc/Haas O word)

@@ -157,7 +157,9 @@ class Interpreter {
                     "(ReaderOptions::require_program_end = false accepts it)");
     }
     program_.dwell_at_end_s = pending_dwell_s_;
-    if (machine_position_moves_ > 0) {
+    // Only when a move left from a park: a park with nothing after it (a safe return at the end, as
+    // feedplan's writer and CAM posts end a program) moves no later move, and cuts nothing.
+    if (machine_position_moves_ > 0 && parks_left_ > 0) {
       note(std::to_string(machine_position_moves_) +
            (machine_position_moves_ == 1 ? " move" : " moves") + " to machine positions (G28, G30, G53) were read as "
            "retracts above the part: a rapid straight up to a park height (" +
@@ -902,6 +904,10 @@ class Interpreter {
   }
 
   void add_move(Move m, const geometry::BlockCommand& command, const WrittenMove& written, bool park = false) {
+    if (!park) {  // a move after parks leaves from them
+      parks_left_ += parks_not_left_;
+      parks_not_left_ = 0;
+    }
     // The park height is above the part, not above itself: moves that stay at it (a rapid across after a
     // park) do not raise it.
     if (!park && !(machine_position_moves_ > 0 && m.end.z_mm == last_park_z_mm_)) {
@@ -1189,6 +1195,7 @@ class Interpreter {
     }
     parked_line_ = line;
     ++machine_position_moves_;
+    ++parks_not_left_;
     last_park_z_mm_ = position_mm_.z_mm;
     highest_park_z_mm_ = std::max(highest_park_z_mm_, last_park_z_mm_);
   }
@@ -1246,6 +1253,8 @@ class Interpreter {
   double highest_z_mm_ = 0.0;        // the highest Z of the initial position and the moves (parks excepted)
   int parked_line_ = 0;              // the line of the last park while no move has followed it
   int machine_position_moves_ = 0;   // G28, G30, G53 blocks read as parks
+  int parks_left_ = 0;               // of them, those a later move left from
+  int parks_not_left_ = 0;           // of them, those no move has left from yet
   double last_park_z_mm_ = 0.0;     // Z of the last park
   double highest_park_z_mm_ = -1e300;
   int plane_arcs_ = 0;         // arcs in G18/G19 read as straight pieces

@@ -339,6 +339,7 @@ class Writer {
         position_[2] = z;
       }
     }
+    if (options_.safe_return) write_safe_return();
     block(m_code(5));
     if (options_.coolant) block(m_code(9));
     if (iso_) {
@@ -347,6 +348,28 @@ class Writer {
     } else {
       block(m_code(2));
     }
+  }
+
+  // Straight up to the machine's Z home (WriterOptions::safe_return). LinuxCNC: G53 in machine
+  // coordinates, with its G0 written even when modal (G53 needs G0 or G1 in effect). Fanuc and Haas:
+  // G28 through the intermediate point Z0. under G91 — where the tool is — then back to G90.
+  void write_safe_return() {
+    if (iso_) {
+      std::string words = g_code(91);
+      words += ' ';
+      words += g_code(28);
+      words += coordinate('Z', 0);
+      block(words);
+      block(g_code(90));
+    } else {
+      std::string words = g_code(53);
+      words += ' ';
+      words += g_code(0);
+      words += coordinate('Z', 0);
+      block(words);
+      motion_ = 0;
+    }
+    position_[2].reset();  // a machine position: where it is in the program's coordinates is not known here
   }
 
   // --- Spindle and dwell ------------------------------------------------------------------------

@@ -7,11 +7,15 @@
 
 #include <nlohmann/json.hpp>
 
+#include <cstddef>
 #include <fstream>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "feedplan/gcode/reader.hpp"
 #include "run_feedplan.hpp"
+#include "text_lines.hpp"
 
 namespace {
 
@@ -111,12 +115,31 @@ TEST_F(PlanCliTest, TargetSweepPrintsTheCurveAndWritesNoProgram) {
   EXPECT_FALSE(fs::exists(not_written));
 }
 
+// Every dialect reads back, and ends with the return to the machine's Z home before the spindle stops;
+// --no-safe-return writes the same program without those lines.
 TEST_F(PlanCliTest, EveryDialect) {
-  for (const char* dialect : {"linuxcnc", "fanuc", "haas"}) {
-    const fs::path program = dir_ / (std::string(dialect) + ".nc");
+  const std::vector<std::pair<std::string, std::vector<std::string>>> endings = {
+      {"linuxcnc", {"G53 G0 Z0.", "M5", "M2"}},
+      {"fanuc", {"G91 G28 Z0.", "G90", "M05", "M30", "%"}},
+      {"haas", {"G91 G28 Z0.", "G90", "M05", "M30", "%"}}};
+  for (const auto& [dialect, ending] : endings) {
+    SCOPED_TRACE(dialect);
+    const fs::path program = dir_ / (dialect + ".nc");
     const RunResult r = run_feedplan(plan_args("corner.yaml", program) + " --dialect " + dialect);
-    ASSERT_EQ(r.exit_code, 0) << dialect << "\n" << r.output;
-    EXPECT_NO_THROW(feedplan::gcode::load_program(program)) << dialect;
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+    EXPECT_NO_THROW(feedplan::gcode::load_program(program));
+    const std::vector<std::string> lines = feedplan::test_support::lines_of(read_text(program));
+    ASSERT_GT(lines.size(), ending.size());
+    EXPECT_EQ(std::vector<std::string>(lines.end() - static_cast<std::ptrdiff_t>(ending.size()), lines.end()), ending);
+
+    const fs::path plain = dir_ / (dialect + "_plain.nc");
+    const RunResult without = run_feedplan(plan_args("corner.yaml", plain) + " --dialect " + dialect + " --no-safe-return");
+    ASSERT_EQ(without.exit_code, 0) << without.output;
+    std::vector<std::string> expected;
+    for (const std::string& line : lines) {
+      if (line != "G53 G0 Z0." && line != "G91 G28 Z0." && line != "G90") expected.push_back(line);
+    }
+    EXPECT_EQ(feedplan::test_support::lines_of(read_text(plain)), expected);
   }
 }
 

@@ -64,6 +64,30 @@ TEST(MachinePositions, G30GoesToItsIntermediatePointFirstAndG53KeepsXY) {
   EXPECT_DOUBLE_EQ(p.path.moves[4].start.z_mm, 100.0);
 }
 
+// The safe return the writer ends its programs with (LinuxCNC G53, Fanuc and Haas G91 G28 Z0. then G90):
+// the same park, a rapid after the cut; with no move after it, no note (nothing leaves the guessed place).
+TEST(MachinePositions, AParkAtTheEndIsARapidUpWithoutANote) {
+  const std::string cut = "G21 G90\nS1000 M3\nG0 X10 Y5 Z8\nG1 Z-2 F100\nG1 X20\nG0 Z4\n";
+  for (const std::string& end : {std::string("G53 G0 Z0.\nM5\nM2\n"), std::string("G91 G28 Z0.\nG90\nM05\nM30\n")}) {
+    SCOPED_TRACE(end);
+    const geometry::Program p = read_program(cut + end, "test");
+    ASSERT_EQ(p.path.moves.size(), 5U);
+    const geometry::Move& park = p.path.moves.back();
+    EXPECT_EQ(park.kind, MoveKind::kRapid);
+    EXPECT_FALSE(park.cutting);
+    EXPECT_DOUBLE_EQ(park.start.z_mm, 4.0);
+    EXPECT_DOUBLE_EQ(park.end.x_mm, 20.0);
+    EXPECT_DOUBLE_EQ(park.end.y_mm, 5.0);
+    EXPECT_DOUBLE_EQ(park.end.z_mm, 33.0);  // the highest Z, 8, plus 25
+    for (const std::string& n : p.notes) EXPECT_EQ(n.find("machine position"), std::string::npos) << n;
+  }
+  // A park a move leaves from is noted, counting every park of the program.
+  const geometry::Program p = read_program(cut + "G28\nG0 X0 Y0\nG53 G0 Z0\nM2\n", "test");
+  bool noted = false;
+  for (const std::string& n : p.notes) noted = noted || n.find("2 moves to machine positions (G28, G30, G53)") != std::string::npos;
+  EXPECT_TRUE(noted);
+}
+
 TEST(MachinePositions, WhatTheReaderCannotFollowIsRefused) {
   EXPECT_THAT(problems_of("G21 G90\nS1000 M3\nG0 X1 Z1\nG28\nG1 X5 Z-1 F100\nM2\n"),
               HasSubstr("test line 5: G1 right after a move to a machine position (line 4)"));

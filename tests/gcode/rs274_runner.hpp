@@ -60,6 +60,10 @@ struct OracleMove {
   double spindle_rpm = 0.0;
   geometry::SpindleDirection spindle = geometry::SpindleDirection::kOff;
   double dwell_before_s = 0.0;
+  //! Z offsets in effect for the move, mm (canonical coordinates are the program's: machine Z = program Z
+  //! + origin_z_mm + tool_length_z_mm): work offset plus G92 (SET_G5X_OFFSET, SET_G92_OFFSET) ...
+  double origin_z_mm = 0.0;
+  double tool_length_z_mm = 0.0;  //!< ... and the tool length offset (USE_TOOL_LENGTH_OFFSET)
 };
 
 //! What one run of rs274 produced.
@@ -100,6 +104,9 @@ inline void parse_canonical(const std::string& text, OracleRun& run) {
   double rpm = 0.0;
   SpindleDirection spindle = SpindleDirection::kOff;
   double dwell = 0.0;
+  double g5x_z = 0.0;
+  double g92_z = 0.0;
+  double tool_z = 0.0;
   std::stringstream lines(text);
   std::string line;
   while (std::getline(lines, line)) {
@@ -133,6 +140,16 @@ inline void parse_canonical(const std::string& text, OracleRun& run) {
       spindle = SpindleDirection::kOff;
     } else if (name == "DWELL") {
       dwell += numbers_in(arguments).at(0);
+    } else if (name == "SET_G5X_OFFSET") {  // (origin index, x, y, z, a, b, c)
+      g5x_z = numbers_in(arguments).at(3) * unit_mm;
+    } else if (name == "SET_G92_OFFSET") {  // (x, y, z, a, b, c)
+      g92_z = numbers_in(arguments).at(2) * unit_mm;
+    } else if (name == "USE_TOOL_LENGTH_OFFSET") {  // (x y z, a b c, u v w): the offset's axes apart by spaces
+      std::stringstream offset(arguments);
+      double x = 0.0;
+      double y = 0.0;
+      offset >> x >> y >> tool_z;
+      tool_z *= unit_mm;
     } else if (name == "STRAIGHT_TRAVERSE" || name == "STRAIGHT_FEED" || name == "ARC_FEED") {
       const std::vector<double> v = numbers_in(arguments);
       OracleMove move;
@@ -157,6 +174,8 @@ inline void parse_canonical(const std::string& text, OracleRun& run) {
       move.spindle_rpm = rpm;
       move.spindle = spindle;
       move.dwell_before_s = dwell;
+      move.origin_z_mm = g5x_z + g92_z;
+      move.tool_length_z_mm = tool_z;
       dwell = 0.0;
       position = move.end;
       run.moves.push_back(move);

@@ -212,25 +212,64 @@ std::optional<Point3> retract_of(const Program& program, const WriterOptions& op
   return Point3{end.x_mm, end.y_mm, *options.retract_z_mm};
 }
 
+// Where the tool is when the safe return starts: after the retract, else at the program's end.
+Point3 before_safe_return(const Program& program, const std::optional<Point3>& retract) {
+  return retract ? *retract : program.path.moves.back().end;
+}
+
+// The safe return as rs274 runs it: `G53 G0 Z0.` (LinuxCNC) goes to machine Z 0, `G91 G28 Z0.` (Fanuc,
+// Haas) through the point it is at to the G28 position, parameters 5161–5163, machine zero in rs274.
+// Machine Z 0 in the program's coordinates is minus the Z offsets rs274 reports in effect (`last`, its
+// last move's): the work offset and G92 (0 in rs274) and the tool length (G43 H: its built-in tool table
+// gives tool 1 12.9794 mm, tool 3 32.3342 mm), so the tool tip ends below work Z 0. X and Y stay.
+// Nothing when the tool is there already (rs274 reports no move of no length).
+std::optional<Point3> oracle_safe_return(const Point3& from, const OracleMove& last) {
+  const double machine_zero_z_mm = -(last.origin_z_mm + last.tool_length_z_mm);
+  if (std::abs(from.z_mm - machine_zero_z_mm) < 1e-7) return std::nullopt;
+  return Point3{from.x_mm, from.y_mm, machine_zero_z_mm};
+}
+
+// The safe return as our reader reads it (reader.hpp, G28/G30/G53): a park, a rapid straight up to the
+// highest Z the tool reached before it plus 25 mm — of the reader's initial position (Z 0), the approach
+// (which ends at the program's start), the program's moves and the retract. Never nothing: the tool is
+// always below that.
+Point3 reader_park(const std::vector<ExpectedMove>& expected, const Point3& from) {
+  double highest_z_mm = std::max(0.0, expected.front().move.start.z_mm);
+  for (const ExpectedMove& e : expected) highest_z_mm = std::max(highest_z_mm, e.move.end.z_mm);
+  highest_z_mm = std::max(highest_z_mm, from.z_mm);
+  return {from.x_mm, from.y_mm, highest_z_mm + 25.0};
+}
+
 // How many of `moves` come before the program's own: the approach rapids (at most two, the last
-// ending at the program's start). Checks the retract rapid after them when there is one.
+// ending at the program's start). Checks the rapids the writer adds after them — `trailing`: the retract
+// when there is one, then the safe return where it takes the tool (none: no safe return, or one of no
+// length) — against the ends given.
 template <typename ReadMove>
 std::size_t approach_count(const std::vector<ReadMove>& moves, std::size_t expected, const Point3& start,
-                           const std::optional<Point3>& retract) {
-  const std::size_t own = expected + (retract ? 1 : 0);
+                           const std::vector<Point3>& trailing) {
+  const std::size_t own = expected + trailing.size();
   EXPECT_GE(moves.size(), own);
-  EXPECT_LE(moves.size(), own + 2) << "more moves than the program, its approach and retract";
+  EXPECT_LE(moves.size(), own + 2) << "more moves than the program, its approach, retract and safe return";
   if (moves.size() < own || moves.size() > own + 2) return 0;
   const std::size_t k = moves.size() - own;
   for (std::size_t i = 0; i < k; ++i) EXPECT_EQ(moves[i].kind, MoveKind::kRapid) << "approach move " << i;
   if (k > 0) {
     EXPECT_LE(distance_mm(moves[k - 1].end, start), kPositionToleranceMm);
   }
-  if (retract) {
-    EXPECT_EQ(moves.back().kind, MoveKind::kRapid) << "retract";
-    EXPECT_LE(distance_mm(moves.back().end, *retract), kPositionToleranceMm) << "retract";
+  for (std::size_t t = 0; t < trailing.size(); ++t) {
+    const ReadMove& m = moves[k + expected + t];
+    EXPECT_EQ(m.kind, MoveKind::kRapid) << "trailing move " << t << " (retract or safe return)";
+    EXPECT_LE(distance_mm(m.start, t == 0 ? moves[k + expected - 1].end : trailing[t - 1]), kPositionToleranceMm)
+        << "trailing move " << t << " starts where the tool is";
+    EXPECT_LE(distance_mm(m.end, trailing[t]), kPositionToleranceMm) << "trailing move " << t << " (retract or safe return)";
   }
   return k;
+}
+
+// `trailing` with `last` appended when there is one.
+std::vector<Point3> with(std::vector<Point3> trailing, const std::optional<Point3>& last) {
+  if (last) trailing.push_back(*last);
+  return trailing;
 }
 
 // Turn count ARC_FEED reports for a sweep: ⌈sweep / 2π⌉.
@@ -250,13 +289,18 @@ TEST_P(WriterOracle, LinuxCncAndOurReaderRunTheProgramAsPlanned) {
   const std::vector<ExpectedMove> expected = testing_support::expected_moves(program, options.max_arc_sweep_deg);
   const Point3 start = program.path.moves.front().start;
   const std::optional<Point3> retract = retract_of(program, options);
+  const std::vector<Point3> retracts = with({}, retract);
+  const Point3 returning_from = before_safe_return(program, retract);
 
   // --- LinuxCNC --------------------------------------------------------------------------------
   const OracleRun run = oracle::run_rs274_text(*rs274_, runnable);
   ASSERT_EQ(run.exit_code, 0) << "rs274 rejects the " << case_name(c) << " program:\n" << run.messages;
   EXPECT_TRUE(run.oddities.empty()) << run.oddities.front();
-  const std::size_t k = approach_count(run.moves, expected.size(), start, retract);
-  ASSERT_EQ(run.moves.size(), expected.size() + k + (retract ? 1 : 0));
+  ASSERT_FALSE(run.moves.empty());
+  const std::vector<Point3> oracle_trailing = with(retracts, oracle_safe_return(returning_from, run.moves.back()));
+  ASSERT_EQ(oracle_trailing.size(), retracts.size() + 1) << "rs274 runs the safe return";
+  const std::size_t k = approach_count(run.moves, expected.size(), start, oracle_trailing);
+  ASSERT_EQ(run.moves.size(), expected.size() + k + oracle_trailing.size());
   double worst_end = 0.0;
   double worst_center = 0.0;
   double worst_sweep = 0.0;
@@ -293,8 +337,9 @@ TEST_P(WriterOracle, LinuxCncAndOurReaderRunTheProgramAsPlanned) {
     const bool first_piece = j == 0 || expected[j - 1].program_move != expected[j].program_move;
     EXPECT_NEAR(o.dwell_before_s, first_piece ? b.dwell_before_s : 0.0, 1e-4);
   }
-  // The end dwell comes before the retract, if there is one.
-  EXPECT_NEAR(retract ? run.moves.back().dwell_before_s : run.dwell_at_end_s, program.dwell_at_end_s, 1e-4);
+  // The end dwell comes before the retract and the safe return.
+  EXPECT_NEAR(run.moves[k + expected.size()].dwell_before_s, program.dwell_at_end_s, 1e-4);
+  EXPECT_NEAR(run.dwell_at_end_s, 0.0, 1e-9);
   std::vector<double> set_feeds;
   for (double f : run.feed_rates_mm_per_min) {
     if (f != 0.0) set_feeds.push_back(f);  // G94 and the program end set F0
@@ -316,8 +361,11 @@ TEST_P(WriterOracle, LinuxCncAndOurReaderRunTheProgramAsPlanned) {
   } catch (const InputError& error) {
     FAIL() << "our reader rejects the " << case_name(c) << " program:\n" << error.what();
   }
-  const std::size_t kr = approach_count(back.path.moves, expected.size(), start, retract);
-  ASSERT_EQ(back.path.moves.size(), expected.size() + kr + (retract ? 1 : 0));
+  const std::vector<Point3> read_trailing = with(retracts, reader_park(expected, returning_from));
+  const std::size_t kr = approach_count(back.path.moves, expected.size(), start, read_trailing);
+  ASSERT_EQ(back.path.moves.size(), expected.size() + kr + read_trailing.size());
+  EXPECT_FALSE(back.path.moves.back().cutting) << "the park cuts nothing";
+  for (const std::string& note : back.notes) EXPECT_EQ(note.find("machine position"), std::string::npos) << note;
   double worst_read = 0.0;
   for (std::size_t j = 0; j < expected.size(); ++j) {
     const Move& m = expected[j].move;
@@ -346,7 +394,8 @@ TEST_P(WriterOracle, LinuxCncAndOurReaderRunTheProgramAsPlanned) {
     const bool first_piece = j == 0 || expected[j - 1].program_move != expected[j].program_move;
     EXPECT_NEAR(rb.dwell_before_s, first_piece ? b.dwell_before_s : 0.0, 1e-9);
   }
-  EXPECT_NEAR(retract ? back.blocks.back().dwell_before_s : back.dwell_at_end_s, program.dwell_at_end_s, 1e-9);
+  EXPECT_NEAR(back.blocks[kr + expected.size()].dwell_before_s, program.dwell_at_end_s, 1e-9);
+  EXPECT_NEAR(back.dwell_at_end_s, 0.0, 1e-12);
   std::printf("[ oracle   ] %s: %zu moves written as %zu; rs274 worst end %.3g µm, centre %.3g µm, sweep %.3g µm; "
               "reader worst %.3g µm\n",
               case_name(c).c_str(), program.path.moves.size(), expected.size(), worst_end * 1e3, worst_center * 1e3,

@@ -90,7 +90,15 @@ TEST_P(EmittedProgram, LinuxCncRunsThePlannedPathAndFeeds) {
     ASSERT_TRUE(reached) << "LinuxCNC's path never reaches the end of planned move " << k << " ("
                          << move.end.x_mm << ", " << move.end.y_mm << ", " << move.end.z_mm << ")";
   }
-  for (; j < oracle.size(); ++j) EXPECT_EQ(oracle[j].kind, geometry::MoveKind::kRapid) << "after the program: only the retract";
+  // After the program, the safe return alone: a rapid straight up to machine Z 0, which in the program's
+  // coordinates is minus the offsets rs274 has in effect (work offset, G92, the tool length of G43 H1).
+  ASSERT_EQ(oracle.size(), j + 1) << "after the program: only the safe return";
+  const OracleMove& safe_return = oracle.back();
+  EXPECT_EQ(safe_return.kind, geometry::MoveKind::kRapid);
+  const geometry::Point3 end = planned.back().end;
+  EXPECT_LE(distance(safe_return.end, {end.x_mm, end.y_mm, -(safe_return.origin_z_mm + safe_return.tool_length_z_mm)}),
+            kToleranceMm);
+  EXPECT_GT(safe_return.tool_length_z_mm, 0.0) << "rs274's tool 1 has a length";
   EXPECT_GT(feeds_checked, 10);
   if (spec.cycle != "corner") {
     EXPECT_GT(arcs_checked, 0);

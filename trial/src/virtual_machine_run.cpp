@@ -1,5 +1,6 @@
 #include "feedplan/trial/virtual_machine_run.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include "feedplan/core/input_error.hpp"
@@ -9,12 +10,35 @@ namespace feedplan::trial {
 
 namespace {
 
+// A program point within this of the plan's end point is the plan's end (rounding at the writer's finest
+// decimals, 6, moves a point by well under it), mm.
+constexpr double kPlanEndToleranceMm = 1e-3;
+
 // A force log nobody reads: the run's peaks and summary are all that is kept.
 class RowsDropped final : public force_log::ForceLogSink {
  public:
   void begin(const force_log::ForceLog&) override {}
   void add(const force_log::ForceLogRow&) override {}
 };
+
+// Where the plan's path ends in `program`'s motion, mm of its path length: the end of the last move that
+// ends at the plan's end point (within the grid the program's coordinates were written on). Moves after
+// it — the return to the machine's Z home the G-code writer ends a program with, read back as a park —
+// are not the plan's. The whole length when no move ends there.
+double plan_end_s_mm(const geometry::Program& program, const sim::MotionProfile& motion, const planner::PlanResult& plan) {
+  if (plan.program.path.moves.empty()) return motion.length_mm();
+  const geometry::Point3& end = plan.program.path.moves.back().end;
+  const double tolerance_mm = std::max(program.coordinate_resolution_mm, kPlanEndToleranceMm);
+  const auto& moves = program.path.moves;
+  for (std::size_t i = moves.size(); i-- > 0;) {
+    const geometry::Point3& p = moves[i].end;
+    if (std::hypot(std::hypot(p.x_mm - end.x_mm, p.y_mm - end.y_mm), p.z_mm - end.z_mm) <= tolerance_mm) {
+      const sim::MoveTiming& timing = motion.moves()[i];
+      return timing.start_s_mm + timing.length_mm;
+    }
+  }
+  return motion.length_mm();
+}
 
 }  // namespace
 
@@ -58,7 +82,7 @@ VirtualMachineRun run_on_virtual_machine(const geometry::Program& program, const
   run.simulation = simulate_on(program, machine);
 
   const sim::MotionProfile motion = sim::plan_motion(program, machine.machine);
-  const double offset_mm = plan.samples.empty() ? 0.0 : motion.length_mm() - plan.samples.back().s_mm;
+  const double offset_mm = plan.samples.empty() ? 0.0 : plan_end_s_mm(program, motion, plan) - plan.samples.back().s_mm;
   std::vector<planner::MeasuredRevolution> revolutions;
   revolutions.reserve(run.simulation.revolutions.size());
   for (const force_log::RevolutionPeak& peak : run.simulation.revolutions) {

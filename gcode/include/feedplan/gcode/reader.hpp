@@ -63,7 +63,11 @@
 //                     (G53's X Y words move nothing; a G53 G1 does not cut). G28/G30 with axis words first
 //                     go to that intermediate point (a rapid, in the distance mode in effect), as LinuxCNC
 //                     does. The next move leaves the park height from there; it must be a G0 (a feed move
-//                     would start at an unknown place). A note says how they were read
+//                     would start at an unknown place). A note says how they were read when a move
+//                     leaves from a park; parks with no move after them (the safe return at the end of
+//                     feedplan's own programs and of most CAM posts' ones) get none: nothing is cut or
+//                     moved from the guessed place, and the park's rapid — after the cut, never cutting
+//                     — only adds its time to the cycle
 //   G43 H             tool length offset on: the programmed Z is the tool tip, which is what the reader
 //                     assumes anyway; H must be the tool in the spindle (without H: that tool). Other
 //                     words may share the block (`G43 H1 Z5`). G43 with no M6 before it is taken to name

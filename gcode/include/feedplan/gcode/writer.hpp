@@ -31,8 +31,20 @@
 //      seconds whatever the increment system, while Fanuc's P counts least increments, 1 ms on
 //      IS-B but 0.1 ms on IS-C; LinuxCNC has no X form, so Fanuc programs with dwells do not run on
 //      LinuxCNC as they stand). Dwells print with 3 decimals; one that rounds to 0 is left out.
-//   8. End: Program::dwell_at_end_s, then `G0 Z<retract_z_mm>` when the tool is below it, `M5`,
-//      `M9` with coolant, and `M2` (LinuxCNC) or `M30` and `%` (Fanuc, Haas).
+//   8. End: Program::dwell_at_end_s, then `G0 Z<retract_z_mm>` when the tool is below it; then the safe
+//      return (safe_return, on by default): LinuxCNC `G53 G0 Z0.`, Fanuc and Haas `G91 G28 Z0.` and
+//      `G90` in a block of its own; then `M5`, `M9` with coolant, and `M2` (LinuxCNC) or `M30` and `%`
+//      (Fanuc, Haas). The safe return takes the spindle straight up to the machine's Z home, X and Y
+//      where they are: the operator can reach the part, and the next program starts from a known
+//      place whatever this one ended at. G53 moves in machine coordinates (machine Z 0 is the top of
+//      travel on a LinuxCNC mill, as the home switch usually sets it); G28 goes to the reference
+//      point through the intermediate point of its axis words, which G91 with Z0. makes the point the
+//      tool is at, so that Z rises alone; G90 restores absolute distances for whatever runs next.
+//      Machine positions are the spindle's gauge line, not the tool tip: in program coordinates
+//      the tip ends at 0 minus the work offset's Z and the tool length. The return comes before
+//      M5, as in Autodesk's Fanuc and LinuxCNC posts (whose M30 stops the spindle after it), so that
+//      without retract_z_mm a tool ending in the cut leaves it turning rather than dragged out at
+//      rest. A reader has no machine positions: ours reads the return as a park (reader.hpp).
 //
 // Numbers. X Y Z I J are rounded to `decimals`, F to 0.1 mm/min, S to whole rpm; every X Y Z I J F
 // carries a decimal point (Fanuc reads `X10` as 10 least increments, 10 µm, on many controls:
@@ -113,6 +125,9 @@ struct WriterOptions {
   std::vector<std::string> feed_comments;
   //! A comment line `(part: <name>)` before the first block of each cycle part (see above).
   bool part_comments = false;
+  //! Return the spindle to the machine's Z home at the end (`G53 G0 Z0.`; Fanuc, Haas `G91 G28 Z0.`
+  //! then `G90`), after the retract and before M5 (see 8. End above).
+  bool safe_return = true;
 };
 
 //! Checks `options`: dialect one of the three; decimals in 1..6; line_number_step in 1..99999;

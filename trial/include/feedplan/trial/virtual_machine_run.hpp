@@ -61,8 +61,10 @@ sim::SimulationResult simulate_on(const geometry::Program& program, const Virtua
 //! Simulates `program` on `machine` and places every simulated revolution on the plan's path: the
 //! machine's motion gives the path length at each revolution's start and end; a program that begins
 //! with a move the plan does not have (a G-code text read back starts from the machine's position) is
-//! aligned by the difference of the total lengths, as both end at the same point. Throws InputError on
-//! an invalid request (sim::validate).
+//! aligned by the difference of the lengths to the plan's end point, as both end there — the last move
+//! of `program` that ends there (within its coordinate_resolution_mm, at least 1 µm); moves after it (the
+//! writer's safe return, read back as a park) are not on the plan's path. Throws InputError on an
+//! invalid request (sim::validate).
 VirtualMachineRun run_on_virtual_machine(const geometry::Program& program, const VirtualMachine& machine,
                                          const planner::PlanResult& plan, double target_force_n);
 
