@@ -1,6 +1,7 @@
 #include "comparison_report.hpp"
 
 #include "feedplan/core/number_text.hpp"
+#include "feedplan/learning/infeasible_places.hpp"
 #include "feedplan/planner/feed_plan.hpp"
 
 namespace feedplan::cli {
@@ -103,6 +104,13 @@ std::string comparison_markdown(const ComparisonContext& context, const trial::S
       text += ";";
     }
     text.back() = '.';
+    const trial::LoopCycle& last = comparison.learning.back();
+    if (const std::string infeasible = learning::describe(last.infeasible, comparison.target_force_n); !infeasible.empty()) {
+      text += " Cycle ";
+      text += std::to_string(last.cycle);
+      text += ": ";
+      text += infeasible;
+    }
     text += "\n";
   }
   for (const std::string& note : context.notes) {
@@ -134,7 +142,9 @@ nlohmann::json comparison_json(const ComparisonContext& context, const trial::St
                                {"simulated_cycle_time_s", c.simulated_cycle_time_s},
                                {"held", c.comparison.held},
                                {"held_rms_error_percent", c.comparison.rms_error_percent},
-                               {"max_overshoot_percent", c.comparison.max_overshoot_percent}});
+                               {"max_overshoot_percent", c.comparison.max_overshoot_percent},
+                               {"infeasible_revolutions", c.infeasible.revolutions},
+                               {"infeasible_largest_peak_n", c.infeasible.largest_peak_n}});
   }
   out["notes"] = context.notes;
   return out;

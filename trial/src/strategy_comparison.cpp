@@ -1,6 +1,8 @@
 #include "feedplan/trial/strategy_comparison.hpp"
 
 #include <cmath>
+#include <exception>
+#include <future>
 #include <mutex>
 #include <utility>
 
@@ -181,23 +183,33 @@ StrategyComparison compare_strategies(const ComparisonRequest& request) {
   const double learning_runs = kLearningCycleRuns * (request.learning_cycles - 1) + (request.hybrid_on_learned ? 2.0 : 1.0);
   ComparisonProgress progress(request.progress, learning_runs + 3.0 + static_cast<double>(controllers));
 
-  // Task 0, the longest, first: the loop, then the cycle-N plan alone and trimmed.
-  const auto learned_rows = [&] {
-    const LoopResult loop = learn_before(request, progress);
-    const planner::PlanResult plan = planner::plan(request.geometry, loop.next_settings);
-    const geometry::Program program = received(request, plan.program);
-    rows[2] = plan_row(request, plan, request.learning_cycles, program, machine);
-    progress.done(1.0);
-    if (request.hybrid_on_learned) {
-      rows[3 + controllers + 1] = hybrid_row(request, plan, request.learning_cycles, program, machine);
-      progress.done(1.0);
-    }
-    out.learning = loop.cycles;
+  // Task 0, the longest, first: the loop, and the plan it would cut as cycle N. The last tasks run that plan
+  // alone and trimmed, waiting for it: tasks are taken in order, so task 0 has started (and on one thread,
+  // finished) before any of them waits.
+  struct LearnedPlan {
+    planner::PlanResult plan;
+    geometry::Program program;
   };
-  const std::size_t tasks = 3 + controllers;
+  std::promise<LearnedPlan> learned_promise;
+  const std::shared_future<LearnedPlan> learned = learned_promise.get_future().share();
+  const auto learn = [&] {
+    try {
+      const LoopResult loop = learn_before(request, progress);
+      LearnedPlan next;
+      next.plan = planner::plan(request.geometry, loop.next_settings);
+      next.program = received(request, next.plan.program);
+      out.learning = loop.cycles;
+      learned_promise.set_value(std::move(next));
+    } catch (...) {
+      learned_promise.set_exception(std::current_exception());
+      throw;
+    }
+  };
+  const std::size_t first_learned_task = 3 + controllers;
+  const std::size_t tasks = first_learned_task + (request.hybrid_on_learned ? 2 : 1);
   run_tasks(tasks, [&](std::size_t task) {
     if (task == 0) {
-      learned_rows();
+      learn();
       return;
     }
     if (task == 1) {
@@ -208,7 +220,7 @@ StrategyComparison compare_strategies(const ComparisonRequest& request) {
       rows[1] = plan_row(request, first_plan, 1, first_program, machine);
       rows[3 + controllers] = hybrid_row(request, first_plan, 1, first_program, machine);
       progress.done(1.0);
-    } else {
+    } else if (task < first_learned_task) {
       const ControllerKind controller = request.controllers[task - 3];
       OverrideControlSettings settings;
       settings.sensor = dynamometer_sensor(machine.tool);
@@ -218,6 +230,12 @@ StrategyComparison compare_strategies(const ComparisonRequest& request) {
       row.name = "feedback alone: ";
       row.name += to_string(controller);
       rows[task] = std::move(row);
+    } else if (task == first_learned_task) {
+      const LearnedPlan& next = learned.get();
+      rows[2] = plan_row(request, next.plan, request.learning_cycles, next.program, machine);
+    } else {
+      const LearnedPlan& next = learned.get();
+      rows[4 + controllers] = hybrid_row(request, next.plan, request.learning_cycles, next.program, machine);
     }
     progress.done(1.0);
   });
