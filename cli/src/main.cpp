@@ -12,6 +12,7 @@
 #include "cycle_command.hpp"
 #include "db_command.hpp"
 #include "calibration_command.hpp"
+#include "compare_command.hpp"
 #include "control_command.hpp"
 #include "learn_command.hpp"
 #include "loop_command.hpp"
@@ -56,6 +57,8 @@ int run_command_line(int argc, char** argv) {
   feedplan::cli::add_loop_command(app, loop_options);
   feedplan::cli::ControlOptions control_options;
   feedplan::cli::add_control_command(app, control_options);
+  feedplan::cli::CompareOptions compare_options;
+  feedplan::cli::add_compare_command(app, compare_options);
   feedplan::cli::DbOptions db_options;
   feedplan::cli::add_db_command(app, db_options);
 
@@ -83,6 +86,7 @@ int run_command_line(int argc, char** argv) {
     if (app.got_subcommand("learn")) return feedplan::cli::run_learn_command(learn_options);
     if (app.got_subcommand("loop")) return feedplan::cli::run_loop_command(loop_options);
     if (app.got_subcommand("control")) return feedplan::cli::run_control_command(control_options);
+    if (app.got_subcommand("compare")) return feedplan::cli::run_compare_command(compare_options);
     if (app.got_subcommand("db")) return feedplan::cli::run_db_command(app, db_options);
   } catch (const feedplan::InputError& e) {
     return bad_input(e);

@@ -3,6 +3,7 @@
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
+#include <cassert>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -375,6 +376,29 @@ std::string borrowed_model_advice(const PlanModel& model) {
 }
 
 }  // namespace
+
+std::optional<PlanAsWritten> plan_as_written(const std::string& spec_path, const cycles::CycleSpec& spec,
+                                             double target_force_n, const std::string& db_path) {
+  PlanCommandOptions o;
+  o.spec_path = spec_path;
+  o.db_path = db_path;
+  o.target_force_n = target_force_n;
+  PlanAsWritten out;
+  out.inputs.spec = spec;
+  out.inputs.target_force_n = target_force_n;
+  std::vector<InputProblem> problems;
+  out.inputs.mode = plan_mode(o.mode, problems);
+  out.inputs.writer = writer_options(o, gcode::dialect_from_string(o.dialect), problems);
+  assert(problems.empty());  // plan's own defaults
+  std::optional<PlanModel> model = choose_plan_model(o, spec);
+  if (!model) return std::nullopt;
+  out.model = std::move(*model);
+  out.planned = plan_cycle(o, out.inputs, out.model);
+  ProgramChoice program;
+  program.planned = true;
+  out.writer = program_writer(o, out.inputs, out.model.chosen, program, out.planned.result);
+  return out;
+}
 
 void add_plan_command(CLI::App& app, PlanCommandOptions& options) {
   auto* cmd = app.add_subcommand(

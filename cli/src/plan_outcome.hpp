@@ -80,4 +80,19 @@ struct PlanOutputs {
   std::vector<std::string> kept;          //!< existing files a failed plan left as they were
 };
 
+//! The plan `feedplan plan` makes for a spec with its default flags, and how it writes the program: what
+//! another command (`feedplan compare`) runs as "the plan", so that its figures are `plan`'s.
+struct PlanAsWritten {
+  PlanInputs inputs;             //!< the spec, the target, the writer's format (linuxcnc, 3 decimals)
+  PlanModel model;               //!< the model chosen, its kind and caution, as `plan` chooses them
+  PlannedCycle planned;          //!< the cycle, its engagement, the settings and the plan
+  gcode::WriterOptions writer;   //!< the options the plan's program is written with (header comments included)
+};
+
+//! What `feedplan plan SPEC_PATH [--db DB_PATH] [--target-force N]` plans for `spec` (read from
+//! `spec_path`), without writing or simulating anything. Nothing, after saying why on stderr, when the
+//! database has no model for the spec; throws as `plan` does for a database or model it cannot use.
+std::optional<PlanAsWritten> plan_as_written(const std::string& spec_path, const cycles::CycleSpec& spec,
+                                             double target_force_n, const std::string& db_path);
+
 }  // namespace feedplan::cli
