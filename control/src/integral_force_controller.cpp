@@ -14,16 +14,8 @@ std::vector<InputProblem> validate(const IntegralControllerParameters& parameter
   problems.positive("reference_force_n", parameters.reference_force_n);
   problems.non_negative("controller_gain_mm_per_min_per_n_s", parameters.controller_gain_mm_per_min_per_n_s);
   problems.positive("programmed_feed_mm_per_min", parameters.programmed_feed_mm_per_min);
-  const std::vector<InputProblem> range = validate(parameters.override_range, field_prefix + "override_range.");
-  problems.add_all(range);
-  const double top = parameters.override_range.max_ratio * parameters.programmed_feed_mm_per_min;
-  const double initial = parameters.initial_feed_mm_per_min;
-  if (!std::isfinite(initial) || initial < 0.0) {
-    problems.add_value("initial_feed_mm_per_min", shortest_number_text(initial), "must be finite and ≥ 0");
-  } else if (range.empty() && std::isfinite(top) && initial > top) {
-    problems.add_value("initial_feed_mm_per_min", shortest_number_text(initial),
-                       "must be ≤ override_range.max_ratio × programmed_feed_mm_per_min = " + shortest_number_text(top));
-  }
+  problems.add_all(validate_override_start(parameters.override_range, parameters.programmed_feed_mm_per_min,
+                                           parameters.initial_feed_mm_per_min, field_prefix));
   return problems.take();
 }
 

@@ -20,6 +20,22 @@ std::vector<InputProblem> validate(const OverrideRange& range, const std::string
   return problems.take();
 }
 
+std::vector<InputProblem> validate_override_start(const OverrideRange& range, double programmed_feed_mm_per_min,
+                                                  double initial_feed_mm_per_min, const std::string& field_prefix) {
+  ProblemList problems(field_prefix);
+  const std::vector<InputProblem> range_problems = validate(range, field_prefix + "override_range.");
+  problems.add_all(range_problems);
+  const double top = range.max_ratio * programmed_feed_mm_per_min;
+  const double initial = initial_feed_mm_per_min;
+  if (!std::isfinite(initial) || initial < 0.0) {
+    problems.add_value("initial_feed_mm_per_min", shortest_number_text(initial), "must be finite and ≥ 0");
+  } else if (range_problems.empty() && std::isfinite(top) && initial > top) {
+    problems.add_value("initial_feed_mm_per_min", shortest_number_text(initial),
+                       "must be ≤ override_range.max_ratio × programmed_feed_mm_per_min = " + shortest_number_text(top));
+  }
+  return problems.take();
+}
+
 double applied_override(const OverrideRange& range, double ratio) {
   assert(!std::isnan(ratio));
   const double clamped = std::clamp(ratio, 0.0, range.max_ratio);

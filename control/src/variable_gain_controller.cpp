@@ -17,16 +17,8 @@ std::vector<InputProblem> validate(const VariableGainParameters& parameters, con
   problems.non_negative("adaptation_rate_c2", parameters.adaptation_rate_c2);
   problems.positive("initial_model_gain_n_per_mm_per_min", parameters.initial_model_gain_n_per_mm_per_min);
   problems.positive("programmed_feed_mm_per_min", parameters.programmed_feed_mm_per_min);
-  const std::vector<InputProblem> range = validate(parameters.override_range, field_prefix + "override_range.");
-  problems.add_all(range);
-  const double top = parameters.override_range.max_ratio * parameters.programmed_feed_mm_per_min;
-  const double initial = parameters.initial_feed_mm_per_min;
-  if (!std::isfinite(initial) || initial < 0.0) {
-    problems.add_value("initial_feed_mm_per_min", shortest_number_text(initial), "must be finite and ≥ 0");
-  } else if (range.empty() && std::isfinite(top) && initial > top) {
-    problems.add_value("initial_feed_mm_per_min", shortest_number_text(initial),
-                       "must be ≤ override_range.max_ratio × programmed_feed_mm_per_min = " + shortest_number_text(top));
-  }
+  problems.add_all(validate_override_start(parameters.override_range, parameters.programmed_feed_mm_per_min,
+                                           parameters.initial_feed_mm_per_min, field_prefix));
   return problems.take();
 }
 

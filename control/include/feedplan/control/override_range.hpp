@@ -25,6 +25,13 @@ inline constexpr OverrideRange kLatheOverrideSteps{1.5, 0.15};
 //! ("override.step_ratio = -0.1: must be finite and ≥ 0"). Empty when the range is usable.
 std::vector<InputProblem> validate(const OverrideRange& range, const std::string& field_prefix = "override.");
 
+//! The problems of a controller's override settings that share one rule: the range itself (named
+//! "<field_prefix>override_range.<field>") and the feed before the first sample, which must be finite, ≥ 0 and
+//! within the range's top, max_ratio × programmed feed ("<field_prefix>initial_feed_mm_per_min"). Empty
+//! when usable. The programmed feed is checked by the caller.
+std::vector<InputProblem> validate_override_start(const OverrideRange& range, double programmed_feed_mm_per_min,
+                                                  double initial_feed_mm_per_min, const std::string& field_prefix);
+
 //! The override the machine applies for the wish `ratio`: clamped to [0, max_ratio], then, with steps,
 //! rounded to the nearest multiple of step_ratio that does not exceed max_ratio. Needs a range that passes
 //! validate() and a ratio that is not NaN (asserted).
