@@ -376,7 +376,7 @@ void add_optimize_command(CLI::App& app, OptimizeOptions& o) {
                   "every feed move planned to hold the target force on the engagement its moves cut");
   cmd->add_option("PROGRAM", o.program_path, "the G-code program (RS274/NGC)")->required();
   cmd->add_option("-o", o.output_path, "the re-fed program to write");
-  cmd->add_option("--tool", o.tool_text, "the end mill of a program of one tool: diameter_mm=…,flutes=…,helix_deg=…[,name=…]");
+  cmd->add_option("--tool", o.tool_text, "the end mill of a program of one tool: diameter_mm=…,flutes=…,helix_deg=…[,max_plunge_feed_per_tooth_mm=…][,name=…]");
   cmd->add_option("--tools", o.tools_path,
                   "the end mill of each T number (tools: {2: {diameter_mm: 6.35, flutes: 2, helix_deg: 30}, ...})");
   cmd->add_option("--material", o.material, "workpiece material (a name or alias in the model database)");

@@ -29,7 +29,7 @@ geometry::Tool parse_tool(const std::string& text, std::vector<InputProblem>& pr
     char* end = nullptr;
     const double number = std::strtod(value.c_str(), &end);
     const bool numeric = !value.empty() && end && *end == '\0' && std::isfinite(number);
-    if (key == "diameter_mm" || key == "flutes" || key == "helix_deg") {
+    if (key == "diameter_mm" || key == "flutes" || key == "helix_deg" || key == "max_plunge_feed_per_tooth_mm") {
       have_diameter = have_diameter || key == "diameter_mm";
       if (!numeric) {
         problems.push_back({"--tool " + key, "= " + value + ": must be a finite number"});
@@ -43,12 +43,23 @@ geometry::Tool parse_tool(const std::string& text, std::vector<InputProblem>& pr
           continue;
         }
         tool.flutes = static_cast<int>(number);
-      } else {
+      } else if (key == "helix_deg") {
         tool.helix_deg = number;
+      } else {
+        tool.max_plunge_feed_per_tooth_mm = number;
       }
     } else {
-      problems.push_back({"--tool", "key '" + key + "' is not known; expected diameter_mm, flutes, helix_deg, name"});
+      problems.push_back({"--tool", "key '" + key +
+                                       "' is not known; expected diameter_mm, flutes, helix_deg, max_plunge_feed_per_tooth_mm, name"});
     }
+  }
+  // The plunge feed per tooth, when given: a positive chip no thicker than the cutter (as a spec's tool section).
+  if (tool.max_plunge_feed_per_tooth_mm != 0.0 &&
+      !(tool.max_plunge_feed_per_tooth_mm > 0.0 && tool.max_plunge_feed_per_tooth_mm <= tool.diameter_mm)) {
+    problems.push_back({"--tool max_plunge_feed_per_tooth_mm",
+                        "= " + shortest_number_text(tool.max_plunge_feed_per_tooth_mm) +
+                            ": must be > 0 mm and at most the diameter (the largest feed per tooth along -Z while "
+                            "the tool descends into material; 0.0025 x diameter when not given)"});
   }
   if (!have_diameter) problems.push_back({"--tool", "= '" + text + "': diameter_mm is required, e.g. diameter_mm=10,flutes=4"});
   if (tool.name.empty()) {

@@ -52,6 +52,40 @@ class OptimizeCliTest : public CliTest {
   std::string db_;
 };
 
+// The plunge beside the slot (X-10, Z 0 → −5 below the stock's top) runs at the tool's plunge feed: F ≤ f_z·Z·n,
+// 0.025 mm per tooth by default for a Ø10 cutter (0.0025·D) or the tool's own from --tool, and on the F level
+// just under it (levels 2 % apart); a plunge feed the tool cannot have is bad input.
+TEST_F(OptimizeCliTest, ThePlungeRunsAtTheToolsPlungeFeed) {
+  const double flutes = 4.0, rpm = 2800.0;  // the program's S and the tool's teeth
+  for (const double f_z : {0.025, 0.01}) {
+    SCOPED_TRACE(f_z);
+    const fs::path output = dir_ / "plunge.ngc";
+    std::string args = optimize_args(output) + " --target-force 550";
+    if (f_z != 0.025) {
+      args.replace(args.find(kTool), kTool.size(),
+                   " --tool diameter_mm=10,flutes=4,helix_deg=30,max_plunge_feed_per_tooth_mm=0.01 ");
+    }
+    const RunResult r = run_feedplan(args);
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+    double plunge_feed = 0.0;
+    for (const std::string& line : lines_of(read_text(output))) {
+      if (line.rfind("G1 X-10.000 Y0.000 Z-5.000", 0) == 0) plunge_feed = std::stod(line.substr(line.find('F') + 1));
+    }
+    const double limit = f_z * flutes * rpm;
+    EXPECT_LE(plunge_feed, limit) << read_text(output);
+    EXPECT_GE(plunge_feed, limit / 1.02 - 1.0) << read_text(output);
+  }
+  const RunResult bad = run_feedplan(
+      "optimize " + kData + "optimize_slot.ngc -o " + (dir_ / "bad.ngc").string() +
+      " --tool diameter_mm=10,flutes=4,max_plunge_feed_per_tooth_mm=12 --material S50C --stock " + kData +
+      "optimize_stock.yaml --db " + db_ + " --target-force 550");
+  EXPECT_EQ(bad.exit_code, 2) << bad.output;
+  EXPECT_NE(bad.output.find("--tool max_plunge_feed_per_tooth_mm = 12: must be > 0 mm and at most the diameter"),
+            std::string::npos)
+      << bad.output;
+  EXPECT_FALSE(fs::exists(dir_ / "bad.ngc"));
+}
+
 TEST_F(OptimizeCliTest, TheReFedProgramHoldsTheTargetWhereTheInputOvershot) {
   constexpr double kTarget = 550.0;
   const fs::path output = dir_ / "refed.ngc";
