@@ -10,25 +10,13 @@
 #include <fstream>
 #include <string>
 
+#include "hard_s50c_materials.hpp"
 #include "run_feedplan.hpp"
 
 namespace feedplan::cli_test {
 namespace {
 
 const std::string kSamples = FEEDPLAN_SAMPLES_DIR;
-
-// The bundled S50C (data/materials.yaml: ktc 2000, krc 600, kac 500, kte 20, kre 20, kae 2) × 1.4.
-constexpr const char* kHardS50C =
-    "materials:\n"
-    "  - name: S50C\n"
-    "    source: the bundled S50C × 1.4 (a machine 40 % harder than the model)\n"
-    "    coefficients:\n"
-    "      ktc_n_per_mm2: 2800\n"
-    "      krc_n_per_mm2: 840\n"
-    "      kac_n_per_mm2: 700\n"
-    "      kte_n_per_mm: 28\n"
-    "      kre_n_per_mm: 28\n"
-    "      kae_n_per_mm: 2.8\n";
 
 class ControlCliTest : public CliTest {
  protected:
