@@ -129,6 +129,17 @@ PathLearning learn_along_path(const planner::PlanResult& plan, const model::Resp
     }
   }
 
+  // The sensor's noise per row, as the logs measured it out of the cut (their mean; 0: not measured).
+  double noise_sum_n = 0.0;
+  int noise_logs = 0;
+  for (const MeasuredRevolutions& log : measured) {
+    if (log.noise.sigma_n > 0.0) {
+      noise_sum_n += log.noise.sigma_n;
+      ++noise_logs;
+    }
+  }
+  const double noise_n = noise_logs > 0 ? noise_sum_n / noise_logs : 0.0;
+
   PathLearning out;
   out.place_correction = had_correction ? previous_correction : std::vector<double>(n, 1.0);
   out.measurement = had_measurement ? previous.measurement : std::vector<PathMeasurement>(n);
@@ -148,7 +159,8 @@ PathLearning learn_along_path(const planner::PlanResult& plan, const model::Resp
     places[i].contact_length_mm = now.contact_length_mm;
     out.bracket[i] = detail::bracket_with(out.bracket[i], now, target_force_n);
     out.place_correction[i] =
-        detail::next_place_correction(places[i], target_force_n, now, before, out.bracket[i], out.place_correction[i]);
+        detail::next_place_correction(places[i], target_force_n, now, before, out.bracket[i], out.place_correction[i],
+                                      noise_n);
     out.measurement[i] = now;
     out.step_force_n[i] = now.force_n;
   }

@@ -63,11 +63,13 @@ double within_reach(const PlaceModel& place, double target_force_n, double c, do
 // The next c with the bracket open on one side: a secant through two spread measurements, or the model's
 // shape scaled to this one (c = F / F̂(t_m)), within kSecantReach of the measured chip.
 double one_sided_correction(const PlaceModel& place, double target_force_n, const PathMeasurement& now,
-                            const PathMeasurement& before) {
+                            const PathMeasurement& before, double noise_n) {
   const double ratio = within_reach(place, target_force_n, now.force_n / place.force_n(now.chip_mm), now.chip_mm);
   if (!(before.force_n > 0.0) || !(before.chip_mm > 0.0)) return ratio;
   const double spread = std::abs(now.chip_mm - before.chip_mm);
   if (spread < kMinSecantSpread * std::max(now.chip_mm, before.chip_mm)) return ratio;
+  const double min_change_n = std::max(kMinSecantForceChange * target_force_n, kSecantNoiseSigmas * noise_n);
+  if (std::abs(now.force_n - before.force_n) < min_change_n) return ratio;
   const double chip_mm = secant_chip_mm(before.chip_mm, before.force_n, now.chip_mm, now.force_n, target_force_n);
   if (!(chip_mm > 0.0)) return ratio;
   const double lo = std::min(now.chip_mm, before.chip_mm) / kSlowingReach;
@@ -85,7 +87,8 @@ double largest_correction_not_slower(const PlaceModel& place, double target_forc
 }
 
 double next_place_correction(const PlaceModel& place, double target_force_n, const PathMeasurement& now,
-                             const PathMeasurement& before, const PlaceBracket& bracket, double previous) {
+                             const PathMeasurement& before, const PlaceBracket& bracket, double previous,
+                             double noise_n) {
   if (!(place.force_n(now.chip_mm) > 0.0)) return previous;
   double c = 0.0;
   if (std::abs(now.force_n - target_force_n) <= kHoldBand * target_force_n) {
@@ -95,7 +98,7 @@ double next_place_correction(const PlaceModel& place, double target_force_n, con
                                            bracket.above_force_n, target_force_n),
                             target_force_n);
   } else {
-    c = one_sided_correction(place, target_force_n, now, before);
+    c = one_sided_correction(place, target_force_n, now, before, noise_n);
   }
   if (!(c > 0.0)) c = now.force_n / place.force_n(now.chip_mm);
   // Never past an end of the bracket: c falls as the t_m it runs grows.

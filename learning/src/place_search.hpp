@@ -26,10 +26,11 @@ struct PlaceModel {
 PlaceBracket bracket_with(const PlaceBracket& bracket, const PathMeasurement& now, double target_force_n);
 
 //! The next c at a place measured `now` (the measurement before: `before`, force 0 when none), with
-//! `bracket` already holding `now`; `previous` when the model predicts no force there. See
-//! learn_along_path for the rule.
+//! `bracket` already holding `now`; `previous` when the model predicts no force there. `noise_n`: the
+//! sensor's noise per row in the log of `now`, N (0: not known). See learn_along_path for the rule.
 double next_place_correction(const PlaceModel& place, double target_force_n, const PathMeasurement& now,
-                             const PathMeasurement& before, const PlaceBracket& bracket, double previous);
+                             const PathMeasurement& before, const PlaceBracket& bracket, double previous,
+                             double noise_n = 0.0);
 
 //! The largest c that does not run the place slower than its bracket's lower end (the thickest chip
 //! measured at or under the target); kMaxPathCorrection when there is none.

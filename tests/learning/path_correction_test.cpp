@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "feedplan/learning/path_correction.hpp"
@@ -196,6 +197,31 @@ TEST(LearnAlongPath, CloseFeedsOrAForceFallingWithTheFeedScaleTheModelInstead) {
   // kSecantReach × 0.07 mm: the step stops there, c · F̂(0.14) = 400 — faster, as the place is under the target.
   const PathLearning falling = learn_along_path(plan, model, {at_sample_5(0.07, 250.0)}, 400.0, first);
   EXPECT_NEAR(falling.place_correction[5] * (100.0 + 2000.0 * 0.07 * kSecantReach), 400.0, 1e-9);
+}
+
+// Two readings over the target at chips 20 % apart: a secant through them is trusted only when their forces
+// differ by more than the noise could make them (kMinSecantForceChange of the target, kSecantNoiseSigmas × the
+// log's noise per row). 440 N at t_m 0.05 mm, then 418 N at 0.04 mm: the secant in ln t_m meets 400 N at
+// t_m = 0.04 · exp((400 − 418) / ((418 − 440) / ln 0.8)) mm, in closed form.
+TEST(LearnAlongPath, ASecantIsTrustedOnlyOnAForceChangeTheNoiseCannotMake) {
+  const auto model = linear_model();
+  const auto plan = plan_on_a_line();
+  const PathLearning first = learn_along_path(plan, model, {at_sample_5(0.05, 440.0)}, 400.0, {});
+  const double secant_chip_mm = 0.04 * std::exp((400.0 - 418.0) / ((418.0 - 440.0) / std::log(0.8)));
+  for (const double noise_n : {0.0, 5.0, 10.0}) {
+    SCOPED_TRACE(noise_n);
+    MeasuredRevolutions log = at_sample_5(0.04, 418.0);
+    log.noise.sigma_n = noise_n;
+    const PathLearning second = learn_along_path(plan, model, {log}, 400.0, first);
+    if (22.0 >= std::max(kMinSecantForceChange * 400.0, kSecantNoiseSigmas * noise_n)) {
+      EXPECT_NEAR(second.place_correction[5], 400.0 / (100.0 + 2000.0 * secant_chip_mm), 1e-9);
+    } else {
+      EXPECT_NEAR(second.place_correction[5], 418.0 / (100.0 + 2000.0 * 0.04), 1e-12);  // the model's shape scaled
+    }
+  }
+  // 6 N apart with no noise measured: under 2 % of the target, the model's shape scaled.
+  const PathLearning close = learn_along_path(plan, model, {at_sample_5(0.04, 434.0)}, 400.0, first);
+  EXPECT_NEAR(close.place_correction[5], 434.0 / 180.0, 1e-12);
 }
 
 TEST(LearnAlongPath, ClampedAndAveragedOverLogs) {

@@ -20,6 +20,12 @@ inline constexpr double kMinPathCorrection = planner::kMinForceCorrection;
 inline constexpr double kMaxPathCorrection = planner::kMaxForceCorrection;  //!< see kMinPathCorrection
 //! Two measurements at a place whose t_m differ by less than this share of the larger give no slope.
 inline constexpr double kMinSecantSpread = 0.15;
+//! … nor do two whose forces differ by less than this share of the target or kSecantNoiseSigmas × the log's
+//! noise per row (PeakNoise::sigma_n), whichever is larger: a slope from a difference the noise can make
+//! sends the next chip anywhere within the reach (family-04, trochoid at 400 N, a loop front read +4.6 and
+//! then +3.7 % over the target at chips 15 % apart: the secant ran it 32 % under the target in cycle 3).
+inline constexpr double kMinSecantForceChange = 0.02;
+inline constexpr double kSecantNoiseSigmas = 3.0;  //!< see kMinSecantForceChange
 //! A step out of the bracket runs at most this factor thicker a chip than measured (speeding up on an
 //! extrapolation: the force's risk) …
 inline constexpr double kSecantReach = 2.0;
@@ -96,7 +102,8 @@ struct PathLearning {
 //!  - bracketed on both sides: the secant through the two ends (F = α + β t_m there; edge forces make α > 0,
 //!    which no ratio to a straight-cut model represents);
 //!  - one side only: the secant through this and the previous measurement when they are at least
-//!    kMinSecantSpread apart in t_m and the force rises; otherwise the model's shape scaled to the
+//!    kMinSecantSpread apart in t_m and the force rises by more than the noise could make it
+//!    (kMinSecantForceChange, kSecantNoiseSigmas × the logs' mean noise per row); otherwise the model's shape scaled to the
 //!    measurement, c = F / F̂(t_m, L); either within kSecantReach thicker and kSlowingReach thinner than the
 //!    chips measured (the corner cut cautiously with a model 40 % soft: +8 % in cycle 2 with the whole
 //!    ratio, within 5 % with the reach);
