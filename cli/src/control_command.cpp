@@ -252,6 +252,15 @@ ControlJob program_job(const ControlOptions& o, const sim::MaterialLibrary& mate
   return job;
 }
 
+// The spindle speed the program cuts at: the machine's (a spec's, --spindle-rpm), else the first S word.
+double job_spindle_rpm(const ControlJob& job) {
+  if (job.machine.spindle_rpm > 0.0) return job.machine.spindle_rpm;
+  for (const geometry::BlockCommand& block : job.program.blocks) {
+    if (block.spindle_rpm > 0.0) return block.spindle_rpm;
+  }
+  return 0.0;
+}
+
 // The sensor as the controller reads it: the tool's radius for the spindle, the currents' calibration the
 // virtual machine's drives follow (seed 002 Eqs. 12–13, sim::ServoCurrentOptions).
 trial::ForceSensorSettings sensor_settings(trial::ForceSensor sensor, const geometry::Tool& tool) {
@@ -350,6 +359,9 @@ int run_control_command(const ControlOptions& o) {
     settings.target_force_n = job.target_force_n;
   }
   controller.max_ratio = settings.max_ratio;
+  controller.min_ratio = settings.min_ratio;
+  controller.flutes = job.machine.tool.flutes;
+  controller.spindle_rpm = job_spindle_rpm(job);
   const trial::ControlLaw law = trial::make_control_law(controller);
 
   ControlOutcome out;
