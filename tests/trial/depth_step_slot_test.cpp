@@ -79,7 +79,9 @@ TEST(DepthStepSlot, EachDepthIsHeldOverItsLengthAndTheBlockEndsPastTheLast) {
       EXPECT_DOUBLE_EQ(block.feed_mm_per_min, 300.0);
       feed_seen = true;
     }
-    if (block.spindle_rpm > 0.0) EXPECT_DOUBLE_EQ(block.spindle_rpm, 2800.0);
+    if (block.spindle_rpm > 0.0) {
+      EXPECT_DOUBLE_EQ(block.spindle_rpm, 2800.0);
+    }
   }
   EXPECT_TRUE(feed_seen);
 }
