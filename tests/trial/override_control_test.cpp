@@ -199,7 +199,9 @@ TEST(OverrideControl, IntegralHoldsTheTargetWhereItsGainWasSetAndLosesItAtTwiceT
 // file comment gives +45 % (F / F_r = 2ρ / (1 + ρ), ρ ≈ 1.6) for an exact doubling; the virtual machine's
 // edge forces make the doubling inexact. Measured: 1 mm within 27–28 N of the target (all three), 2 mm
 // largest errors 270 N (model-reference), 308 N (multi-model-1), 282 N (multi-model-2), the mean +117 …
-// +123 N over both depths. Bounds: seed 002's 50 N at the known depth; at 2 mm an error between 150 N
+// +123 N over both depths. At 2 mm multi-model-1's error is not only an offset: on the same slot made
+// longer (feedplan control with --log) its feed swings between 40 and 360 mm/min, a limit cycle the two
+// others do not have (170–236 mm/min); this test bounds the largest error only. Bounds: seed 002's 50 N at the known depth; at 2 mm an error between 150 N
 // (a third below the closed form's +225 N: it would mean the law had found the new gain, which it cannot)
 // and 400 N (the open loop's +500 N less a fifth: the law would no longer be acting).
 TEST(OverrideControl, ModelReferenceHoldsTheTargetAtTheKnownDepthAndKeepsASteadyErrorAtTheOther) {
