@@ -8,6 +8,7 @@
 #include <iostream>
 #include <optional>
 
+#include "calibration_command.hpp"
 #include "data_path.hpp"
 #include "database_path.hpp"
 #include "model_choice.hpp"
@@ -31,6 +32,8 @@
 #include "feedplan/sim/material.hpp"
 #include "feedplan/trial/control_plot.hpp"
 #include "feedplan/trial/controlled_run.hpp"
+#include "feedplan/trial/depth_step_errors.hpp"
+#include "feedplan/trial/depth_step_slot.hpp"
 
 namespace feedplan::cli {
 
@@ -42,7 +45,8 @@ void add_control_command(CLI::App& app, ControlOptions& options) {
       "prints how well the true per-revolution peaks held the target");
   cmd->add_option("input", options.input_path, "Cycle spec (.yaml) or G-code program (.nc, .ngc)")->required();
   cmd->add_option("--controller", options.controller,
-                  "integral | variable-gain | variable-gain-lathe | robust-servo (seeds 000/001 and 002)")
+                  "integral | variable-gain | variable-gain-lathe | robust-servo | model-reference | multi-model-1 |\n"
+                  "multi-model-2 (seeds 000/001, 002 and 004)")
       ->required();
   add_number_flag(cmd, "--target-force", options.target_force_n,
                   "Force to hold, N (default: the spec's target_force_n): the per-revolution peak |F_xy| for the\n"
@@ -67,6 +71,15 @@ void add_control_command(CLI::App& app, ControlOptions& options) {
                   "PROGRAM only: a stock YAML or a cycle spec; default: a solid block around the program below z = 0");
   cmd->add_option("--material", options.material_name, "PROGRAM only: the workpiece material (name or alias)");
   add_number_flag(cmd, "--spindle-rpm", options.spindle_rpm, "PROGRAM only: spindle speed for blocks without S, rev/min");
+  cmd->add_option("--depth-steps", options.depth_steps,
+                  "SPEC only: cut a straight full-width slot through a block instead of the spec's cycle, its axial\n"
+                  "depth stepping through D1,D2,… mm (at least 2, each in (0, tool diameter]); prints each depth's\n"
+                  "steady error");
+  add_number_flag(cmd, "--step-length", options.step_length_mm,
+                  "With --depth-steps: each depth is held for this, mm (default 30; > the tool's diameter)");
+  cmd->add_option("--calibration", options.calibration_path,
+                  "With --sensor currents: the calibration written by `feedplan calibrate-currents -o FILE`,\n"
+                  "instead of the virtual machine's own drive constants");
 }
 
 namespace {
@@ -96,7 +109,43 @@ struct ControlChoice {
   trial::ControllerKind controller = trial::ControllerKind::kRobustServo;
   trial::ForceSensor sensor = trial::ForceSensor::kDynamometer;
   bool program = false;  // a G-code program, not a spec
+  std::vector<double> depths_mm;  // --depth-steps, parsed (empty: the spec's cycle)
 };
+
+// --depth-steps' list: numbers separated by commas, each named by its place when it is not one.
+std::vector<double> parse_depth_steps(const std::string& text, std::vector<InputProblem>& problems) {
+  std::vector<double> depths;
+  std::size_t start = 0;
+  int index = 0;
+  while (start <= text.size()) {
+    const std::size_t comma = std::min(text.find(',', start), text.size());
+    const std::string item = text.substr(start, comma - start);
+    double value = 0.0;
+    std::size_t used = 0;
+    bool ok = false;
+    try {
+      value = std::stod(item, &used);
+      ok = used == item.size() && std::isfinite(value);
+    } catch (const std::exception&) {
+      ok = false;
+    }
+    if (!ok) {
+      std::string message = "= '";
+      message += text;
+      message += "': item ";
+      message += std::to_string(index + 1);
+      message += " '";
+      message += item;
+      message += "' is not a finite number (depths in mm, e.g. --depth-steps 1,2)";
+      problems.push_back({"--depth-steps", std::move(message)});
+      return {};
+    }
+    depths.push_back(value);
+    ++index;
+    start = comma + 1;
+  }
+  return depths;
+}
 
 void check_program_only_flags(const ControlOptions& o, bool program, std::vector<InputProblem>& problems) {
   if (program) {
@@ -137,6 +186,27 @@ ControlChoice read_control_choice(const ControlOptions& o) {
     problems.push_back({"input", "= '" + o.input_path + "': must be a cycle spec (.yaml, .yml) or a G-code program (.nc, .ngc)"});
   }
   check_program_only_flags(o, choice.program, problems);
+  if (!o.depth_steps.empty()) {
+    if (choice.program) {
+      problems.push_back({"--depth-steps", "applies to a cycle spec (it cuts a slot with the spec's tool, material and feed); "
+                                           "a PROGRAM is run as written"});
+    } else if (o.hybrid) {
+      problems.push_back({"--depth-steps", "conflicts with --hybrid: the slot is cut at the spec's constant feed"});
+    } else {
+      choice.depths_mm = parse_depth_steps(o.depth_steps, problems);
+      if (!choice.depths_mm.empty() && choice.depths_mm.size() < 2) {
+        std::string message = "= '";
+        message += o.depth_steps;
+        message += "': must give at least 2 depths, e.g. 1,2";
+        problems.push_back({"--depth-steps", std::move(message)});
+      }
+    }
+  } else if (o.step_length_mm) {
+    problems.push_back({"--step-length", "only applies with --depth-steps"});
+  }
+  if (!o.calibration_path.empty() && choice.sensor != trial::ForceSensor::kServoCurrents) {
+    problems.push_back({"--calibration", "only applies with --sensor currents (the calibration turns currents into forces)"});
+  }
   check_flag(problems, "--target-force", o.target_force_n, {0.0, false}, "the force to hold, N");
   check_flag(problems, "--machine-scale", o.machine_scale, {0.1, false, 10.0, false},
              "the virtual machine's forces over the material's");
@@ -151,7 +221,8 @@ ControlChoice read_control_choice(const ControlOptions& o) {
                  {"--machine", o.machine_path},
                  {"--stock", o.stock_path},
                  {"--db", o.hybrid ? database_path(o.db_path) : ""},
-                 {"--materials", o.materials_path.empty() ? bundled_materials_path() : o.materials_path}},
+                 {"--materials", o.materials_path.empty() ? bundled_materials_path() : o.materials_path},
+                 {"--calibration", o.calibration_path}},
                 {{"--log", o.log_path}, {"--plot", o.plot_path}}, problems);
   if (!problems.empty()) throw InputError(std::move(problems));
   return choice;
@@ -167,6 +238,7 @@ struct ControlJob {
   std::vector<std::string> notes;
   bool hybrid = false;
   std::optional<double> planned_cycle_time_s;  // --hybrid: the plan's own prediction
+  std::optional<trial::DepthStepSlot> slot;    // --depth-steps: the slot cut instead of the cycle
 };
 
 // The virtual machine's physics: --machine's file on `tool`, else the material × --machine-scale.
@@ -184,7 +256,7 @@ void set_physics(const ControlOptions& o, const sim::MaterialLibrary& materials,
   job.machine_text = "virtual machine: " + m.name + (scale == 1.0 ? "" : " × " + shortest_number_text(scale));
 }
 
-ControlJob spec_job(const ControlOptions& o, const sim::MaterialLibrary& materials) {
+ControlJob spec_job(const ControlOptions& o, const sim::MaterialLibrary& materials, const std::vector<double>& choice_depths) {
   const cycles::CycleSpec spec = cycles::load_cycle_spec(o.input_path);
   std::vector<InputProblem> problems;
   if (!o.target_force_n && !(spec.target_force_n > 0.0)) {
@@ -197,8 +269,48 @@ ControlJob spec_job(const ControlOptions& o, const sim::MaterialLibrary& materia
                         "feed_mm_per_min, or give --hybrid to run the plan's program"});
   }
   if (!problems.empty()) throw InputError(std::move(problems));
-  const cycles::Cycle cycle = cycles::generate(spec);
   ControlJob job;
+  if (!choice_depths.empty()) {
+    trial::DepthStepSlotRequest request;
+    request.tool = spec.tool;
+    request.depths_mm = choice_depths;
+    request.step_length_mm = o.step_length_mm.value_or(30.0);
+    request.feed_mm_per_min = *spec.feed_mm_per_min;
+    request.spindle_rpm = spec.spindle_rpm;
+    std::vector<InputProblem> slot_problems;
+    for (InputProblem& p : trial::validate(request, "")) {
+      if (p.field.rfind("depths_mm", 0) == 0) {
+        p.message = p.field.substr(9) + " " + p.message;
+        p.field = "--depth-steps";
+      } else if (p.field == "step_length_mm") {
+        p.field = "--step-length";
+      }
+      slot_problems.push_back(std::move(p));
+    }
+    if (!slot_problems.empty()) throw InputError(std::move(slot_problems));
+    job.slot = trial::make_depth_step_slot(request);
+    job.target_force_n = o.target_force_n.value_or(spec.target_force_n);
+    set_physics(o, materials, spec.material, o.input_path + ": material", spec.tool, job);
+    job.machine.stock = job.slot->stock;
+    job.machine.machine = spec.machine;
+    job.machine.spindle_rpm = spec.spindle_rpm;
+    job.program = job.slot->program;
+    std::string depths;
+    for (double d : choice_depths) {
+      if (!depths.empty()) depths += ", ";
+      depths += shortest_number_text(d);
+    }
+    job.name = o.input_path;
+    job.name += ": depth-step slot (";
+    job.name += depths;
+    job.name += " mm, each held ";
+    job.name += shortest_number_text(request.step_length_mm);
+    job.name += " mm) at ";
+    job.name += shortest_number_text(request.feed_mm_per_min);
+    job.name += " mm/min under the controller";
+    return job;
+  }
+  const cycles::Cycle cycle = cycles::generate(spec);
   job.target_force_n = o.target_force_n.value_or(spec.target_force_n);
   set_physics(o, materials, spec.material, o.input_path + ": material", spec.tool, job);
   job.machine.stock = cycle.stock;
@@ -252,16 +364,43 @@ ControlJob program_job(const ControlOptions& o, const sim::MaterialLibrary& mate
   return job;
 }
 
+// The spindle speed the program cuts at: the machine's (a spec's, --spindle-rpm), else the first S word.
+double job_spindle_rpm(const ControlJob& job) {
+  if (job.machine.spindle_rpm > 0.0) return job.machine.spindle_rpm;
+  for (const geometry::BlockCommand& block : job.program.blocks) {
+    if (block.spindle_rpm > 0.0) return block.spindle_rpm;
+  }
+  return 0.0;
+}
+
 // The sensor as the controller reads it: the tool's radius for the spindle, the currents' calibration the
 // virtual machine's drives follow (seed 002 Eqs. 12–13, sim::ServoCurrentOptions).
-trial::ForceSensorSettings sensor_settings(trial::ForceSensor sensor, const geometry::Tool& tool) {
+// With --calibration, the file's instead.
+trial::ForceSensorSettings sensor_settings(trial::ForceSensor sensor, const geometry::Tool& tool,
+                                           const std::optional<learning::CurrentCalibration>& calibration) {
   trial::ForceSensorSettings settings;
   settings.sensor = sensor;
   settings.tool_radius_mm = tool.radius_mm();
+  if (calibration) {
+    settings.calibration = *calibration;
+    return settings;
+  }
   const sim::ServoCurrentOptions drives;
   settings.calibration.x = {drives.x.a_amp, drives.x.b_amp_per_n, 1.0, 0};
   settings.calibration.y = {drives.y.a_amp, drives.y.b_amp_per_n, 1.0, 0};
   return settings;
+}
+
+// Which calibration the currents are read with, in words.
+std::string calibration_text(const ControlOptions& o, const trial::ForceSensorSettings& sensor) {
+  std::string text = o.calibration_path.empty() ? "the virtual machine's own drive constants" : "calibration ";
+  if (!o.calibration_path.empty()) text += o.calibration_path;
+  char numbers[160];
+  std::snprintf(numbers, sizeof numbers, " (x: I = %.4f A + %.6f A/N · |F|, y: I = %.4f A + %.6f A/N · |F|)",
+                sensor.calibration.x.a_a, sensor.calibration.x.b_a_per_n, sensor.calibration.y.a_a,
+                sensor.calibration.y.b_a_per_n);
+  text += numbers;
+  return text;
 }
 
 std::string sensor_text(trial::ForceSensor sensor) {
@@ -276,6 +415,7 @@ std::string sensor_text(trial::ForceSensor sensor) {
 // The run and, with --hybrid, the plan's program alone on the same machine.
 struct ControlOutcome {
   trial::ControlledRun run;
+  std::vector<trial::DepthSteadyError> depths;  // --depth-steps: each depth's steady error
   std::optional<trial::ControlJudgement> plan_alone;
 };
 
@@ -301,6 +441,18 @@ void print_json(const ControlOptions& o, const ControlChoice& choice, const Cont
   json["result"] = judgement_json(out.run.judgement);
   if (out.plan_alone) json["plan_alone"] = judgement_json(*out.plan_alone);
   if (job.planned_cycle_time_s) json["planned_cycle_time_s"] = *job.planned_cycle_time_s;
+  if (job.slot) {
+    nlohmann::json depths = nlohmann::json::array();
+    for (const trial::DepthSteadyError& d : out.depths) {
+      depths.push_back({{"depth_mm", d.depth_mm},
+                        {"steady_from_x_mm", d.from_x_mm},
+                        {"steady_to_x_mm", d.to_x_mm},
+                        {"revolutions", d.revolutions},
+                        {"steady_error_n", d.max_abs_error_n},
+                        {"mean_error_n", d.mean_error_n}});
+    }
+    json["depth_steps"] = depths;
+  }
   int stepped = 0;
   for (const trial::ControlStep& step : out.run.trace.steps) stepped += step.in_cut ? 1 : 0;
   json["controller_steps"] = stepped;
@@ -325,6 +477,12 @@ void print_text(const ControlOptions& o, const ControlChoice& choice, const Cont
   print_judgement("under control", out.run.judgement);
   if (out.plan_alone) print_judgement("plan alone   ", *out.plan_alone);
   if (job.planned_cycle_time_s) std::printf("the plan predicted %.3f s\n", *job.planned_cycle_time_s);
+  for (const trial::DepthSteadyError& d : out.depths) {
+    std::printf("depth %s mm: steady error %.1f N (largest |peak − target| over %d revolutions at x %.1f…%.1f mm), "
+                "mean %+.1f N\n",
+                shortest_number_text(d.depth_mm).c_str(), d.max_abs_error_n, d.revolutions, d.from_x_mm, d.to_x_mm,
+                d.mean_error_n);
+  }
   if (!o.log_path.empty()) std::printf("force log written to %s\n", o.log_path.c_str());
   if (!o.plot_path.empty()) std::printf("plot written to %s\n", o.plot_path.c_str());
   for (const std::string& note : job.notes) std::printf("note: %s\n", note.c_str());
@@ -336,13 +494,16 @@ int run_control_command(const ControlOptions& o) {
   const ControlChoice choice = read_control_choice(o);
   const std::string materials_path = o.materials_path.empty() ? bundled_materials_path() : o.materials_path;
   const sim::MaterialLibrary materials = sim::load_materials(materials_path);
-  ControlJob job = choice.program ? program_job(o, materials) : spec_job(o, materials);
+  ControlJob job = choice.program ? program_job(o, materials) : spec_job(o, materials, choice.depths_mm);
 
   trial::ControllerSettings controller;
   controller.kind = choice.controller;
   controller.target_force_n = job.target_force_n;
   trial::OverrideControlSettings settings;
-  const trial::ForceSensorSettings sensor = sensor_settings(choice.sensor, job.machine.tool);
+  std::optional<learning::CurrentCalibration> calibration;
+  if (!o.calibration_path.empty()) calibration = load_current_calibration(o.calibration_path);
+  const trial::ForceSensorSettings sensor = sensor_settings(choice.sensor, job.machine.tool, calibration);
+  if (choice.sensor == trial::ForceSensor::kServoCurrents) job.notes.push_back("currents read with " + calibration_text(o, sensor));
   if (job.hybrid) {
     settings = trial::hybrid_override_settings(sensor, job.target_force_n);
   } else {
@@ -350,6 +511,15 @@ int run_control_command(const ControlOptions& o) {
     settings.target_force_n = job.target_force_n;
   }
   controller.max_ratio = settings.max_ratio;
+  controller.min_ratio = settings.min_ratio;
+  controller.flutes = job.machine.tool.flutes;
+  controller.spindle_rpm = job_spindle_rpm(job);
+  if (trial::is_model_reference(choice.controller) && !(controller.spindle_rpm > 0.0)) {
+    std::string message = "is required with --controller ";
+    message += o.controller;
+    message += " when the program has no S word: the controller's plant needs the spindle speed";
+    throw InputError("--spindle-rpm", std::move(message));
+  }
   const trial::ControlLaw law = trial::make_control_law(controller);
 
   ControlOutcome out;
@@ -376,7 +546,11 @@ int run_control_command(const ControlOptions& o) {
     }
     machine.keep_log = false;
     if (log_file) machine.log_sink = &*log_file;
+    trial::PositionTrack track;
+    force_log::ForceLogFanOut both({log_file ? static_cast<force_log::ForceLogSink*>(&*log_file) : &track, &track});
+    if (job.slot) machine.log_sink = log_file ? static_cast<force_log::ForceLogSink*>(&both) : &track;
     out.run = trial::run_under_control(job.program, machine, settings, law);
+    if (job.slot) out.depths = trial::depth_steady_errors(*job.slot, out.run.simulation.revolutions, track, job.target_force_n);
   }
 
   OutputFiles files;

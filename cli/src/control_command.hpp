@@ -28,6 +28,9 @@ struct ControlOptions {
   std::string stock_path;                     //!< --stock, PROGRAM only
   std::string material_name;                  //!< --material, PROGRAM only
   std::optional<double> spindle_rpm;          //!< --spindle-rpm, PROGRAM only: for blocks without S
+  std::string depth_steps;                    //!< --depth-steps D1,D2,…, mm: SPEC only, a depth-step slot instead of the cycle
+  std::optional<double> step_length_mm;       //!< --step-length L, mm (default 30): each depth held for L
+  std::string calibration_path;               //!< --calibration FILE: the currents' calibration (--sensor currents)
 };
 
 //! Registers the subcommand.

@@ -95,6 +95,17 @@ void FrohModelReferenceController::set_depth_of_cut_mm(double depth_mm) {
   plant_copy_.set_system(milling_system(parameters_.plant, depth_mm));
 }
 
+void FrohModelReferenceController::start_in_steady_state(double force_n, double ratio) {
+  assert(samples_ == 0 && std::isfinite(force_n) && std::isfinite(ratio) && ratio >= 0.0);
+  const double feed_mm_per_s = applied_command(ratio * parameters_.programmed_feed_mm_per_min / 60.0);
+  const double reference_n = parameters_.reference_force_n;
+  reference_n_ = {reference_n, reference_n, reference_n};
+  force_n_ = {force_n, force_n, force_n};
+  commands_ = {feed_mm_per_s, feed_mm_per_s};
+  plant_copy_.set_state({feed_mm_per_s, force_n});
+  reference_copy_.set_state({reference_n, 0.0});
+}
+
 double FrohModelReferenceController::held_feed_mm_per_s(double fraction_of_period) const {
   return fractional_hold_output(commands_[0], commands_[1], active_beta_, fraction_of_period);
 }

@@ -35,8 +35,8 @@ double IntegralForceController::step(double measured_force_n, double dt_s) {
   const double programmed = parameters_.programmed_feed_mm_per_min;
   const double error_n = parameters_.reference_force_n - measured_force_n;
   integrator_mm_per_min_ = std::clamp(
-      integrator_mm_per_min_ + parameters_.controller_gain_mm_per_min_per_n_s * dt_s * error_n, 0.0,
-      parameters_.override_range.max_ratio * programmed);
+      integrator_mm_per_min_ + parameters_.controller_gain_mm_per_min_per_n_s * dt_s * error_n,
+      parameters_.override_range.min_ratio * programmed, parameters_.override_range.max_ratio * programmed);
   const double ratio = applied_override(parameters_.override_range, integrator_mm_per_min_ / programmed);
   applied_feed_mm_per_min_ = ratio * programmed;
   return ratio;

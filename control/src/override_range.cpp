@@ -13,6 +13,11 @@ std::vector<InputProblem> validate(const OverrideRange& range, const std::string
   ProblemList problems(field_prefix);
   problems.positive("max_ratio", range.max_ratio);
   problems.non_negative("step_ratio", range.step_ratio);
+  problems.non_negative("min_ratio", range.min_ratio);
+  if (std::isfinite(range.max_ratio) && std::isfinite(range.min_ratio) && range.min_ratio > range.max_ratio) {
+    problems.add_value("min_ratio", shortest_number_text(range.min_ratio),
+                       "must be ≤ max_ratio = " + shortest_number_text(range.max_ratio));
+  }
   if (std::isfinite(range.max_ratio) && std::isfinite(range.step_ratio) && range.step_ratio > range.max_ratio) {
     problems.add_value("step_ratio", shortest_number_text(range.step_ratio),
                        "must be ≤ max_ratio = " + shortest_number_text(range.max_ratio));
@@ -38,10 +43,11 @@ std::vector<InputProblem> validate_override_start(const OverrideRange& range, do
 
 double applied_override(const OverrideRange& range, double ratio) {
   assert(!std::isnan(ratio));
-  const double clamped = std::clamp(ratio, 0.0, range.max_ratio);
+  const double clamped = std::clamp(ratio, range.min_ratio, range.max_ratio);
   if (range.step_ratio <= 0.0) return clamped;
   const double top_step = std::floor(range.max_ratio / range.step_ratio + 1e-9);
-  const double steps = std::min(std::round(clamped / range.step_ratio), top_step);
+  const double bottom_step = std::min(std::ceil(range.min_ratio / range.step_ratio - 1e-9), top_step);
+  const double steps = std::clamp(std::round(clamped / range.step_ratio), bottom_step, top_step);
   return steps * range.step_ratio;
 }
 

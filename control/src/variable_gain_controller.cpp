@@ -42,7 +42,8 @@ double VariableGainController::step(double measured_force_n, double dt_s) {
   controller_gain_ = std::max(
       0.0, controller_gain_ + p.adaptation_rate_c2 * dt_s * (p.desired_loop_gain_per_s - controller_gain_ * model_gain_));
   integrator_mm_per_min_ =
-      std::clamp(integrator_mm_per_min_ + controller_gain_ * dt_s * (p.reference_force_n - measured_force_n), 0.0,
+      std::clamp(integrator_mm_per_min_ + controller_gain_ * dt_s * (p.reference_force_n - measured_force_n),
+                 p.override_range.min_ratio * p.programmed_feed_mm_per_min,
                  p.override_range.max_ratio * p.programmed_feed_mm_per_min);
   const double ratio = applied_override(p.override_range, integrator_mm_per_min_ / p.programmed_feed_mm_per_min);
   applied_feed_mm_per_min_ = ratio * p.programmed_feed_mm_per_min;

@@ -116,7 +116,7 @@ TEST_F(CompareCliTest, RowsAgreeWithPlanSimulateAndSimulateAndTheTableWithTheJso
   const std::string json_text = read_text(out_dir / "compare.json");
   const nlohmann::json out = nlohmann::json::parse(json_text);
   EXPECT_EQ(json_of(r.output), out);  // --json prints the file's content
-  ASSERT_EQ(out["rows"].size(), 9u);
+  ASSERT_EQ(out["rows"].size(), 12u);  // constant, cycles 1 and N, seven controllers, two hybrids
   EXPECT_EQ(out["learning_cycles"].get<int>(), 2);
   EXPECT_EQ(out["learning"].size(), 1u);
   EXPECT_DOUBLE_EQ(out["target_force_n"].get<double>(), kTargetN);

@@ -7,6 +7,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
+#include <cmath>
 #include <fstream>
 #include <string>
 
@@ -112,12 +114,75 @@ TEST_F(ControlCliTest, BadFlagsExitTwoNamingTheFlag) {
       {"control " + kSamples + "/trochoid_constant_feed.ngc --controller integral --material S50C --target-force 300",
        "--tool is required with a PROGRAM"},
       {"control " + kSamples + "/README.md --controller integral", "input = '"},
+      {"control " + kSamples + "/trochoid_constant_feed.ngc --controller integral --tool diameter_mm=10,flutes=4,helix_deg=30 "
+       "--material S50C --target-force 300 --depth-steps 1,2",
+       "--depth-steps applies to a cycle spec"},
+      {"control " + spec + " --controller integral --depth-steps 1", "--depth-steps = '1': must give at least 2 depths"},
+      {"control " + spec + " --controller integral --depth-steps 1,x", "item 2 'x' is not a finite number"},
+      {"control " + spec + " --controller integral --depth-steps 1,20", "--depth-steps [1] = 20: must be finite and in (0, 10]"},
+      {"control " + spec + " --controller integral --depth-steps 1,2 --step-length 5", "--step-length = 5: must be finite and > 10"},
+      {"control " + spec + " --controller integral --step-length 40", "--step-length only applies with --depth-steps"},
+      {"control " + spec + " --controller integral --depth-steps 1,2 --hybrid", "--depth-steps conflicts with --hybrid"},
+      {"control " + spec + " --controller integral --calibration x.json", "--calibration only applies with --sensor currents"},
   };
   for (const auto& [arguments, expected] : cases) {
     const RunResult r = run_feedplan(arguments);
     EXPECT_EQ(r.exit_code, 2) << arguments << "\n" << r.output;
     EXPECT_NE(r.output.find(expected), std::string::npos) << arguments << "\n" << r.output;
   }
+}
+
+// --depth-steps: the slot's depths and steady windows as worked out by hand for the corner's Ø10 mm tool
+// held 30 mm each (1 mm: x 0…30, steady from 15; a 2 mm ramp; 2 mm: x 32…62, steady from 47), each with
+// revolutions in its window and a steady error no larger than the run's largest miss of the target.
+TEST_F(ControlCliTest, DepthStepsCutASlotAndReportEachDepthsSteadyError) {
+  const RunResult r =
+      run_feedplan("control " + corner_with_feed().string() + " --controller multi-model-1 --depth-steps 1,2 --json");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const nlohmann::json out = json_of(r);
+  ASSERT_EQ(out["depth_steps"].size(), 2u) << r.output;
+  const double windows[2][3] = {{1.0, 15.0, 30.0}, {2.0, 47.0, 62.0}};
+  const double largest_miss = std::max(out["result"]["max_peak_n"].get<double>() - 350.0, 350.0);
+  for (int i = 0; i < 2; ++i) {
+    const nlohmann::json& d = out["depth_steps"][i];
+    EXPECT_DOUBLE_EQ(d["depth_mm"].get<double>(), windows[i][0]);
+    EXPECT_DOUBLE_EQ(d["steady_from_x_mm"].get<double>(), windows[i][1]);
+    EXPECT_DOUBLE_EQ(d["steady_to_x_mm"].get<double>(), windows[i][2]);
+    EXPECT_GT(d["revolutions"].get<int>(), 10);
+    EXPECT_LE(d["steady_error_n"].get<double>(), largest_miss);
+    EXPECT_LE(std::abs(d["mean_error_n"].get<double>()), d["steady_error_n"].get<double>() + 1e-9);
+  }
+  const RunResult text = run_feedplan("control " + corner_with_feed().string() + " --controller integral --depth-steps 1,2");
+  ASSERT_EQ(text.exit_code, 0) << text.output;
+  EXPECT_NE(text.output.find("depth 1 mm: steady error"), std::string::npos) << text.output;
+  EXPECT_NE(text.output.find("depth 2 mm: steady error"), std::string::npos) << text.output;
+}
+
+// --calibration: a file with the virtual machine's own constants (seed 002 Eqs. 12–13) gives the run
+// without it to the newton; one whose slopes are doubled reads half the force, so the controller cuts
+// harder — the file is what the currents are read with.
+TEST_F(ControlCliTest, CalibrationFileIsWhatTheCurrentsAreReadWith) {
+  const auto calibration = [&](const char* name, double scale) {
+    const fs::path path = dir_ / name;
+    nlohmann::json doc{{"format", "feedplan-current-calibration"},
+                       {"format_version", 1},
+                       {"x", {{"a_a", 4.12}, {"b_a_per_n", 0.00362 * scale}}},
+                       {"y", {{"a_a", 7.24}, {"b_a_per_n", 0.00450 * scale}}},
+                       {"z", {{"a_a", 0.0}, {"b_a_per_n", 0.0}}}};
+    std::ofstream(path) << doc.dump();
+    return path.string();
+  };
+  const std::string base = "control " + corner_with_feed().string() + " --controller integral --sensor currents --json";
+  const RunResult own = run_feedplan(base);
+  const RunResult same = run_feedplan(base + " --calibration " + calibration("same.json", 1.0));
+  const RunResult doubled = run_feedplan(base + " --calibration " + calibration("doubled.json", 2.0));
+  ASSERT_EQ(own.exit_code, 0) << own.output;
+  ASSERT_EQ(same.exit_code, 0) << same.output;
+  ASSERT_EQ(doubled.exit_code, 0) << doubled.output;
+  const double own_peak = json_of(own)["result"]["max_peak_n"].get<double>();
+  EXPECT_NEAR(json_of(same)["result"]["max_peak_n"].get<double>(), own_peak, 1e-6);
+  EXPECT_GT(json_of(doubled)["result"]["max_peak_n"].get<double>(), 1.2 * own_peak);
+  EXPECT_NE(same.output.find("same.json"), std::string::npos) << same.output;
 }
 
 TEST_F(ControlCliTest, AnOutputThatCannotBeWrittenIsBadInputAndLeavesTheOthersUntouched) {

@@ -192,6 +192,36 @@ TEST(OverrideControl, IntegralHoldsTheTargetWhereItsGainWasSetAndLosesItAtTwiceT
   EXPECT_GT(s.second_depth_max_abs_error_n, 2.0 * kBoundN);
 }
 
+// Seed 004's model-reference controllers on the same slot, their known plant the 1 mm depth's (the
+// programmed feed cutting at the target, K_p0 = 5 N/%), never told of the step to 2 mm (the machine
+// cannot know it). They have no integrator (trial/model_reference_law.hpp): at 1 mm they hold the target,
+// at 2 mm, where the process gain about doubles, they keep a steady error — the closed form of the law's
+// file comment gives +45 % (F / F_r = 2ρ / (1 + ρ), ρ ≈ 1.6) for an exact doubling; the virtual machine's
+// edge forces make the doubling inexact. Measured: 1 mm within 27–28 N of the target (all three), 2 mm
+// largest errors 270 N (model-reference), 308 N (multi-model-1), 282 N (multi-model-2), the mean +117 …
+// +123 N over both depths. At 2 mm multi-model-1's error is not only an offset: on the same slot made
+// longer (feedplan control with --log) its feed swings between 40 and 360 mm/min, a limit cycle the two
+// others do not have (170–236 mm/min); this test bounds the largest error only. Bounds: seed 002's 50 N at the known depth; at 2 mm an error between 150 N
+// (a third below the closed form's +225 N: it would mean the law had found the new gain, which it cannot)
+// and 400 N (the open loop's +500 N less a fifth: the law would no longer be acting).
+TEST(OverrideControl, ModelReferenceHoldsTheTargetAtTheKnownDepthAndKeepsASteadyErrorAtTheOther) {
+  for (const ControllerKind kind : {ControllerKind::kModelReference, ControllerKind::kMultiModel1, ControllerKind::kMultiModel2}) {
+    ControllerSettings settings;
+    settings.kind = kind;
+    settings.target_force_n = kTargetN;
+    settings.spindle_rpm = 600.0;
+    settings.flutes = 2;
+    settings.min_ratio = 0.1;
+    const ControlledRun run = run_slot(make_control_law(settings));
+    const SteadyPeaks s = steady_peaks(run);
+    print(std::string(to_string(kind)).c_str(), s, run);
+    ASSERT_GE(s.revolutions, kMinSteadyRevolutions);
+    EXPECT_LE(s.first_depth_max_abs_error_n, kBoundN) << to_string(kind);
+    EXPECT_GT(s.second_depth_max_abs_error_n, 150.0) << to_string(kind);
+    EXPECT_LT(s.second_depth_max_abs_error_n, 400.0) << to_string(kind);
+  }
+}
+
 TEST(OverrideControl, SensorsReadTheForceTheyAreCalibratedFor) {
   // One reading, each sensor's conversion against the force it was made from.
   sim::SensorReading reading;

@@ -124,18 +124,22 @@ TEST_F(StrategyComparisonTest, EveryRowIsWhatItsStrategyGivesAlone) {
   EXPECT_GT(progress_calls, 0);
   EXPECT_DOUBLE_EQ(last_progress, 1.0);
 
-  // The rows, in order: constant, cycle 1, cycle N, four controllers alone, the hybrid on cycle 1 and on N.
-  ASSERT_EQ(comparison.rows.size(), 9u);
+  // The rows, in order: constant, cycle 1, cycle N, seven controllers alone, the hybrid on cycle 1 and on N.
+  ASSERT_EQ(comparison.rows.size(), 12u);
   const StrategyKind kinds[] = {StrategyKind::kConstantFeed, StrategyKind::kFeedForward, StrategyKind::kFeedForward,
+                                StrategyKind::kFeedback,     StrategyKind::kFeedback,    StrategyKind::kFeedback,
                                 StrategyKind::kFeedback,     StrategyKind::kFeedback,    StrategyKind::kFeedback,
                                 StrategyKind::kFeedback,     StrategyKind::kHybrid,      StrategyKind::kHybrid};
   for (std::size_t k = 0; k < comparison.rows.size(); ++k) EXPECT_EQ(comparison.rows[k].kind, kinds[k]) << k;
   EXPECT_EQ(comparison.rows[1].plan_cycle, 1);
   EXPECT_EQ(comparison.rows[2].plan_cycle, 2);
-  EXPECT_EQ(comparison.rows[8].plan_cycle, 2);
+  EXPECT_EQ(comparison.rows[11].plan_cycle, 2);
   EXPECT_EQ(comparison.rows[3].controller, ControllerKind::kIntegral);
   EXPECT_EQ(comparison.rows[6].controller, ControllerKind::kRobustServo);
-  EXPECT_EQ(comparison.rows[7].controller, ControllerKind::kRobustServo);
+  EXPECT_EQ(comparison.rows[7].controller, ControllerKind::kModelReference);
+  EXPECT_EQ(comparison.rows[8].controller, ControllerKind::kMultiModel1);
+  EXPECT_EQ(comparison.rows[9].controller, ControllerKind::kMultiModel2);
+  EXPECT_EQ(comparison.rows[10].controller, ControllerKind::kRobustServo);
 
   VirtualMachine machine = request.machine;
   // Constant feed: the program at one F, simulated.
@@ -179,13 +183,23 @@ TEST_F(StrategyComparisonTest, EveryRowIsWhatItsStrategyGivesAlone) {
   ControllerSettings servo;
   servo.kind = ControllerKind::kRobustServo;
   servo.target_force_n = target_n;
+  servo.min_ratio = alone.min_ratio;
+  servo.max_ratio = alone.max_ratio;
   const ControlledRun servo_run = run_under_control(constant, machine, alone, make_control_law(servo));
   expect_row_is_run(comparison.rows[6], servo_run.simulation, target_n);
+  // Seed 004's scheme 1 alone, told the machine's spindle speed and flutes.
+  ControllerSettings froh = servo;
+  froh.kind = ControllerKind::kMultiModel1;
+  froh.spindle_rpm = machine.spindle_rpm;
+  froh.flutes = machine.tool.flutes;
+  const ControlledRun froh_run = run_under_control(constant, machine, alone, make_control_law(froh));
+  expect_row_is_run(comparison.rows[8], froh_run.simulation, target_n);
   // The hybrid on cycle 1: the robust servo within 70–130 % on the plan's program.
   const OverrideControlSettings trim = hybrid_override_settings(alone.sensor, target_n);
+  servo.min_ratio = trim.min_ratio;
   servo.max_ratio = trim.max_ratio;
   const ControlledRun hybrid_run = run_under_control(first.program, machine, trim, make_control_law(servo));
-  expect_row_is_run(comparison.rows[7], hybrid_run.simulation, target_n);
+  expect_row_is_run(comparison.rows[10], hybrid_run.simulation, target_n);
 }
 
 TEST_F(StrategyComparisonTest, ProgramsGoThroughAsReceived) {

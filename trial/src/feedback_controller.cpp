@@ -11,6 +11,7 @@
 #include "feedplan/control/override_range.hpp"
 #include "feedplan/control/variable_gain_controller.hpp"
 #include "feedplan/core/number_text.hpp"
+#include "feedplan/trial/model_reference_law.hpp"
 
 namespace feedplan::trial {
 
@@ -41,9 +42,9 @@ ControlLaw integral_law(const ControllerSettings& settings) {
   p.controller_gain_mm_per_min_per_n_s = settings.loop_gain_per_s / start_process_gain(settings);
   p.programmed_feed_mm_per_min = kProgrammedFeedPercent;
   p.initial_feed_mm_per_min = kProgrammedFeedPercent;
-  p.override_range = {settings.max_ratio, 0.0};
+  p.override_range = {settings.max_ratio, 0.0, settings.min_ratio};
   auto controller = std::make_shared<control::IntegralForceController>(p);
-  return {[controller](double force_n, double dt_s) { return controller->step(force_n, dt_s); }, kSeedPeriodS, false};
+  return {[controller](double force_n, double dt_s) { return controller->step(force_n, dt_s); }, kSeedPeriodS, false, {}};
 }
 
 ControlLaw variable_gain_law(const ControllerSettings& settings, bool lathe) {
@@ -56,9 +57,9 @@ ControlLaw variable_gain_law(const ControllerSettings& settings, bool lathe) {
   p.initial_model_gain_n_per_mm_per_min = gain;
   p.programmed_feed_mm_per_min = kProgrammedFeedPercent;
   p.initial_feed_mm_per_min = kProgrammedFeedPercent;
-  p.override_range = {settings.max_ratio, lathe ? control::kLatheOverrideSteps.step_ratio : 0.0};
+  p.override_range = {settings.max_ratio, lathe ? control::kLatheOverrideSteps.step_ratio : 0.0, settings.min_ratio};
   auto controller = std::make_shared<control::VariableGainController>(p);
-  return {[controller](double force_n, double dt_s) { return controller->step(force_n, dt_s); }, kSeedPeriodS, false};
+  return {[controller](double force_n, double dt_s) { return controller->step(force_n, dt_s); }, kSeedPeriodS, false, {}};
 }
 
 // The servo is made at its first step, when its period is known; until then the parameters wait.
@@ -83,15 +84,33 @@ ControlLaw robust_servo_law(const ControllerSettings& settings) {
   auto lazy = std::make_shared<LazyRobustServo>();
   lazy->parameters.reference_force_n = settings.target_force_n;
   lazy->parameters.programmed_feed_mm_per_min = kProgrammedFeedPercent;
-  lazy->parameters.override_range = {settings.max_ratio, 0.01};  // seed 002: 1 % steps
+  lazy->parameters.override_range = {settings.max_ratio, 0.01, settings.min_ratio};  // seed 002: 1 % steps
   lazy->process_gain = start_process_gain(settings);
   // The parameters the servo will be made with, checked now (the model is set at the first step).
   lazy->parameters.initial_model = *control::arma_equivalent({}, kRobustServoMinPeriodS, lazy->process_gain);
   if (auto problems = control::validate(lazy->parameters); !problems.empty()) throw InputError(std::move(problems));
-  return {[lazy](double force_n, double dt_s) { return lazy->step(force_n, dt_s); }, kRobustServoMinPeriodS, true};
+  return {[lazy](double force_n, double dt_s) { return lazy->step(force_n, dt_s); }, kRobustServoMinPeriodS, true, {}};
+}
+
+ControlLaw seed_004_law(const ControllerSettings& settings) {
+  ModelReferenceLawSettings m;
+  m.variant = settings.kind == ControllerKind::kModelReference ? ModelReferenceVariant::kZeroOrderHold
+              : settings.kind == ControllerKind::kMultiModel1  ? ModelReferenceVariant::kFixedBank
+                                                                : ModelReferenceVariant::kNeighbourSearch;
+  m.target_force_n = settings.target_force_n;
+  m.spindle_rpm = settings.spindle_rpm;
+  m.flutes = settings.flutes;
+  m.min_ratio = settings.min_ratio;
+  m.max_ratio = settings.max_ratio;
+  return model_reference_law(m);
 }
 
 }  // namespace
+
+bool is_model_reference(ControllerKind kind) {
+  return kind == ControllerKind::kModelReference || kind == ControllerKind::kMultiModel1 ||
+         kind == ControllerKind::kMultiModel2;
+}
 
 std::string_view to_string(ControllerKind kind) { return kControllerNames[static_cast<std::size_t>(kind)]; }
 
@@ -110,6 +129,21 @@ std::vector<InputProblem> validate(const ControllerSettings& settings, const std
   if (!(std::isfinite(settings.max_ratio) && settings.max_ratio > 0.0)) {
     add_problem(problems, field_prefix + "max_ratio", settings.max_ratio,
                 "must be finite and > 0 (the largest override, 1.5 = 150 %)");
+  }
+  const bool max_ok = std::isfinite(settings.max_ratio) && settings.max_ratio > 0.0;
+  if (!(std::isfinite(settings.min_ratio) && settings.min_ratio >= 0.0 && (!max_ok || settings.min_ratio <= settings.max_ratio))) {
+    add_problem(problems, field_prefix + "min_ratio", settings.min_ratio,
+                "must be finite and in [0, max_ratio] (the lowest override, 0.1 = 10 %)");
+  }
+  if (is_model_reference(settings.kind)) {
+    if (!(std::isfinite(settings.spindle_rpm) && settings.spindle_rpm > 0.0)) {
+      add_problem(problems, field_prefix + "spindle_rpm", settings.spindle_rpm,
+                  "must be finite and > 0 rev/min — the model-reference controllers' plant needs the spindle speed");
+    }
+    if (settings.flutes < 1) {
+      problems.push_back({field_prefix + "flutes", "= " + std::to_string(settings.flutes) +
+                                                       ": must be ≥ 1 — the model-reference controllers' plant needs the tool's flutes"});
+    }
   }
   const bool variable = settings.kind == ControllerKind::kVariableGain || settings.kind == ControllerKind::kVariableGainLathe;
   if (!(std::isfinite(settings.loop_gain_per_s) && (variable ? settings.loop_gain_per_s > 0.0 : settings.loop_gain_per_s >= 0.0))) {
@@ -130,6 +164,9 @@ ControlLaw make_control_law(const ControllerSettings& settings) {
     case ControllerKind::kIntegral: return integral_law(settings);
     case ControllerKind::kVariableGain: return variable_gain_law(settings, false);
     case ControllerKind::kVariableGainLathe: return variable_gain_law(settings, true);
+    case ControllerKind::kModelReference:
+    case ControllerKind::kMultiModel1:
+    case ControllerKind::kMultiModel2: return seed_004_law(settings);
     case ControllerKind::kRobustServo: break;
   }
   return robust_servo_law(settings);

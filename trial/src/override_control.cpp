@@ -36,6 +36,7 @@ class OverrideController {
       if (revolution) latest_ = revolution;
       per_period(input);
     }
+    if (holding_ && law_.hold) command_ = bounded(law_.hold((input.t_s - step_t_s_) / step_dt_s_));
     return command_;
   }
 
@@ -74,6 +75,9 @@ class OverrideController {
   void act(const sim::ControlInput& input, double force_n, double dt_s) {
     const bool cutting = in_cut(force_n) && dt_s > 0.0;
     command_ = bounded(cutting ? law_.step(force_n, dt_s) : 1.0);
+    holding_ = cutting;
+    step_t_s_ = input.t_s;
+    step_dt_s_ = dt_s;
     if (trace_) trace_->steps.push_back({input.t_s, force_n, command_, input.override_ratio, cutting});
   }
 
@@ -87,6 +91,9 @@ class OverrideController {
   double group_start_s_ = 0.0;
   double group_largest_n_ = 0.0;
   double command_ = 1.0;
+  bool holding_ = false;   // the law's hold shapes the override until its next step
+  double step_t_s_ = 0.0;  // time of the latest step, s
+  double step_dt_s_ = 1.0; // its time step, s
 };
 
 }  // namespace

@@ -68,6 +68,9 @@ StrategyRow run_controlled(const geometry::Program& program, const VirtualMachin
   law.kind = controller;
   law.target_force_n = settings.target_force_n;
   law.max_ratio = settings.max_ratio;
+  law.min_ratio = settings.min_ratio;
+  law.spindle_rpm = machine.spindle_rpm;
+  law.flutes = machine.tool.flutes;
   ControlledRun run = run_under_control(program, machine, settings, make_control_law(law));
   StrategyRow row;
   row.controller = controller;
@@ -145,8 +148,9 @@ std::string_view to_string(StrategyKind kind) {
 }
 
 std::vector<ControllerKind> all_controllers() {
-  return {ControllerKind::kIntegral, ControllerKind::kVariableGain, ControllerKind::kVariableGainLathe,
-          ControllerKind::kRobustServo};
+  return {ControllerKind::kIntegral,       ControllerKind::kVariableGain, ControllerKind::kVariableGainLathe,
+          ControllerKind::kRobustServo,    ControllerKind::kModelReference, ControllerKind::kMultiModel1,
+          ControllerKind::kMultiModel2};
 }
 
 std::vector<InputProblem> validate(const ComparisonRequest& request, const std::string& field_prefix) {

@@ -83,6 +83,14 @@ class FrohModelReferenceController {
   //! β's model admits no design (the design's message).
   explicit FrohModelReferenceController(const FrohModelReferenceParameters& parameters);
 
+  //! Takes over a cut already under way instead of starting from rest (seed 004's case): before the first
+  //! step (asserted), puts every past sample at a steady state — the forces at `force_n`, the commands at the
+  //! override `ratio` of the programmed feed, the references and the reference model at reference_force_n —
+  //! and the plant copy at that feed and force. Without it, the first step sees the reference and the force
+  //! jump from 0 and the law follows the reference model's rise from 0: on a machine that is already
+  //! cutting, a cut of the feed towards 0. Both finite, ratio ≥ 0 (asserted).
+  void start_in_steady_state(double force_n, double ratio);
+
   //! The depth of cut from the current sample on (finite, > 0; asserted): the plant copy and every model
   //! follow it.
   void set_depth_of_cut_mm(double depth_mm);

@@ -12,6 +12,11 @@
 //                        revolution is shorter: seed 002's ARMA model (Eq. 17) has room for a feed-drive dead
 //                        time (0.08 s) shorter than the sample period only, and its poles were placed for
 //                        100 ms samples
+//   model-reference      seed 004's model-reference controller (control/froh_model_reference_controller.hpp)
+//                        under a zero-order hold; multi-model-1 the same with scheme 1's bank of β-FROH
+//                        models, multi-model-2 with scheme 2's neighbour search — once per revolution, or
+//                        every n-th revolution spanning 0.1 s (model_reference_law.hpp says why and how
+//                        its known plant is set)
 //
 // Units. The controllers think in a feed relative to a programmed feed; here that feed is expressed in
 // percent of the program's own feed (100 = the F words as written), so the override ratio they return is
@@ -51,11 +56,14 @@ enum class ControllerKind {
   kVariableGain,       //!< "variable-gain"
   kVariableGainLathe,  //!< "variable-gain-lathe"
   kRobustServo,        //!< "robust-servo"
+  kModelReference,     //!< "model-reference"
+  kMultiModel1,        //!< "multi-model-1"
+  kMultiModel2,        //!< "multi-model-2"
 };
 
 //! Every controller name, in ControllerKind's order.
-inline constexpr std::array<std::string_view, 4> kControllerNames = {"integral", "variable-gain", "variable-gain-lathe",
-                                                                     "robust-servo"};
+inline constexpr std::array<std::string_view, 7> kControllerNames = {
+    "integral", "variable-gain", "variable-gain-lathe", "robust-servo", "model-reference", "multi-model-1", "multi-model-2"};
 
 //! The controller's name.
 std::string_view to_string(ControllerKind kind);
@@ -78,6 +86,9 @@ struct ControlLaw {
   //! Stepped at the end of every n-th spindle revolution (n the fewest spanning period_s), with the largest
   //! revolution force of the n; false: every period_s, with the latest revolution's force.
   bool per_revolution = false;
+  //! When set, the override between two steps: the ratio a fraction (in [0, 1]) of the last step's time step
+  //! after it (seed 004's β-FROH ramp); unset: the step's ratio held (a zero-order hold).
+  std::function<double(double fraction_of_period)> hold;
 };
 
 //! What a controller is set up with.
@@ -85,8 +96,18 @@ struct ControllerSettings {
   ControllerKind kind = ControllerKind::kRobustServo;  //!< which controller
   double target_force_n = 0.0;   //!< the force to hold, N (finite, > 0)
   double max_ratio = 1.5;        //!< the largest override the controller may ask for (finite, > 0; seeds 000/001: 1.5)
+  //! The lowest override (finite, in [0, max_ratio]): the controllers stay above it and do not wind up
+  //! below it (control/override_range.hpp). Set it to the override loop's own floor.
+  double min_ratio = 0.0;
   double loop_gain_per_s = 3.0;  //!< K of the integral and variable-gain controllers, 1/s (finite, ≥ 0; 0: no feedback)
+  //! The machine's spindle speed, rev/min: the model-reference controllers' known plant (finite, > 0 for
+  //! them; unused by the others).
+  double spindle_rpm = 0.0;
+  int flutes = 0;  //!< the tool's flutes: the model-reference controllers' known plant (≥ 1 for them)
 };
+
+//! Whether `kind` is one of seed 004's model-reference controllers (they need spindle_rpm and flutes).
+bool is_model_reference(ControllerKind kind);
 
 //! Every problem with the settings, each named "<field_prefix><field>" with its value and the rule. Empty
 //! when usable.

@@ -2,7 +2,7 @@
 // A feedback controller on the virtual machine's feed override (sim::OverrideLoop): the data acquisition
 // reads the sensor every sample period, RevolutionForceMeter makes one force per spindle revolution
 // (control_sensor.hpp), and the controller (feedback_controller.hpp) is stepped at its own period; its
-// wish, held until its next step, reaches the feed through the override channel (seed 002's feed drive,
+// wish, held (or ramped) until its next step, reaches the feed through the override channel (seed 002's feed drive,
 // 14 e^(−0.08 s)/(s + 14), sim::FeedOverrideOptions' default).
 //
 // In cut only. A controller stepped in the air sees no force and winds the feed up to its maximum, to
@@ -15,9 +15,12 @@
 // Bounds. The override commanded is the controller's wish clamped to [min_ratio, max_ratio]: 10–150 %
 // alone (seeds 000/001's 0–150 %, with a floor so that a force the feed cannot bring down — edge forces
 // at a vanishing chip — does not stop the machine), 70–130 % in the hybrid, where the feed-forward plan
-// carries the geometry and the feedback only trims the model's error. The controllers know the upper
-// bound (their own override range, so they do not wind up against it); the lower one is the adapter's,
-// and an integral controller can wind below it while the force stays above the target there.
+// carries the geometry and the feedback only trims the model's error. The controllers are told both bounds
+// (ControllerSettings' min_ratio and max_ratio become their own override range), so they do not wind up
+// against either; give them the same as here.
+//
+// Between steps the wish is held (a zero-order hold), or, for a law with a hold (ControlLaw::hold, seed
+// 004's β-FROH), follows that hold's ramp, clamped to the bounds, until the next step.
 
 #include <memory>
 #include <vector>
