@@ -74,8 +74,17 @@ double one_sided_correction(const PlaceModel& place, double target_force_n, cons
   if (!(chip_mm > 0.0)) return ratio;
   const double lo = std::min(now.chip_mm, before.chip_mm) / kSlowingReach;
   const double hi = std::max(now.chip_mm, before.chip_mm) * kSecantReach;
-  const double c = place.correction_at(std::clamp(chip_mm, lo, hi), target_force_n);
-  return c > 0.0 ? c : ratio;
+  double c = place.correction_at(std::clamp(chip_mm, lo, hi), target_force_n);
+  if (!(c > 0.0)) return ratio;
+  // Within the trust region: a secant may ask the model for at most kSecantTrust times the log-step the
+  // measured excess asks (ln(F / target)), so one reading off at one of its ends cannot send the place far.
+  const double at_now = place.correction_at(now.chip_mm, target_force_n);
+  if (at_now > 0.0) {
+    const double asked = kSecantTrust * std::log(now.force_n / target_force_n);
+    const double step = std::log(c / at_now);
+    if ((asked > 0.0 && step > asked) || (asked < 0.0 && step < asked)) c = at_now * std::exp(asked);
+  }
+  return c;
 }
 
 }  // namespace

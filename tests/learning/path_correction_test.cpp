@@ -201,27 +201,40 @@ TEST(LearnAlongPath, CloseFeedsOrAForceFallingWithTheFeedScaleTheModelInstead) {
 
 // Two readings over the target at chips 20 % apart: a secant through them is trusted only when their forces
 // differ by more than the noise could make them (kMinSecantForceChange of the target, kSecantNoiseSigmas × the
-// log's noise per row). 440 N at t_m 0.05 mm, then 418 N at 0.04 mm: the secant in ln t_m meets 400 N at
-// t_m = 0.04 · exp((400 − 418) / ((418 − 440) / ln 0.8)) mm, in closed form.
+// log's noise per row). 470 N at t_m 0.05 mm, then 440 N at 0.04 mm: the secant in ln t_m meets 400 N at
+// t_m = 0.04 · exp((400 − 440) / ((440 − 470) / ln 0.8)) mm, in closed form.
 TEST(LearnAlongPath, ASecantIsTrustedOnlyOnAForceChangeTheNoiseCannotMake) {
   const auto model = linear_model();
   const auto plan = plan_on_a_line();
-  const PathLearning first = learn_along_path(plan, model, {at_sample_5(0.05, 440.0)}, 400.0, {});
-  const double secant_chip_mm = 0.04 * std::exp((400.0 - 418.0) / ((418.0 - 440.0) / std::log(0.8)));
-  for (const double noise_n : {0.0, 5.0, 10.0}) {
+  const PathLearning first = learn_along_path(plan, model, {at_sample_5(0.05, 470.0)}, 400.0, {});
+  const double secant_chip_mm = 0.04 * std::exp((400.0 - 440.0) / ((440.0 - 470.0) / std::log(0.8)));
+  for (const double noise_n : {0.0, 5.0, 12.0}) {
     SCOPED_TRACE(noise_n);
-    MeasuredRevolutions log = at_sample_5(0.04, 418.0);
+    MeasuredRevolutions log = at_sample_5(0.04, 440.0);
     log.noise.sigma_n = noise_n;
     const PathLearning second = learn_along_path(plan, model, {log}, 400.0, first);
-    if (22.0 >= std::max(kMinSecantForceChange * 400.0, kSecantNoiseSigmas * noise_n)) {
+    if (30.0 >= std::max(kMinSecantForceChange * 400.0, kSecantNoiseSigmas * noise_n)) {
       EXPECT_NEAR(second.place_correction[5], 400.0 / (100.0 + 2000.0 * secant_chip_mm), 1e-9);
     } else {
-      EXPECT_NEAR(second.place_correction[5], 418.0 / (100.0 + 2000.0 * 0.04), 1e-12);  // the model's shape scaled
+      EXPECT_NEAR(second.place_correction[5], 440.0 / (100.0 + 2000.0 * 0.04), 1e-12);  // the model's shape scaled
     }
   }
-  // 6 N apart with no noise measured: under 2 % of the target, the model's shape scaled.
-  const PathLearning close = learn_along_path(plan, model, {at_sample_5(0.04, 434.0)}, 400.0, first);
-  EXPECT_NEAR(close.place_correction[5], 434.0 / 180.0, 1e-12);
+  // 4 N apart with no noise measured: under 2 % of the target, the model's shape scaled.
+  const PathLearning close = learn_along_path(plan, model, {at_sample_5(0.04, 466.0)}, 400.0, first);
+  EXPECT_NEAR(close.place_correction[5], 466.0 / 180.0, 1e-12);
+}
+
+// A secant far flatter than the model's shape (470 N at t_m 0.05 mm, 455 N at 0.04 mm: it would run t_m
+// 0.018 mm) asks the model for no more than (F / target)^kSecantTrust of the c that runs the chip measured.
+TEST(LearnAlongPath, AFlatSecantStepsNoFurtherThanItsTrustRegion) {
+  const auto model = linear_model();
+  const auto plan = plan_on_a_line();
+  const PathLearning first = learn_along_path(plan, model, {at_sample_5(0.05, 470.0)}, 400.0, {});
+  const PathLearning second = learn_along_path(plan, model, {at_sample_5(0.04, 455.0)}, 400.0, first);
+  const double at_now = 400.0 / (100.0 + 2000.0 * 0.04);
+  const double secant_chip_mm = 0.04 * std::exp((400.0 - 455.0) / ((455.0 - 470.0) / std::log(0.8)));
+  ASSERT_GT(400.0 / (100.0 + 2000.0 * secant_chip_mm), at_now * std::pow(455.0 / 400.0, kSecantTrust));  // it binds
+  EXPECT_NEAR(second.place_correction[5], at_now * std::pow(455.0 / 400.0, kSecantTrust), 1e-9);
 }
 
 TEST(LearnAlongPath, ClampedAndAveragedOverLogs) {

@@ -26,6 +26,14 @@ inline constexpr double kMinSecantSpread = 0.15;
 //! then +3.7 % over the target at chips 15 % apart: the secant ran it 32 % under the target in cycle 3).
 inline constexpr double kMinSecantForceChange = 0.02;
 inline constexpr double kSecantNoiseSigmas = 3.0;  //!< see kMinSecantForceChange
+//! A one-sided secant changes the model's force at the place by at most this power of the measured ratio
+//! F / target (in the model's terms: c / c_now ≤ (F / target)^kSecantTrust): two readings taken at different
+//! feeds at an entry compare tooth periods placed differently, and their slope can be far flatter than the
+//! force's (family-04, trochoid at 400 N: 45 N per unit of ln t_m read over cycles 1–2 at a loop front whose
+//! force rose 250 N per unit, which the model's shape had right; the secant ran it 17.7 % under the target in
+//! cycle 3, 7.5 % with this bound). Where the force is truly flat (near the force floor) the place still
+//! slows by up to this power of its excess each part, until a reading under the target brackets it.
+inline constexpr double kSecantTrust = 1.5;
 //! A step out of the bracket runs at most this factor thicker a chip than measured (speeding up on an
 //! extrapolation: the force's risk) …
 inline constexpr double kSecantReach = 2.0;
@@ -103,7 +111,8 @@ struct PathLearning {
 //!    which no ratio to a straight-cut model represents);
 //!  - one side only: the secant through this and the previous measurement when they are at least
 //!    kMinSecantSpread apart in t_m and the force rises by more than the noise could make it
-//!    (kMinSecantForceChange, kSecantNoiseSigmas × the logs' mean noise per row); otherwise the model's shape scaled to the
+//!    (kMinSecantForceChange, kSecantNoiseSigmas × the logs' mean noise per row), within kSecantTrust;
+//!    otherwise the model's shape scaled to the
 //!    measurement, c = F / F̂(t_m, L); either within kSecantReach thicker and kSlowingReach thinner than the
 //!    chips measured (the corner cut cautiously with a model 40 % soft: +8 % in cycle 2 with the whole
 //!    ratio, within 5 % with the reach);
