@@ -92,14 +92,14 @@ class LearningLoop : public ::testing::Test {
 // brings to the target (planner/peak_comparison.hpp).
 //
 // What cycle 3 reaches depends on the sensor's noise at a few places, so the bounds are on figures that
-// do not: measured over five noise seeds (SensorOptions::seed 1–5, true peaks), held RMS 0.53–0.62 %
-// (family-02), 0.82–1.15 % (-04), 0.89–1.06 % (-09); held revolutions more than 3 % off: 0–18 of 730–890;
-// the largest revolution over the target +1.8 … +8.2 %; cycle time 26.2–26.4, 35.6–36.0 and 35.5–35.7 s.
-// The largest held error is not bounded here: it is one revolution, 2.3–7.8 % on most runs and 17.7 % under
-// the target on one (family-04, seed 5: a loop front slowed after its readings through the resonant
-// dynamometer); the ±3 % the product aims at is met in two of the fifteen runs (family-02 seed 1, family-09
-// seed 4). Before secants were gated on a force change the noise cannot make (learning/path_correction.hpp),
-// that run held the loop front 32 % under the target and family-04 seed 2 8.5 % under.
+// do not: measured over five noise seeds (SensorOptions::seed 1–5, true peaks), held RMS 0.54–0.62 %
+// (family-02), 0.81–0.93 % (-04), 0.89–1.03 % (-09); held revolutions more than 3 % off: 0–12 of 730–890;
+// the largest revolution over the target +1.9 … +6.1 %; cycle time 26.2–26.4, 35.6–36.0 and 35.5–35.7 s.
+// The largest held error is not bounded here: it is one revolution, 2.5–8.0 % (median 4.9 %), mostly under
+// the target at a loop front; the ±3 % the product aims at is met in two of the fifteen runs (family-02
+// seed 1, family-09 seed 4). Before one-sided secants were gated on a force change the noise cannot make and
+// held to a trust region (learning/path_correction.hpp) it was 2.3–8.5 % (median 5.4 %) and 32 % under the
+// target on family-04 seed 5, a loop front slowed on two readings through the resonant dynamometer.
 TEST_F(LearningLoop, TrochoidOnThreeMachinesOfTheFamilyConvergesWithoutDraggingTheCycle) {
   struct Case {
     std::string machine;
