@@ -61,32 +61,17 @@ void report(benchmark::State& state, double simulated_s, double max_peak_n) {
       benchmark::Counter(simulated_s * static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);
 }
 
-void BM_SlotUnderRobustServo(benchmark::State& state) {
+// The depth-step slot on the currents under `controller` (its target the loop's; with `loop_bounds`, the
+// loop's override bounds too).
+void run_slot_under(benchmark::State& state, trial::ControllerSettings controller, bool loop_bounds) {
   const geometry::Program program = gcode::read_program(kDepthStepSlot, "depth-step slot");
   const trial::VirtualMachine machine = slot_machine();
   const trial::OverrideControlSettings settings = current_control();
-  trial::ControllerSettings controller;
-  controller.kind = trial::ControllerKind::kRobustServo;
   controller.target_force_n = settings.target_force_n;
-  double simulated_s = 0.0, max_peak_n = 0.0;
-  for (auto _ : state) {
-    const trial::ControlledRun run = trial::run_under_control(program, machine, settings, trial::make_control_law(controller));
-    simulated_s = run.judgement.cycle_time_s;
-    max_peak_n = run.judgement.max_peak_n;
-    benchmark::DoNotOptimize(run);
+  if (loop_bounds) {
+    controller.min_ratio = settings.min_ratio;
+    controller.max_ratio = settings.max_ratio;
   }
-  report(state, simulated_s, max_peak_n);
-}
-
-void BM_SlotUnderMultiModel1(benchmark::State& state) {
-  const geometry::Program program = gcode::read_program(kDepthStepSlot, "depth-step slot");
-  const trial::VirtualMachine machine = slot_machine();
-  const trial::OverrideControlSettings settings = current_control();
-  trial::ControllerSettings controller;
-  controller.kind = trial::ControllerKind::kMultiModel1;
-  controller.target_force_n = settings.target_force_n;
-  controller.min_ratio = settings.min_ratio;
-  controller.max_ratio = settings.max_ratio;
   controller.spindle_rpm = machine.spindle_rpm;
   controller.flutes = machine.tool.flutes;
   double simulated_s = 0.0, max_peak_n = 0.0;
@@ -97,6 +82,18 @@ void BM_SlotUnderMultiModel1(benchmark::State& state) {
     benchmark::DoNotOptimize(run);
   }
   report(state, simulated_s, max_peak_n);
+}
+
+void BM_SlotUnderRobustServo(benchmark::State& state) {
+  trial::ControllerSettings controller;
+  controller.kind = trial::ControllerKind::kRobustServo;
+  run_slot_under(state, controller, false);
+}
+
+void BM_SlotUnderMultiModel1(benchmark::State& state) {
+  trial::ControllerSettings controller;
+  controller.kind = trial::ControllerKind::kMultiModel1;
+  run_slot_under(state, controller, true);
 }
 
 void BM_SlotWithoutControl(benchmark::State& state) {
