@@ -14,6 +14,7 @@
 //                             the machine's minimum feed wherever it cuts; one more run of the virtual machine,
 //                             a long one), reported as floor_N
 //   FEEDPLAN_FAMILY_NO_T_STAR set: learning only (the counters over T* are then 0)
+//   FEEDPLAN_FAMILY_T_STAR_ONLY set: the T* search only (the learning counters are then absent)
 //   FEEDPLAN_FAMILY_NO_SENSOR set: peaks taken as read (default: corrected for the machine's dynamometer
 //                             mode as its tap test gives it, as `loop --sensor-hz --sensor-damping`)
 // Run: build/bench/learning_convergence_bench --benchmark_counters_tabular=true
@@ -123,6 +124,7 @@ void BM_LearningAgainstBestAchievable(benchmark::State& state, const std::string
     request.settings = loop.settings;
     request.machine = loop.machine;
     if (!std::getenv("FEEDPLAN_FAMILY_NO_T_STAR")) best = trial::best_achievable_plan(request);
+    if (std::getenv("FEEDPLAN_FAMILY_T_STAR_ONLY")) continue;
     loop.cycles = 3;
     learned = trial::run_learning_loop(loop);
   }
@@ -131,6 +133,9 @@ void BM_LearningAgainstBestAchievable(benchmark::State& state, const std::string
   state.counters["floor_N"] = floor_n;
   state.counters["T*_s"] = t_star_s;
   state.counters["infeasible"] = best.infeasible_samples;
+  state.counters["T*_converged"] = best.converged ? 1.0 : 0.0;
+  state.counters["T*_search"] = static_cast<double>(best.iterations.size());
+  if (!best.iterations.empty()) state.counters["T*_last_over%"] = best.iterations.back().max_overshoot_percent;
   for (const trial::LoopCycle& c : learned.cycles) {
     std::string k = "c";  // built in place: GCC 12 warns (-Wrestrict, falsely) on "c" + std::to_string(…)
     k += std::to_string(c.cycle);
