@@ -6,6 +6,7 @@
 
 #include "feedplan/core/input_error.hpp"
 #include "feedplan/core/number_text.hpp"
+#include "feedplan/trial/correction_step.hpp"
 
 namespace feedplan::trial {
 namespace {
@@ -41,39 +42,6 @@ std::vector<SampleEvidence> evidence(const planner::PlanResult& plan, const plan
   return out;
 }
 
-//! A sample's previous plan: its correction and the true peak over the target it gave (0: no evidence).
-struct PreviousTry {
-  double correction = 0.0;
-  double ratio = 0.0;
-};
-
-//! The smallest change of ln r between a sample's two plans that its sensitivity is measured from: below it
-//! the change is the shift of revolution boundaries between plans more than the feed's effect.
-constexpr double kMinLogRatioChange = 0.01;
-
-//! Below this sensitivity −d ln r / d ln c (1 where the force is proportional to the feed, 0.7–0.9 with a
-//! size effect) the force is taken to hardly fall with the feed: the sample is near the machine's force floor.
-constexpr double kFloorSensitivity = 0.5;
-
-//! The smallest sensitivity a step is scaled by (a step at most 1 / this × the proportional one).
-constexpr double kMinSensitivity = 0.15;
-
-//! The next correction of a sample whose plan with correction c gave the peak ratio r. The force taken as
-//! proportional to the feed (c · r) converges where the force falls with the feed, but crawls near the
-//! machine's force floor, where most of it is rubbing and small chips and each step removes a few per cent of
-//! the excess. There — the sample's last two plans measured a sensitivity −d ln r / d ln c under
-//! kFloorSensitivity — the step in ln c is ln r over that sensitivity: the secant in (ln c, ln r).
-double next_correction(double c, double r, const PreviousTry& previous) {
-  const double proportional = c * r;
-  if (!(previous.ratio > 0.0) || !(previous.correction > 0.0)) return proportional;
-  const double d_ln_r = std::log(r / previous.ratio);
-  const double d_ln_c = std::log(c / previous.correction);
-  if (std::abs(d_ln_r) < kMinLogRatioChange || d_ln_c == 0.0) return proportional;
-  const double sensitivity = -d_ln_r / d_ln_c;
-  if (!(sensitivity > 0.0 && sensitivity < kFloorSensitivity)) return proportional;
-  return c * std::exp(std::log(r) / std::max(sensitivity, kMinSensitivity));
-}
-
 //! `value` strictly inside (lo, hi): their geometric middle when it is not (lo may be 0, hi infinite).
 double inside(double value, double lo, double hi) {
   if (value > lo && value < hi) return value;
@@ -95,7 +63,7 @@ BestPlan best_achievable_plan(const BestPlanRequest& request) {
   const std::size_t n = planner::plan(request.geometry, settings).samples.size();
   std::vector<double> c = settings.force_correction.size() == n ? settings.force_correction : std::vector<double>(n, 1.0);
   std::vector<double> lo(n, 0.0), hi(n, INFINITY);
-  std::vector<PreviousTry> previous(n);
+  std::vector<CorrectionTry> previous(n);
   VirtualMachine machine = request.machine;
   machine.keep_log = false;
   BestPlan best;
@@ -121,15 +89,15 @@ BestPlan best_achievable_plan(const BestPlanRequest& request) {
         continue;
       }
       it.max_overshoot_percent = std::max(it.max_overshoot_percent, 100.0 * (r - 1.0));
-      const PreviousTry now{c[i], r};
+      const CorrectionTry now{c[i], r};
       if (r > 1.0 + request.tolerance) {
         all_met = false;
         lo[i] = std::max(lo[i], c[i]);
-        c[i] = inside(next_correction(c[i], r, previous[i]), lo[i], hi[i]);
+        c[i] = inside(next_force_correction(c[i], r, previous[i]), lo[i], hi[i]);
       } else if (r < 1.0 - request.tolerance && seen[i].held) {
         all_met = false;
         hi[i] = std::min(hi[i], c[i]);
-        c[i] = inside(next_correction(c[i], r, previous[i]), lo[i], hi[i]);
+        c[i] = inside(next_force_correction(c[i], r, previous[i]), lo[i], hi[i]);
       }
       previous[i] = now;
       c[i] = std::clamp(c[i], planner::kMinForceCorrection, planner::kMaxForceCorrection);

@@ -12,7 +12,7 @@
 // with (c must grow: the plan must slow down there), one held under it by more than the tolerance puts the
 // upper end there (it may speed up). The next c is c · r — the force taken as proportional to c's effect —
 // or, where the sample's last two plans show the force hardly falling with the feed (near the machine's force
-// floor, where c · r crawls), the secant through them in (ln c, ln r); either kept strictly inside the bracket
+// floor, where c · r crawls), the secant through them in (ln c, ln r) (correction_step.hpp); either kept strictly inside the bracket
 // (its geometric middle when it leaves it). Samples planned at the
 // machine's minimum feed and still over the target are where the target is not feasible: they are counted
 // and left out of the verdict. Revolutions not held at the force limit (maximum feed, an arc's centripetal
