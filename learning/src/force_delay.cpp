@@ -19,6 +19,8 @@ namespace {
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 // Delay search: bins no finer than this, s (the estimate is interpolated between bins).
 constexpr double kMinDelayBinS = 0.5e-3;
+// A weaker correlation of the measured and the planned contact does not place the forces (see below).
+constexpr double kMinDelayCorrelation = 0.5;
 
 // Per row: 1 where the plan has the tool engaged at the row's aligned place, 0 where it is not or the
 // row has a position off the aligned path, NaN without a position.
@@ -67,14 +69,21 @@ void estimate_delay(const force_log::ForceLog& log, const planner::PlanResult& p
     text += "; force delay not estimated (no contact, or contact throughout, in the measured or planned force)";
     return;
   }
-  out.delay_s = std::clamp(peak.lag_bins * bin_s, -options.max_delay_s, options.max_delay_s);
-  out.delay_correlation = peak.correlation;
-  text += "; force delay " + fixed(1e3 * out.delay_s, 1) + " ms (correlation " + fixed(peak.correlation, 2) + ")";
+  const double delay_s = std::clamp(peak.lag_bins * bin_s, -options.max_delay_s, options.max_delay_s);
+  text += "; force delay " + fixed(1e3 * delay_s, 1) + " ms (correlation " + fixed(peak.correlation, 2) + ")";
   if (peak.at_edge) {
     text += " at the edge of the searched range +-" + fixed(1e3 * options.max_delay_s, 0) +
             " ms: the true delay may be larger";
   }
-  if (peak.correlation < 0.5) text += ", weak: check that the log belongs to this plan";
+  if (peak.correlation < kMinDelayCorrelation) {
+    // A lag the contact signals hardly agree on is no measurement: applying it would move every entry's
+    // force along the path (on a noisy dynamometer whose noise passed for contact, −170 ms, 2.6 mm at the
+    // corner's entry feed: learning read air there and sped the entry up by half).
+    text += ", weak: not applied (forces placed where the positions say); check that the log belongs to this plan";
+    return;
+  }
+  out.delay_s = delay_s;
+  out.delay_correlation = peak.correlation;
 }
 
 }  // namespace feedplan::learning::detail

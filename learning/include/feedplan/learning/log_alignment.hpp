@@ -24,13 +24,16 @@
 // The measured contact signal is cross-correlated with the plan's engagement at each row's place (through
 // the alignment) over lags in [−max_delay_s, max_delay_s]; delay_s is the lag of the best correlation (the
 // middle of a flat top). The alignment itself is not shifted: the force of row i belongs to the place of
-// time t_i − delay_s (measured_revolutions applies this).
+// time t_i − delay_s (measured_revolutions applies this). A best correlation under 0.5 is said and not
+// applied (delay_s stays 0): a lag the two contact signals hardly agree on moves every entry's force along
+// the path by its size.
 //
 // Why contact and not the predicted force: the model is what learning corrects, so its force shape is
 // the least trustworthy thing here (a plan holds it flat at the target while the real peak rises over the
 // entry); where the tool touches the stock is geometry, which the plan and the machine share. Contact:
 // the peak envelope of |F_xy| (running maximum over one spindle revolution, centred; the speed from the
-// log's spindle_rpm column, else its metadata, else the program's S) above 3 % of its maximum;
+// log's spindle_rpm column, else its metadata, else the program's S) above 3 % of its maximum and above
+// twice its level in air (the noise's envelope, which on a 9 N dynamometer exceeds 3 % of 500 N);
 // engagement: PlannedSample::engaged under the same running maximum, so both edges move alike.
 // Accuracy on the virtual machine: the measured edge is where the force passes 3 % of its peak, the
 // planned one where the tool first touches, so the estimate is late by about half the difference of the
