@@ -216,8 +216,8 @@ TEST_F(LearningLoop, ATargetBelowTheForceAtTheMinimumFeedIsNamedWithItsFloor) {
 // turns into the wall its force at the minimum feed is up to 399 N. Learning names those places and their
 // floor, runs them at the minimum feed, and does not drag the rest of the cycle down: its third cycle takes
 // at most 1.3 × T*, the best plan searched against the virtual machine's true peaks with the same places at
-// the minimum feed. Measured: T* 67.9 s with 115 samples infeasible; cycle 3 70.3 s (1.04 T*), 127
-// revolutions named with a floor of 399 N, held RMS 1.6 %.
+// the minimum feed. Measured: T* 69.9 s with 115 samples infeasible; cycle 3 71.9 s (1.03 T*), 124
+// revolutions named with a floor of 397 N, held RMS 1.2 %.
 TEST_F(LearningLoop, AnInfeasibleTargetIsNamedAndTheRestOfTheCycleIsNotDraggedDown) {
   LoopRequest loop = request_on_machine("corner.yaml", "family/family-06.yaml", 350.0);
   const BestPlan best = best_achievable_plan(search_for(loop));
