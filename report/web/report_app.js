@@ -382,6 +382,7 @@
     drawPath();
   }
 
+  state.pathScale = () => path.scale;
   // Client (page) coordinates of sample i on the path canvas: where to point to read it.
   state.pathClientPoint = (i) => {
     const r = path.canvas.getBoundingClientRect();
