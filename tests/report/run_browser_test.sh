@@ -1,0 +1,26 @@
+#!/usr/bin/env bash
+# Makes the sample reports with the feedplan binary — a plan (trochoid, run on the virtual machine for
+# measured peaks) with its CSV, the same plan redrawn from its JSON report, a learning history of three
+# cycles and a comparison — and opens them in headless Chromium (report_browser_test.mjs). The reports
+# and the screenshots stay in OUT_DIR (screenshots/) as the test's artefacts.
+#
+# Usage: run_browser_test.sh FEEDPLAN SAMPLES_DIR TEST_DATA_DIR WEB_DIR CHROMIUM OUT_DIR
+set -euo pipefail
+feedplan=$1 samples=$2 data=$3 web=$4 chromium=$5 out=$6
+here=$(cd "$(dirname "$0")" && pwd)
+[[ -x $chromium ]] || { echo "Chromium is missing ($chromium): run scripts/install-deps.sh"; exit 1; }
+[[ -d $web/node_modules/puppeteer-core ]] || { echo "puppeteer-core is missing in $web: run scripts/install-web-deps.sh"; exit 1; }
+rm -rf "$out"
+mkdir -p "$out"
+db=$out/t.db
+"$feedplan" db init --db "$db" > /dev/null
+"$feedplan" db import "$data/cli/s50c_d10_model.json" --db "$db" > /dev/null
+"$feedplan" plan "$samples/trochoid.yaml" --db "$db" -o "$out/plan.nc" --report "$out/plan.json" --csv "$out/plan.csv" \
+  --html "$out/plan.html" --simulate > "$out/plan.txt"
+"$feedplan" report "$out/plan.json" -o "$out/report.html" --db "$db"
+"$feedplan" loop "$samples/corner.yaml" --db "$db" --cycles 3 --html "$out/history.html" > "$out/loop.txt"
+"$feedplan" report "$data/report/compare.json" -o "$out/compare.html"
+ls -l "$out"/*.html
+node "$here/report_browser_test.mjs" --web-dir "$web" --chromium "$chromium" --shots "$out/screenshots" \
+  --plan "$out/plan.html" --csv "$out/plan.csv" --report "$out/report.html" --history "$out/history.html" --cycles 3 \
+  --comparison "$out/compare.html" --compare-json "$data/report/compare.json"
