@@ -244,12 +244,12 @@
             path.canvas.height / devicePixelRatio - path.pad - (sm.y_mm[i] - path.y0) * path.scale];
   }
 
-  function drawPath() {
+  const COLOUR_LEVELS = 48;
+
+  // The path coloured by the chosen quantity, drawn once into an offscreen canvas (one stroke per colour
+  // level, points closer than a pixel skipped); hovering only copies it and draws the marker.
+  function renderPath() {
     const sm = data.samples;
-    const ctx = path.canvas.getContext('2d');
-    const w = path.canvas.width / devicePixelRatio, h = path.canvas.height / devicePixelRatio;
-    ctx.setTransform(devicePixelRatio, 0, 0, devicePixelRatio, 0, 0);
-    ctx.clearRect(0, 0, w, h);
     const values = sm[COLOURINGS[path.colouring].column];
     let lo = Infinity, hi = -Infinity;
     for (let i = 0; i < values.length; i++) {
@@ -261,30 +261,42 @@
     if (!(hi >= lo)) { lo = 0; hi = 1; }
     if (hi === lo) hi = lo + 1;
     path.range = [lo, hi];
+    const cache = path.cache || document.createElement('canvas');
+    cache.width = path.canvas.width;
+    cache.height = path.canvas.height;
+    path.cache = cache;
+    const ctx = cache.getContext('2d');
+    ctx.setTransform(devicePixelRatio, 0, 0, devicePixelRatio, 0, 0);
     ctx.lineWidth = 2;
     ctx.lineCap = 'round';
+    const levels = Array.from({ length: COLOUR_LEVELS + 1 }, () => new Path2D());
     let [px, py] = pathPixel(0);
-    let style = null;
-    ctx.beginPath();
-    ctx.moveTo(px, py);
     for (let i = 1; i < values.length; i++) {
       const [x, y] = pathPixel(i);
       if (Math.abs(x - px) < 0.7 && Math.abs(y - py) < 0.7 && i < values.length - 1) continue;
       const v = values[i];
-      const s = v === null ? '#cccccc' : colour((v - lo) / (hi - lo));
-      if (s !== style) {
-        ctx.stroke();
-        ctx.beginPath();
-        ctx.moveTo(px, py);
-        ctx.strokeStyle = s;
-        style = s;
-      }
-      ctx.lineTo(x, y);
+      const level = v === null ? COLOUR_LEVELS : Math.round((v - lo) / (hi - lo) * (COLOUR_LEVELS - 1));
+      levels[level].moveTo(px, py);
+      levels[level].lineTo(x, y);
       px = x;
       py = y;
     }
-    ctx.stroke();
+    for (let k = 0; k <= COLOUR_LEVELS; k++) {
+      ctx.strokeStyle = k === COLOUR_LEVELS ? '#cccccc' : colour(k / (COLOUR_LEVELS - 1));
+      ctx.stroke(levels[k]);
+    }
+    document.getElementById('path-scale-low').textContent = numberText(lo);
+    document.getElementById('path-scale-high').textContent = numberText(hi);
+    document.getElementById('path-scale-label').textContent = COLOURINGS[path.colouring].label;
+  }
+
+  function drawPath() {
+    const ctx = path.canvas.getContext('2d');
+    ctx.setTransform(1, 0, 0, 1, 0, 0);
+    ctx.clearRect(0, 0, path.canvas.width, path.canvas.height);
+    ctx.drawImage(path.cache, 0, 0);
     if (state.selected >= 0) {
+      ctx.setTransform(devicePixelRatio, 0, 0, devicePixelRatio, 0, 0);
       const [x, y] = pathPixel(state.selected);
       ctx.strokeStyle = '#d62728';
       ctx.lineWidth = 2;
@@ -292,9 +304,6 @@
       ctx.arc(x, y, 6, 0, 2 * Math.PI);
       ctx.stroke();
     }
-    document.getElementById('path-scale-low').textContent = numberText(lo);
-    document.getElementById('path-scale-high').textContent = numberText(hi);
-    document.getElementById('path-scale-label').textContent = COLOURINGS[path.colouring].label;
   }
 
   const READOUT = [
@@ -373,16 +382,18 @@
     path.y0 = y0;
     element('p', { class: 'hint' }, s, 'mm per pixel: ' + (1 / path.scale).toPrecision(3) +
             '. Point at the path for the sample there.');
-    select.addEventListener('change', () => { path.colouring = select.value; drawPath(); });
+    select.addEventListener('change', () => { path.colouring = select.value; renderPath(); drawPath(); });
     canvas.addEventListener('mousemove', (e) => {
       const r = canvas.getBoundingClientRect();
       const i = nearestSample(e.clientX - r.left, e.clientY - r.top);
       if (i >= 0 && i !== state.selected) showSample(i);
     });
+    renderPath();
     drawPath();
   }
 
   state.pathScale = () => path.scale;
+  state.sampleCount = () => data.samples.s_mm.length;
   // Client (page) coordinates of sample i on the path canvas: where to point to read it.
   state.pathClientPoint = (i) => {
     const r = path.canvas.getBoundingClientRect();
