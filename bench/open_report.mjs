@@ -8,7 +8,7 @@ import path from 'node:path';
 import { pathToFileURL } from 'node:url';
 
 const [webDir, chromium, file] = process.argv.slice(2);
-const require = createRequire(path.join(webDir, 'package.json'));
+const require = createRequire(path.resolve(webDir, 'package.json'));
 const puppeteer = require('puppeteer-core');
 const browser = await puppeteer.launch({ executablePath: chromium, headless: true, args: ['--no-sandbox', '--disable-gpu', '--disable-dev-shm-usage'] });
 const errors = [];

@@ -275,7 +275,9 @@
       const [x, y] = pathPixel(i);
       if (Math.abs(x - px) < 0.7 && Math.abs(y - py) < 0.7 && i < values.length - 1) continue;
       const v = values[i];
-      const level = v === null ? COLOUR_LEVELS : Math.round((v - lo) / (hi - lo) * (COLOUR_LEVELS - 1));
+      const grey = v === null || (path.colouring !== 'feed' && !sm.engaged[i]);  // no force out of the cut
+      const level = grey ? COLOUR_LEVELS
+                         : Math.min(COLOUR_LEVELS - 1, Math.max(0, Math.round((v - lo) / (hi - lo) * (COLOUR_LEVELS - 1))));
       levels[level].moveTo(px, py);
       levels[level].lineTo(x, y);
       px = x;

@@ -14,7 +14,7 @@ import { pathToFileURL } from 'node:url';
 
 const args = {};
 for (let i = 2; i < process.argv.length; i += 2) args[process.argv[i].replace(/^--/, '')] = process.argv[i + 1];
-const require = createRequire(path.join(args['web-dir'], 'package.json'));
+const require = createRequire(path.resolve(args['web-dir'], 'package.json'));
 const puppeteer = require('puppeteer-core');
 
 const failures = [];
