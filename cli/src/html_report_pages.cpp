@@ -1,5 +1,6 @@
 #include "html_report_pages.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include "plan_summary.hpp"
@@ -31,8 +32,6 @@ std::string plan_title(const std::string& cycle, const geometry::Tool& tool, con
   title += " in " + material + ", target " + shortest_number_text(target_n) + " N";
   return title;
 }
-
-std::string percent_text(double value) { return fixed_number_text(value, 1) + " %"; }
 
 }  // namespace
 
@@ -88,17 +87,21 @@ report::PlanPage plan_report_page(const planner::PlanReport& report, const plann
   }
   if (!c.path_history.empty() && c.path_history.front().measured_n.size() == plan.samples.size()) {
     page.history = c.path_history;
-    page.cycle_table.columns = {"cycle", "planned cycle time [s]", "largest |peak − target| [%]", "places measured"};
+    page.cycle_table.columns = {"cycle", "planned cycle time [s]", "largest measured peak [N]", "against the target [%]",
+                                "places measured"};
     for (const planner::PathHistoryCycle& h : c.path_history) {
-      double worst = 0.0;
+      double largest = 0.0;
       int measured = 0;
       for (const double f : h.measured_n) {
         if (!(f > 0.0)) continue;
         ++measured;
-        worst = std::max(worst, 100.0 * std::abs(f - report.settings.target_force_n) / report.settings.target_force_n);
+        largest = std::max(largest, f);
       }
+      const double target = report.settings.target_force_n;
       page.cycle_table.rows.push_back({std::to_string(h.cycle), fixed_number_text(h.cycle_time_s, 2),
-                                       measured > 0 ? percent_text(worst) : "—", std::to_string(measured)});
+                                       measured > 0 ? fixed_number_text(largest, 1) : "—",
+                                       measured > 0 ? fixed_number_text(100.0 * (largest - target) / target, 1) : "—",
+                                       std::to_string(measured)});
     }
   }
   return page;

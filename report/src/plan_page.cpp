@@ -2,6 +2,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <cassert>
 #include <cmath>
 #include <numbers>
@@ -94,15 +95,12 @@ json samples_json(const planner::PlanResult& result, const PlanPage& page) {
   return out;
 }
 
-// The largest |measured − target| / target over the places measured, %; NaN when nothing was measured.
+// The largest peak measured against the target, (max − target) / target in %: how far the worst place
+// overshoots (negative: every peak below it); NaN when nothing was measured.
 double peak_error_percent(const std::vector<double>& measured_n, double target_n) {
-  double worst = std::nan("");
-  for (const double f : measured_n) {
-    if (!(f > 0.0)) continue;
-    const double error = 100.0 * std::abs(f - target_n) / target_n;
-    if (!(worst >= error)) worst = error;
-  }
-  return worst;
+  double largest = 0.0;
+  for (const double f : measured_n) largest = std::max(largest, f);
+  return largest > 0.0 ? 100.0 * (largest - target_n) / target_n : std::nan("");
 }
 
 json history_json(const PlanPage& page, double target_n, std::size_t sample_count) {

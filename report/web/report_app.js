@@ -412,13 +412,13 @@
     const cycles = h.cycles.map((c) => c.cycle);
     const perCycle = element('div', { id: 'chart-cycles', class: 'chart' }, s);
     state.charts['chart-cycles'] = new uPlot({
-      title: 'Per cycle: largest measured peak error and the planned cycle time',
+      title: 'Per cycle: the largest measured peak against the target, and the planned cycle time',
       width: chartWidth(), height: 220,
       scales: { x: { time: false }, err: {}, t: {} },
-      axes: [{ label: 'cycle' , incrs: [1, 2, 5, 10]}, { scale: 'err', label: 'peak error [%]', size: 60 },
+      axes: [{ label: 'cycle' , incrs: [1, 2, 5, 10]}, { scale: 'err', label: 'largest peak − target [%]', size: 60 },
              { scale: 't', label: 'cycle time [s]', side: 1, grid: { show: false }, size: 60 }],
       series: [{ label: 'cycle' },
-               { label: 'peak error [%]', scale: 'err', stroke: '#d62728', width: 2, points: { size: 7 } },
+               { label: 'largest peak − target [%]', scale: 'err', stroke: '#d62728', width: 2, points: { size: 7 } },
                { label: 'cycle time [s]', scale: 't', stroke: '#1f77b4', width: 2, points: { size: 7 } }],
     }, [cycles, h.cycles.map((c) => c.peak_error_percent), h.cycles.map((c) => c.cycle_time_s)], perCycle);
     const colours = h.cycles.map((c, k) => CYCLE_COLOURS[Math.max(0, CYCLE_COLOURS.length - h.cycles.length + k)]);

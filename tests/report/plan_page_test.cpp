@@ -78,7 +78,7 @@ TEST(ReportPlanPage, NothingMeasuredIsNull) {
 TEST(ReportPlanPage, HistoryCarriesEveryCycleAndItsPeakError) {
   const Fixture f;
   report::PlanPage page;
-  planner::PathHistoryCycle first{1, 20.0, {100, 100, 100}, {90, 95, 99}, {110, 0, 95}};   // worst |110 − 100| = 10 %
+  planner::PathHistoryCycle first{1, 20.0, {100, 100, 100}, {90, 95, 99}, {110, 0, 95}};   // largest 110 N against 100 N: +10 %
   planner::PathHistoryCycle second{2, 19.0, {105, 105, 105}, {99, 99, 99}, {0, 0, 0}};     // nothing measured
   page.history = {first, second};
   page.cycle_table = {{"cycle"}, {{"1"}, {"2"}}};
