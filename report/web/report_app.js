@@ -447,7 +447,8 @@
       state.charts['chart-' + figure.key] = new uPlot({
         title: figure.label,
         width: chartWidth(), height: 220,
-        scales: { x: { time: false, range: [0.5, names.length + 0.5] } },
+        scales: { x: { time: false, range: [0.5, names.length + 0.5] },
+                  y: { range: (u, min, max) => [Math.min(0, min), max > 0 ? 1.1 * max : 1] } },  // bars from zero
         axes: [{ values: (u, ticks) => ticks.map((t) => names[t - 1] || ''), incrs: [1], size: 40 },
                { label: figure.label, size: 60 }],
         series: [{ label: 'strategy', value: (u, v) => (v === null ? '' : names[v - 1] || '') },
