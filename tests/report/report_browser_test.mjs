@@ -5,6 +5,7 @@
 //
 // node report_browser_test.mjs --web-dir DIR --chromium PATH --shots DIR
 //      [--plan PLAN.html --csv PLAN.csv] [--report REPORT.html] [--history HISTORY.html --cycles N]
+//      [--learn LEARN.html --learn-cycles N]
 //      [--comparison COMPARE.html --compare-json COMPARE.json]
 // Exits 0 when every check passes, 1 with every failure listed otherwise.
 import { createRequire } from 'node:module';
@@ -163,18 +164,17 @@ async function checkReport(browser) {
   await opened.page.close();
 }
 
-async function checkHistory(browser) {
-  const opened = await open(browser, args.history, 'history');
+async function checkHistory(browser, file, cycles, label) {
+  const opened = await open(browser, file, label);
   const { page } = opened;
-  await chartsPresent(page, ['chart-force', 'chart-feed', 'chart-engagement', 'chart-cycles', 'chart-history-force', 'chart-history-feed'], 'history');
-  const cycles = Number(args.cycles);
+  await chartsPresent(page, ['chart-force', 'chart-feed', 'chart-engagement', 'chart-cycles', 'chart-history-force', 'chart-history-feed'], label);
   const rows = await page.$$eval('#cycle-table tr', (r) => r.length - 1);
-  check(rows === cycles, 'history: the cycle table has one row per cycle (' + rows + ' of ' + cycles + ')');
+  check(rows === cycles, label + ': the cycle table has one row per cycle (' + rows + ' of ' + cycles + ')');
   const overlaid = await page.evaluate(() => window.feedplanReport.charts['chart-history-force'].series.length);
-  check(overlaid === cycles + 2, 'history: every cycle\'s measured peaks are overlaid (' + (overlaid - 2) + ' curves)');
+  check(overlaid === cycles + 2, label + ': every cycle\'s measured peaks are overlaid (' + (overlaid - 2) + ' curves)');
   const perCycle = await page.evaluate(() => window.feedplanReport.charts['chart-cycles'].data[0].length);
-  check(perCycle === cycles, 'history: peak error and cycle time per cycle (' + perCycle + ' points)');
-  await shot(page, 'history');
+  check(perCycle === cycles, label + ': peak error and cycle time per cycle (' + perCycle + ' points)');
+  await shot(page, label);
   finish(opened);
   await page.close();
 }
@@ -200,7 +200,8 @@ const browser = await puppeteer.launch({
 try {
   if (args.plan) await checkPlan(browser);
   if (args.report) await checkReport(browser);
-  if (args.history) await checkHistory(browser);
+  if (args.history) await checkHistory(browser, args.history, Number(args.cycles), 'history');
+  if (args.learn) await checkHistory(browser, args.learn, Number(args['learn-cycles']), 'learn');
   if (args.comparison) await checkComparison(browser);
 } finally {
   await browser.close();
