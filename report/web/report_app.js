@@ -254,7 +254,7 @@
     let lo = Infinity, hi = -Infinity;
     for (let i = 0; i < values.length; i++) {
       const v = values[i];
-      if (v === null || (path.colouring !== 'feed' && !sm.engaged[i])) continue;
+      if (v === null || !sm.engaged[i]) continue;  // the scale spans the cut: rapids would flatten it
       if (v < lo) lo = v;
       if (v > hi) hi = v;
     }
@@ -275,7 +275,7 @@
       const [x, y] = pathPixel(i);
       if (Math.abs(x - px) < 0.7 && Math.abs(y - py) < 0.7 && i < values.length - 1) continue;
       const v = values[i];
-      const grey = v === null || (path.colouring !== 'feed' && !sm.engaged[i]);  // no force out of the cut
+      const grey = v === null || !sm.engaged[i];  // out of the cut (air, rapids) or nothing measured
       const level = grey ? COLOUR_LEVELS
                          : Math.min(COLOUR_LEVELS - 1, Math.max(0, Math.round((v - lo) / (hi - lo) * (COLOUR_LEVELS - 1))));
       levels[level].moveTo(px, py);
@@ -383,7 +383,7 @@
     path.x0 = x0;
     path.y0 = y0;
     element('p', { class: 'hint' }, s, 'mm per pixel: ' + (1 / path.scale).toPrecision(3) +
-            '. Point at the path for the sample there.');
+            '. Grey: no tooth in the material (air, rapids) or nothing measured. Point at the path for the sample there.');
     select.addEventListener('change', () => { path.colouring = select.value; renderPath(); drawPath(); });
     canvas.addEventListener('mousemove', (e) => {
       const r = canvas.getBoundingClientRect();

@@ -175,6 +175,14 @@ async function checkHistory(browser, file, cycles, label) {
   const perCycle = await page.evaluate(() => window.feedplanReport.charts['chart-cycles'].data[0].length);
   check(perCycle === cycles, label + ': peak error and cycle time per cycle (' + perCycle + ' points)');
   await shot(page, label);
+  const measured = await page.$$eval('#path-colour option', (o) => o.map((e) => e.value));
+  check(measured.includes('measured'), label + ': the tool path can be coloured by the measured peaks');
+  if (measured.includes('measured')) {
+    await page.select('#path-colour', 'measured');
+    await page.$eval('#path-canvas', (e) => e.scrollIntoView({ block: 'center' }));
+    await page.screenshot({ path: path.join(args.shots, label + '-by-measured.png') });
+    console.log('screenshot: ' + path.join(args.shots, label + '-by-measured.png'));
+  }
   finish(opened);
   await page.close();
 }

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
-# Makes the sample reports with the feedplan binary — a plan (trochoid, run on the virtual machine for
-# measured peaks) with its CSV, the same plan redrawn from its JSON report, the plan learned from one part
-# cut on the virtual machine (learn --html), a learning history of three cycles (loop --html) and a
+# Makes the sample reports with the feedplan binary — a plan (trochoid) with its CSV, the same plan redrawn
+# from its JSON report, the plan learned from one part cut on the virtual machine (learn --html: measured
+# per-revolution peaks), a learning history of three cycles (loop --html) and a
 # comparison — and opens them in headless Chromium (report_browser_test.mjs). The reports
 # and the screenshots stay in OUT_DIR (screenshots/) as the test's artefacts.
 #
@@ -17,7 +17,7 @@ db=$out/t.db
 "$feedplan" db init --db "$db" > /dev/null
 "$feedplan" db import "$data/cli/s50c_d10_model.json" --db "$db" > /dev/null
 "$feedplan" plan "$samples/trochoid.yaml" --db "$db" -o "$out/plan.nc" --report "$out/plan.json" --csv "$out/plan.csv" \
-  --html "$out/plan.html" --simulate > "$out/plan.txt"
+  --html "$out/plan.html" > "$out/plan.txt"
 "$feedplan" report "$out/plan.json" -o "$out/report.html" --db "$db"
 "$feedplan" simulate "$out/plan.nc" --spec "$samples/trochoid.yaml" --material S50C --log "$out/part1.csv" > /dev/null 2>&1
 "$feedplan" learn "$out/plan.json" "$out/part1.csv" -o "$out/next.nc" --db "$db" --report "$out/next.json" \
