@@ -145,6 +145,10 @@ async function checkPlan(browser) {
   check(scales.every(([a, b]) => Math.abs(a - scales[1][0]) < 1e-6 && Math.abs(b - scales[1][1]) < 1e-6),
         'plan: the force and engagement charts follow the zoom');
   await shot(page, 'plan-zoomed');
+  await page.mouse.click(box.x + box.width / 2, box.y + box.height / 2, { clickCount: 2 });
+  const reset = await page.evaluate(() => window.feedplanReport.charts['chart-engagement'].scales.x);
+  check(Math.abs(reset.max - reset.min - full) < 1e-6, 'plan: a double-click shows the whole path again (' +
+        reset.min.toFixed(2) + '–' + reset.max.toFixed(2) + ' mm)');
   await page.select('#path-colour', 'predicted');
   await shot(page, 'plan-by-force');
   finish(opened);
