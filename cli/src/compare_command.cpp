@@ -8,6 +8,7 @@
 
 #include "comparison_report.hpp"
 #include "data_path.hpp"
+#include "html_report_pages.hpp"
 #include "database_path.hpp"
 #include "model_choice.hpp"
 #include "number_flag.hpp"
@@ -50,6 +51,7 @@ void add_compare_command(CLI::App& app, CompareOptions& options) {
   cmd->add_option("--out", options.out_dir,
                   "Directory to write compare.md, compare.json and compare.svg into, created if missing (its parent\n"
                   "must exist; default: compare-<spec name> in the current directory)");
+  cmd->add_option("--html", options.html_path, "Write the comparison as one self-contained HTML file (feedplan report)");
   cmd->add_flag("--json", options.json, "Print compare.json's content instead of the table");
 }
 
@@ -135,6 +137,14 @@ CompareInputs read_compare_inputs(const CompareOptions& o) {
   in.json_path = (fs::path(in.out_dir) / kCompareJsonName).string();
   in.plot_path = (fs::path(in.out_dir) / kComparePlotName).string();
   check_out_dir(o, in, problems);
+  check_outputs({{"SPEC", o.spec_path}, {"--db", database_path(o.db_path)}, {"--machine", o.machine_path},
+                 {"--materials", in.materials_path}},
+                {{"--html", o.html_path}}, problems);
+  for (const std::string& path : {in.markdown_path, in.json_path, in.plot_path}) {
+    if (!o.html_path.empty() && same_file(o.html_path, path)) {
+      problems.push_back({"--html", "= '" + o.html_path + "': is " + path + ", which compare writes too"});
+    }
+  }
   if (!problems.empty()) throw InputError(std::move(problems));
   return in;
 }
@@ -223,8 +233,8 @@ trial::ComparisonRequest comparison_request(const CompareInputs& in, const PlanA
 
 // compare.md, compare.json and compare.svg, staged and put in place together; --out made first when missing.
 // Returns the first error, or "".
-std::string write_outputs(const CompareInputs& in, const std::string& markdown, const std::string& json,
-                          const std::string& svg) {
+std::string write_outputs(const CompareOptions& o, const CompareInputs& in, const std::string& markdown,
+                          const std::string& json, const std::string& svg, const std::string& html) {
   std::error_code ec;
   if (!fs::exists(in.out_dir, ec)) {
     fs::create_directory(in.out_dir, ec);
@@ -234,6 +244,7 @@ std::string write_outputs(const CompareInputs& in, const std::string& markdown, 
   files.add(in.markdown_path, markdown);
   files.add(in.json_path, json);
   files.add(in.plot_path, svg);
+  if (!o.html_path.empty()) files.add(o.html_path, html);
   return files.commit();
 }
 
@@ -258,11 +269,13 @@ int run_compare_command(const CompareOptions& o) {
     comparison = trial::compare_strategies(request);
   }
   const std::string markdown = comparison_markdown(context, comparison);
-  const std::string json = comparison_json(context, comparison).dump(2) + "\n";
+  const nlohmann::json document = comparison_json(context, comparison);
+  const std::string json = document.dump(2) + "\n";
+  const std::string html = o.html_path.empty() ? "" : comparison_page_html(document, in.json_path);
   trial::ComparisonPlotOptions plot;
   plot.title = o.spec_path + " (" + in.spec.cycle + "): true per-revolution peaks on the virtual machine " +
                context.machine + ", target " + shortest_number_text(in.target_force_n) + " N";
-  if (const std::string error = write_outputs(in, markdown, json, trial::comparison_plot_svg(comparison, plot));
+  if (const std::string error = write_outputs(o, in, markdown, json, trial::comparison_plot_svg(comparison, plot), html);
       !error.empty()) {
     std::cerr << "feedplan: failed: " << error << "\n";
     return 1;

@@ -30,6 +30,7 @@ struct CompareOptions {
   std::string db_path;                     //!< --db; empty: $FEEDPLAN_DB, else the sample database
   std::string materials_path;              //!< --materials; empty: the bundled one
   std::string out_dir;                     //!< --out DIR; empty: compare-<spec name> in the current directory
+  std::string html_path;                   //!< --html: the comparison as one self-contained HTML file
   bool json = false;                       //!< --json: print compare.json's content instead of the table
 };
 

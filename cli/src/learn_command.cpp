@@ -9,6 +9,7 @@
 
 #include "calibration_command.hpp"
 #include "database_path.hpp"
+#include "html_report_pages.hpp"
 #include "learning_pair.hpp"
 #include "model_choice.hpp"
 #include "output_files.hpp"
@@ -26,6 +27,7 @@
 #include "feedplan/planner/path_history_plot.hpp"
 #include "feedplan/planner/plan_plot.hpp"
 #include "feedplan/planner/plan_report.hpp"
+#include "feedplan/report/plan_page.hpp"
 #include "feedplan/force_log/force_log.hpp"
 
 namespace feedplan::cli {
@@ -115,7 +117,7 @@ void check_learn_outputs(const LearnOptions& o, const LearnInputs& in) {
                                 {"--calibration", o.calibration_path}};
   for (const std::string& log : o.log_paths) inputs.push_back({"LOG", log});
   std::vector<InputProblem> problems;
-  check_outputs(inputs, {{"-o", o.program_path}, {"--report", o.report_path}, {"--plot", o.plot_path}}, problems);
+  check_outputs(inputs, {{"-o", o.program_path}, {"--report", o.report_path}, {"--plot", o.plot_path}, {"--html", o.html_path}}, problems);
   if (!problems.empty()) throw InputError(std::move(problems));
 }
 
@@ -356,6 +358,13 @@ void stage_learn_reports(const LearnOptions& o, const LearnInputs& in, const mod
                          const Replanned& next, OutputFiles& files) {
   const planner::PlanReportContext context = next_context(o, in, stored, next);
   if (!o.report_path.empty()) files.add(o.report_path, planner::plan_report_json(next.plan, next.settings, context));
+  if (!o.html_path.empty()) {
+    planner::PlanReport as_written;
+    as_written.context = context;
+    as_written.settings = next.settings;
+    files.add(o.html_path, report::plan_page_html(next.plan, next.settings,
+                                                  plan_report_page(as_written, next.plan, o.report_path.empty() ? o.plan_path : o.report_path)));
+  }
   if (!o.plot_path.empty() && !next.history.empty()) {
     // Every part learned from so far, and the plan for the next one.
     planner::PathHistoryPlotOptions plot;
@@ -564,6 +573,8 @@ void add_learn_command(CLI::App& app, LearnOptions& options) {
   cmd->add_option("-o,--output", options.program_path, "Re-planned G-code program to write")->required();
   cmd->add_option("--db", options.db_path, "Model database (default: the report's, else $FEEDPLAN_DB, else the sample)");
   cmd->add_option("--report", options.report_path, "Write the re-planned plan's report (JSON)");
+  cmd->add_option("--html", options.html_path,
+                  "Write the re-planned plan and the learning history as one self-contained HTML file (feedplan report)");
   cmd->add_option("--plot", options.plot_path, "Write the learning history (SVG): measured force and feed along the path for every cycle so far, and the next plan (the mechanistic kind: the re-planned plan with the measured peaks)");
   cmd->add_option("--note", options.note, "Note stored with the new model version");
   cmd->add_option("--calibration", options.calibration_path,

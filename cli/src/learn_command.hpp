@@ -21,6 +21,7 @@ struct LearnOptions {
   std::string db_path;                 //!< --db
   std::string report_path;             //!< --report: the re-planned plan's report
   std::string plot_path;               //!< --plot
+  std::string html_path;               //!< --html: the re-planned plan and the learning history as one HTML file
   std::string note;                    //!< --note: stored with the new version
   std::string calibration_path;        //!< --calibration: turns current-only logs into force logs
   SensorFlags sensor;                  //!< --sensor-hz, --sensor-damping

@@ -22,6 +22,7 @@
 #include "feedplan/cycles/spec_reader.hpp"
 #include "feedplan/trial/learning_loop.hpp"
 #include "feedplan/planner/path_history_plot.hpp"
+#include "feedplan/report/plan_page.hpp"
 #include "feedplan/sim/machine_file.hpp"
 #include "feedplan/sim/material.hpp"
 
@@ -51,6 +52,9 @@ void add_loop_command(CLI::App& app, LoopOptions& options) {
   cmd->add_option("--revolutions", options.revolutions_path,
                   "Also write every cycle's simulated revolutions (s span, place, peak, planned force, error) as CSV");
   add_sensor_flags(cmd, options.sensor);
+  cmd->add_option("--html", options.html_path,
+                  "Write the learning history (every cycle's peak error, cycle time and curves) and the next plan as one\n"
+                  "self-contained HTML file");
   cmd->add_option("--plot", options.plot_path,
                   "Also write the learning history (SVG): the force measured and the feed planned along the path in\n"
                   "every cycle (the newest 8), and the plan for the next part");
@@ -115,7 +119,7 @@ LoopInputs read_loop_inputs(const LoopOptions& o) {
                  {"--db", database_path(o.db_path)},
                  {"--machine", o.machine_path},
                  {"--materials", o.materials_path.empty() ? bundled_materials_path() : o.materials_path}},
-                {{"--revolutions", o.revolutions_path}, {"--plot", o.plot_path}}, problems);
+                {{"--revolutions", o.revolutions_path}, {"--plot", o.plot_path}, {"--html", o.html_path}}, problems);
   if (!problems.empty()) throw InputError(std::move(problems));
   return in;
 }
@@ -208,6 +212,52 @@ std::string history_plot(const trial::LoopRequest& request, const trial::LoopRes
   return planner::path_history_svg(s_mm, result.history, in.target_force_n, plot);
 }
 
+// The learning history of the loop, every cycle's figures, and the plan of the part after its last cycle.
+std::string history_html(const LoopOptions& o, const trial::LoopRequest& request, const trial::LoopResult& result,
+                         const LoopInputs& in, const ChosenModel& chosen) {
+  const planner::PlanResult next = planner::plan(request.geometry, result.next_settings);
+  report::PlanPage page;
+  page.title = in.spec.cycle + " on the virtual machine: learning along the path, " + std::to_string(result.cycles.size()) +
+               (result.cycles.size() == 1 ? " cycle" : " cycles") + ", and the next plan";
+  page.summary.emplace_back("spec", o.spec_path);
+  page.summary.emplace_back("virtual machine", o.machine_path.empty() ? "forces × " + shortest_number_text(machine_scale(o)) +
+                                                                           " of the material's"
+                                                                     : o.machine_path);
+  page.summary.emplace_back("start model", "id " + std::to_string(chosen.record.id) + " v" +
+                                               std::to_string(chosen.record.version) + ": " +
+                                               model_db::describe(chosen.borrowing));
+  for (report::SummaryLine& line : report::plan_summary_lines(next, result.next_settings)) {
+    line.first = "next plan: " + line.first;
+    page.summary.push_back(std::move(line));
+  }
+  if (in.cautious > 0.0) {
+    page.notes.push_back("cautious first cut: F̂ + " + shortest_number_text(o.sigmas) + "σ held at the target (r = " +
+                         shortest_number_text(in.cautious) + ")");
+  }
+  const trial::LoopCycle& last = result.cycles.back();
+  if (const std::string text = learning::describe(last.infeasible, in.target_force_n); !text.empty()) {
+    page.notes.push_back("cycle " + std::to_string(last.cycle) + ": " + text);
+  }
+  for (const trial::LoopCycle& c : result.cycles) {
+    for (const std::string& message : c.messages) page.notes.push_back("cycle " + std::to_string(c.cycle) + ": " + message);
+  }
+  for (const std::string& message : next.messages) page.notes.push_back("next plan: " + message);
+  page.history = result.history;
+  if (!result.history.empty()) page.measured_peak_n = result.history.back().measured_n;
+  page.cycle_table.columns = {"cycle", "plan [s]", "virtual machine [s]", "held revolutions", "held max |error| [%]",
+                              "held RMS error [%]", "largest overshoot [%]", "model p95 before → after [%]"};
+  for (const trial::LoopCycle& c : result.cycles) {
+    page.cycle_table.rows.push_back({std::to_string(c.cycle), fixed_number_text(c.planned_cycle_time_s, 2),
+                                     fixed_number_text(c.simulated_cycle_time_s, 2), std::to_string(c.comparison.held),
+                                     fixed_number_text(c.comparison.max_abs_error_percent, 2),
+                                     fixed_number_text(c.comparison.rms_error_percent, 2),
+                                     fixed_number_text(c.comparison.max_overshoot_percent, 2),
+                                     fixed_number_text(c.model_errors_before.p95_abs_percent, 1) + " → " +
+                                         fixed_number_text(c.model_errors_after.p95_abs_percent, 1)});
+  }
+  return report::plan_page_html(next, result.next_settings, page);
+}
+
 void print_loop_text(const LoopOptions& o, const LoopInputs& in, const ChosenModel& chosen, const trial::LoopResult& result) {
   const std::string machine = o.machine_path.empty()
                                   ? "virtual machine forces × " + shortest_number_text(machine_scale(o)) + " of the material's"
@@ -247,6 +297,7 @@ int run_loop_command(const LoopOptions& o) {
   OutputFiles files;
   if (!o.revolutions_path.empty()) files.add(o.revolutions_path, revolutions_csv(result, in.target_force_n));
   if (!o.plot_path.empty()) files.add(o.plot_path, history_plot(request, result, in));
+  if (!o.html_path.empty()) files.add(o.html_path, history_html(o, request, result, in, *chosen));
   if (const std::string error = files.commit(); !error.empty()) {
     std::cerr << "feedplan: failed: " << error << "\n";  // a write error is not bad input: exit 1
     return 1;

@@ -31,6 +31,7 @@ struct LoopOptions {
   bool json = false;                //!< --json
   std::string revolutions_path;     //!< --revolutions: per-revolution CSV of every cycle
   std::string plot_path;            //!< --plot: learning along the path, every cycle, as SVG
+  std::string html_path;            //!< --html: the learning history and the next plan as one HTML file
   SensorFlags sensor;               //!< --sensor-hz, --sensor-damping
 };
 

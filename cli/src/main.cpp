@@ -17,6 +17,7 @@
 #include "learn_command.hpp"
 #include "loop_command.hpp"
 #include "plan_command.hpp"
+#include "report_command.hpp"
 #include "simulate_command.hpp"
 #include "optimize_command.hpp"
 #include "feedplan/core/input_error.hpp"
@@ -59,6 +60,8 @@ int run_command_line(int argc, char** argv) {
   feedplan::cli::add_control_command(app, control_options);
   feedplan::cli::CompareOptions compare_options;
   feedplan::cli::add_compare_command(app, compare_options);
+  feedplan::cli::ReportOptions report_options;
+  feedplan::cli::add_report_command(app, report_options);
   feedplan::cli::DbOptions db_options;
   feedplan::cli::add_db_command(app, db_options);
 
@@ -87,6 +90,7 @@ int run_command_line(int argc, char** argv) {
     if (app.got_subcommand("loop")) return feedplan::cli::run_loop_command(loop_options);
     if (app.got_subcommand("control")) return feedplan::cli::run_control_command(control_options);
     if (app.got_subcommand("compare")) return feedplan::cli::run_compare_command(compare_options);
+    if (app.got_subcommand("report")) return feedplan::cli::run_report_command(report_options);
     if (app.got_subcommand("db")) return feedplan::cli::run_db_command(app, db_options);
   } catch (const feedplan::InputError& e) {
     return bad_input(e);

@@ -12,6 +12,7 @@
 #include <optional>
 
 #include "data_path.hpp"
+#include "html_report_pages.hpp"
 #include "database_path.hpp"
 #include "model_choice.hpp"
 #include "model_kind_choice.hpp"
@@ -40,6 +41,7 @@
 #include "feedplan/planner/plan_report.hpp"
 #include "feedplan/planner/target_sweep.hpp"
 #include "feedplan/planner/target_sweep_plot.hpp"
+#include "feedplan/report/plan_page.hpp"
 
 namespace feedplan::cli {
 namespace {
@@ -110,6 +112,7 @@ PlanInputs read_plan_inputs(const PlanCommandOptions& o) {
     for (const auto& [flag, given] : {std::pair<const char*, bool>{"-o", !o.program_path.empty()},
                                       {"--report", !o.report_path.empty()},
                                       {"--csv", !o.csv_path.empty()},
+                                      {"--html", !o.html_path.empty()},
                                       {"--simulate", o.simulate},
                                       {"--explain", o.explain},
                                       {"--part-comments", o.part_comments},
@@ -133,7 +136,8 @@ PlanInputs read_plan_inputs(const PlanCommandOptions& o) {
   check_outputs({{"SPEC", o.spec_path},
                  {"--db", database_path(o.db_path)},
                  {"--materials", o.materials_path.empty() ? bundled_materials_path() : o.materials_path}},
-                {{"-o", o.program_path}, {"--report", o.report_path}, {"--csv", o.csv_path}, {"--plot", o.plot_path}},
+                {{"-o", o.program_path}, {"--report", o.report_path}, {"--csv", o.csv_path}, {"--plot", o.plot_path},
+                 {"--html", o.html_path}},
                 problems);
   if (!problems.empty()) throw InputError(std::move(problems));
   return in;
@@ -323,14 +327,17 @@ planner::PlanPlotOptions plot_options(const PlanInputs& in, const std::optional<
   return plot;
 }
 
-// Stages --report, --csv, --plot.
-void stage_plan_files(const PlanCommandOptions& o, const PlanInputs& in, const PlannedCycle& planned,
+// Stages --report, --csv, --plot, --html.
+void stage_plan_files(const PlanCommandOptions& o, const PlanInputs& in, const PlanModel& model, const PlannedCycle& planned,
                       const planner::PlanReportContext& context, const PlanOutputs& out, OutputFiles& files) {
   const planner::PlanResult& result = planned.result;
   if (!o.report_path.empty()) files.add(o.report_path, planner::plan_report_json(result, planned.settings, context));
   if (!o.csv_path.empty()) files.add(o.csv_path, planner::plan_samples_csv(result));
   if (!o.plot_path.empty()) {
     files.add(o.plot_path, planner::plan_plot_svg(result, in.target_force_n, plot_options(in, out.check)));
+  }
+  if (!o.html_path.empty()) {
+    files.add(o.html_path, report::plan_page_html(result, planned.settings, plan_command_page(in, model, planned, out)));
   }
 }
 
@@ -353,7 +360,7 @@ std::string write_plan_outputs(const PlanCommandOptions& o, const PlanInputs& in
                                                 [&progress](double fraction) { progress(fraction); });
   }
   out.baselines = plan_baselines(in, planned, out.program.planned ? out.check : std::nullopt, materials);
-  stage_plan_files(o, in, planned, report_context(o, in, model, out.program, writer), out, files);
+  stage_plan_files(o, in, model, planned, report_context(o, in, model, out.program, writer), out, files);
   const std::string error = files.commit(out.program.any() ? ExistingFile::kReplace : ExistingFile::kKeep);
   out.written = files.written();
   out.kept = files.kept();
@@ -413,6 +420,9 @@ void add_plan_command(CLI::App& app, PlanCommandOptions& options) {
   cmd->add_option("--report", options.report_path, "Write the plan report (JSON)");
   cmd->add_option("--csv", options.csv_path, "Write the plan per sample (CSV)");
   cmd->add_option("--plot", options.plot_path, "Write a plot of engagement, feed and predicted force (SVG)");
+  cmd->add_option("--html", options.html_path,
+                  "Write the plan as one self-contained HTML file: the tool path coloured by feed or force, force, feed\n"
+                  "and engagement along the path, the summary and the notes (feedplan report draws it from --report too)");
   cmd->add_option("--mode", options.mode, "safe (F never above any limit inside its block) or regulate (default safe)");
   add_number_flag(cmd, "--air-feed", options.air_feed_mm_per_min, "Feed through air, mm/min (default: the machine's maximum)");
   add_number_flag(cmd, "--merge-tolerance", options.merge_tolerance, "Relative feed spread merged into one block (default 0.02)");

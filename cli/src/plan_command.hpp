@@ -22,6 +22,7 @@ struct PlanCommandOptions {
   std::string report_path;            //!< --report: JSON summary
   std::string csv_path;               //!< --csv: per-sample CSV
   std::string plot_path;              //!< --plot: SVG
+  std::string html_path;              //!< --html: the self-contained HTML report
   std::string mode = "safe";          //!< --mode safe | regulate
   std::optional<double> air_feed_mm_per_min;  //!< --air-feed; unset: the machine's maximum feed
   double merge_tolerance = 0.02;      //!< --merge-tolerance
