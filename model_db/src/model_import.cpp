@@ -20,6 +20,7 @@
 #include "model_rows.hpp"
 #include "store_impl.hpp"
 #include "utc_time.hpp"
+#include "write_transaction.hpp"
 
 namespace feedplan::model_db {
 namespace {
