@@ -21,4 +21,7 @@ void insert_learned_samples(Connection& db, RowId learning_entry_id, const std::
 
 std::vector<LearnedSample> select_learned_samples(const Connection& db, RowId tool_id, RowId material_id);
 
+//! The samples of one learning entry, in their order.
+std::vector<LearnedSample> select_samples_of_entry(const Connection& db, RowId learning_entry_id);
+
 }  // namespace feedplan::model_db::detail

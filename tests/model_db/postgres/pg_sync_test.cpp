@@ -46,6 +46,7 @@ TEST(PgSync, AFileReachesTheServerAndComesBackWithItsLineage) {
   EXPECT_EQ(versions[1].parent_version, 1);
   EXPECT_EQ(server.active_model(kSyncTool, kSyncMaterial)->version, 2);
   EXPECT_EQ(server.learning_history(kSyncTool, kSyncMaterial).size(), 2u);
+  EXPECT_EQ(server.learned_samples(kSyncTool, kSyncMaterial).size(), 6u);  // the steps' samples too
 
   const ImportSummary again = sync_models(local, server);
   EXPECT_EQ(again.models_added + again.tools_added + again.materials_added + again.cutting_tests_added +
@@ -61,6 +62,7 @@ TEST(PgSync, AFileReachesTheServerAndComesBackWithItsLineage) {
   const ModelRecord v4 = *local.active_model(kSyncTool, kSyncMaterial);
   EXPECT_EQ(v4.version, 4);
   EXPECT_EQ(v4.parent_version, 2);
+  EXPECT_EQ(local.learned_samples(kSyncTool, kSyncMaterial).size(), 9u);
   EXPECT_EQ(export_json(local), export_json(server));
   EXPECT_EQ(sync_models(server, local).models_added, 0);
 }
