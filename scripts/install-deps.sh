@@ -7,6 +7,7 @@ packages=(
   build-essential cmake pkg-config
   libeigen3-dev libcgal-dev libgmp-dev libmpfr-dev libboost-dev
   libceres-dev libsqlite3-dev
+  libpq-dev postgresql  # libpq: the shared model database on a PostgreSQL server; the server: its tests start one
   libcli11-dev libyaml-cpp-dev nlohmann-json3-dev libfmt-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   linuxcnc-uspace  # rs274, LinuxCNC's interpreter: the oracle of the G-code tests (docs/method.md §7)

@@ -25,6 +25,7 @@
 #include "feedplan/model_db/cutting_test_import.hpp"
 #include "feedplan/model_db/engagement_groups.hpp"
 #include "feedplan/model_db/model_exchange.hpp"
+#include "feedplan/model_db/model_sync.hpp"
 #include "feedplan/model/model_fit.hpp"
 #include "feedplan/model_db/mechanistic_fit.hpp"
 #include "feedplan/model/model_json.hpp"
@@ -702,19 +703,53 @@ int run_export(const DbOptions& o) {
   return 0;
 }
 
-int run_import(const DbOptions& o) {
-  check_exchange_file(o, false);
-  mdb::Store store = open_store(o, mdb::OpenMode::kCreate);
-  const mdb::ImportSummary s = mdb::import_from_file(store, o.file);
+// What an import or sync wrote and skipped, in one line.
+std::string summary_text(const mdb::ImportSummary& s) {
   std::ostringstream text;
   text << s.tools_added << " tools, " << s.materials_added << " materials, " << s.models_added << " model versions, "
        << s.cutting_tests_added << " cutting tests, " << s.learning_entries_added << " learning entries added; "
        << s.tools_skipped + s.materials_skipped + s.models_skipped + s.cutting_tests_skipped + s.learning_entries_skipped
        << " identical records skipped";
+  return text.str();
+}
+
+int run_import(const DbOptions& o) {
+  check_exchange_file(o, false);
+  mdb::Store store = open_store(o, mdb::OpenMode::kCreate);
+  const mdb::ImportSummary s = mdb::import_from_file(store, o.file);
+  const std::string text = summary_text(s);
   if (o.json) {
-    std::cout << json{{"imported", o.file}, {"summary", text.str()}, {"messages", s.messages}}.dump(2) << "\n";
+    std::cout << json{{"imported", o.file}, {"summary", text}, {"messages", s.messages}}.dump(2) << "\n";
   } else {
-    std::printf("imported %s into %s: %s\n", o.file.c_str(), store.path().string().c_str(), text.str().c_str());
+    std::printf("imported %s into %s: %s\n", o.file.c_str(), store.path().string().c_str(), text.c_str());
+    for (const auto& message : s.messages) std::printf("  %s\n", message.c_str());
+  }
+  return 0;
+}
+
+// --from and --to must be two databases: syncing one into itself would only re-read it.
+void check_sync_places(const DbOptions& o) {
+  std::vector<InputProblem> problems;
+  if (!mdb::is_server_url(o.sync_from) && !mdb::is_server_url(o.sync_to)) {
+    check_outputs({{"--from", o.sync_from}}, {{"--to", o.sync_to}}, problems);
+  } else if (o.sync_from == o.sync_to) {
+    problems.push_back({"--to", "= '" + mdb::shown_location(o.sync_to) + "': is the same database as --from"});
+  }
+  if (!problems.empty()) throw InputError(std::move(problems));
+}
+
+int run_sync(const DbOptions& o) {
+  check_sync_places(o);
+  const mdb::Store from = mdb::Store::open(o.sync_from, mdb::OpenMode::kReadOnly);
+  mdb::Store to = mdb::Store::open(o.sync_to, mdb::OpenMode::kCreate);
+  const mdb::ImportSummary s = mdb::sync_models(from, to);
+  const std::string text = summary_text(s);
+  if (o.json) {
+    std::cout << json{{"from", from.path().string()}, {"to", to.path().string()}, {"summary", text},
+                      {"messages", s.messages}}.dump(2)
+              << "\n";
+  } else {
+    std::printf("synced %s into %s: %s\n", from.path().string().c_str(), to.path().string().c_str(), text.c_str());
     for (const auto& message : s.messages) std::printf("  %s\n", message.c_str());
   }
   return 0;
@@ -726,7 +761,8 @@ void add_db_command(CLI::App& app, DbOptions& o) {
   auto* db = app.add_subcommand("db", "Maintain the model database: tools, materials, cutting tests, fitted models");
   db->require_subcommand(1);
   auto common = [&o](CLI::App* cmd) {
-    cmd->add_option("--db", o.db_path, "Database file (default: $FEEDPLAN_DB, else the bundled sample database)");
+    cmd->add_option("--db", o.db_path,
+                    "Database file or postgresql://USER@HOST:PORT/DBNAME (default: $FEEDPLAN_DB, else the bundled sample database)");
     cmd->add_flag("--json", o.json, "Print the result as JSON");
   };
   auto tool_material = [&o](CLI::App* cmd) {
@@ -804,6 +840,12 @@ void add_db_command(CLI::App& app, DbOptions& o) {
   common(rollback);
   tool_material(rollback);
   add_integer_flag(rollback, "--version", o.version, "Version to make active")->required();
+  auto* sync = db->add_subcommand("sync", "Copy tools, materials, model versions and history from one database into "
+                                          "another (a file or a postgresql:// server); what is there already is skipped");
+  sync->add_option("--from", o.sync_from, "Database to copy from: a file or postgresql://USER@HOST:PORT/DBNAME")->required();
+  sync->add_option("--to", o.sync_to, "Database to copy into (created when missing): a file or a postgresql:// URL")
+      ->required();
+  sync->add_flag("--json", o.json, "Print the result as JSON");
 }
 
 int run_db_command(const CLI::App& app, const DbOptions& o) {
@@ -821,6 +863,7 @@ int run_db_command(const CLI::App& app, const DbOptions& o) {
   if (given("import")) return run_import(o);
   if (given("history")) return run_history(o);
   if (given("rollback")) return run_rollback(o);
+  if (given("sync")) return run_sync(o);
   return 1;
 }
 

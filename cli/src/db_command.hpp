@@ -1,6 +1,6 @@
 #pragma once
 // `feedplan db …`: offline maintenance of the model database — tools, materials, cutting tests,
-// fitted response-surface models, versions, export/import.
+// fitted response-surface models, versions, export/import, and syncing a local file with a shared server.
 
 #include <CLI/CLI.hpp>
 
@@ -43,6 +43,8 @@ struct DbOptions {
   std::string file;             //!< export / import
   bool all_versions = false;    //!< export
   std::optional<int> version;   //!< show (unset: the active version) / rollback (required)
+  std::string sync_from;        //!< sync: the database copied from (a file or a postgresql:// URL)
+  std::string sync_to;          //!< sync: the database copied into (created when missing)
 };
 
 //! Registers `db` and its subcommands.

@@ -9,10 +9,12 @@
 #include <vector>
 
 #include "feedplan/core/input_error.hpp"
+#include "feedplan/model_db/database_url.hpp"
 
 namespace feedplan::cli {
 
-//! A file a command reads or writes, with the flag or argument that names it.
+//! A file a command reads or writes, with the flag or argument that names it (a model database may be a
+//! server's URL instead: it is no file, and the checks below pass it by).
 struct NamedPath {
   std::string flag;  //!< e.g. "--report", or the argument as the usage names it, e.g. "SPEC"
   std::string path;  //!< as given; "" when not given
@@ -22,7 +24,7 @@ struct NamedPath {
 //! directory.
 inline void check_output_path(const std::string& flag, const std::string& path, std::vector<InputProblem>& problems) {
   namespace fs = std::filesystem;
-  if (path.empty()) return;
+  if (path.empty() || model_db::is_server_url(path)) return;
   const fs::path p(path);
   const fs::path directory = p.has_parent_path() ? p.parent_path() : fs::path(".");
   std::error_code ec;
@@ -63,9 +65,9 @@ inline void check_outputs(const std::vector<NamedPath>& inputs, const std::vecto
   for (std::size_t i = 0; i < outputs.size(); ++i) {
     const NamedPath& output = outputs[i];
     check_output_path(output.flag, output.path, problems);
-    if (output.path.empty() || !writes_a_file(output.path)) continue;
+    if (output.path.empty() || model_db::is_server_url(output.path) || !writes_a_file(output.path)) continue;
     for (const NamedPath& input : inputs) {
-      if (input.path.empty() || !same_file(output.path, input.path)) continue;
+      if (input.path.empty() || model_db::is_server_url(input.path) || !same_file(output.path, input.path)) continue;
       problems.push_back({output.flag, "= '" + output.path + "': is the same file as " + input.flag + " ('" + input.path +
                                            "'): writing it would destroy that input — give another file name"});
     }

@@ -10,7 +10,7 @@
 
 #include "feedplan/core/input_error.hpp"
 #include "feedplan/model_db/store_records.hpp"
-#include "sqlite_handle.hpp"
+#include "sql_statement.hpp"
 
 namespace feedplan::model_db::detail {
 

@@ -74,4 +74,17 @@ std::vector<LearnedSample> select_learned_samples(const Connection& db, RowId to
   return samples;
 }
 
+std::vector<LearnedSample> select_samples_of_entry(const Connection& db, RowId learning_entry_id) {
+  Statement statement(db,
+                      "SELECT chip_mm, contact_length_mm, force_n, weight, s_mm FROM learning_samples "
+                      "WHERE learning_entry_id = ? ORDER BY sample_index");
+  statement.bind(learning_entry_id);
+  std::vector<LearnedSample> samples;
+  while (statement.step()) {
+    samples.push_back({statement.column_double(0), statement.column_double(1), statement.column_double(2),
+                       statement.column_double(3), statement.column_double(4)});
+  }
+  return samples;
+}
+
 }  // namespace feedplan::model_db::detail

@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "feedplan/model_db/store_records.hpp"
-#include "sqlite_handle.hpp"
+#include "sql_statement.hpp"
 
 namespace feedplan::model_db::detail {
 
@@ -20,5 +20,8 @@ std::vector<LearningEntry> select_learning_entries(const Connection& db, RowId t
 void insert_learned_samples(Connection& db, RowId learning_entry_id, const std::vector<LearnedSample>& samples);
 
 std::vector<LearnedSample> select_learned_samples(const Connection& db, RowId tool_id, RowId material_id);
+
+//! The samples of one learning entry, in their order.
+std::vector<LearnedSample> select_samples_of_entry(const Connection& db, RowId learning_entry_id);
 
 }  // namespace feedplan::model_db::detail

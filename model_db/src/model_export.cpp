@@ -4,6 +4,8 @@
 #include <nlohmann/json.hpp>
 
 #include "cutting_test_rows.hpp"
+#include "learning_rows.hpp"
+#include "store_impl.hpp"
 #include "feedplan/core/atomic_file.hpp"
 #include "feedplan/model/mechanistic_json.hpp"
 #include "feedplan/model/model_json.hpp"
@@ -133,16 +135,27 @@ std::string export_json(const Store& store, const ExportOptions& options) {
       const bool before_exported = exported.count(entry.model_id_before) != 0;
       const bool after_exported = entry.model_id_after == 0 || exported.count(entry.model_id_after) != 0;
       if (!before_exported || !after_exported) continue;
-      history.push_back(Json{{"model_before", model_reference(*by_id.at(entry.model_id_before))},
-                             {"model_after", entry.model_id_after == 0
-                                                 ? Json(nullptr)
-                                                 : model_reference(*by_id.at(entry.model_id_after))},
-                             {"part_name", entry.part_name},
-                             {"n_samples", entry.n_samples},
-                             {"error_before_n", entry.error_before_n},
-                             {"error_after_n", entry.error_after_n},
-                             {"created_at", entry.created_at},
-                             {"note", entry.note}});
+      Json item{{"model_before", model_reference(*by_id.at(entry.model_id_before))},
+                {"model_after", entry.model_id_after == 0 ? Json(nullptr) : model_reference(*by_id.at(entry.model_id_after))},
+                {"part_name", entry.part_name},
+                {"n_samples", entry.n_samples},
+                {"error_before_n", entry.error_before_n},
+                {"error_after_n", entry.error_after_n},
+                {"created_at", entry.created_at},
+                {"note", entry.note}};
+      const auto samples = detail::select_samples_of_entry(store.impl().db, entry.id);
+      if (!samples.empty()) {
+        Json rows = Json::array();
+        for (const LearnedSample& sample : samples) {
+          rows.push_back(Json{{"chip_mm", sample.chip_mm},
+                              {"contact_length_mm", sample.contact_length_mm},
+                              {"force_n", sample.force_n},
+                              {"weight", sample.weight},
+                              {"s_mm", sample.s_mm}});
+        }
+        item["samples"] = std::move(rows);
+      }
+      history.push_back(std::move(item));
     }
     document["learning_history"] = std::move(history);
   }

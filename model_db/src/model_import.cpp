@@ -1,5 +1,6 @@
 #include <algorithm>
 #include <fstream>
+#include <limits>
 #include <map>
 #include <set>
 #include <sstream>
@@ -20,6 +21,7 @@
 #include "model_rows.hpp"
 #include "store_impl.hpp"
 #include "utc_time.hpp"
+#include "write_transaction.hpp"
 
 namespace feedplan::model_db {
 namespace {
@@ -68,6 +70,7 @@ struct IncomingEntry {
   ModelKey before;
   std::optional<ModelKey> after;
   LearningEntry entry;
+  std::vector<LearnedSample> samples;  //!< the per-revolution samples the step learned from (may be none)
 };
 
 struct Document {
@@ -234,6 +237,13 @@ IncomingEntry read_entry(const Node& node) {
   entry.created_at = node.text("created_at");
   check_time(node, entry.created_at);
   entry.note = node.text("note", JsonPresence::kOptional);
+  const Node samples = node.array("samples", JsonPresence::kOptional);
+  for (std::size_t i = 0; i < samples.size(); ++i) {
+    const Node sample = samples.item(i, "samples[" + std::to_string(i) + "]");
+    incoming.samples.push_back({sample.number("chip_mm"), sample.number("contact_length_mm"), sample.number("force_n"),
+                                sample.number_at_least("weight", std::numeric_limits<double>::min()),
+                                sample.number("s_mm")});
+  }
   return incoming;
 }
 
@@ -752,7 +762,8 @@ class Importer {
         return;
       }
     }
-    detail::insert_learning_entry(db_, entry, entry.created_at);
+    const RowId id = detail::insert_learning_entry(db_, entry, entry.created_at);
+    detail::insert_learned_samples(db_, id, incoming.samples);
     ++summary_.learning_entries_added;
     row_written("import.learning_history");
   }

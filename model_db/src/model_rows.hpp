@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "feedplan/model_db/store_records.hpp"
-#include "sqlite_handle.hpp"
+#include "sql_statement.hpp"
 
 namespace feedplan::model_db::detail {
 

@@ -13,7 +13,7 @@
 
 namespace feedplan::model_db::detail {
 
-Connection::Connection(const std::string& path, int flags) : path_(path) {
+SqliteConnection::SqliteConnection(const std::string& path, int flags) : Connection(path) {
   const int rc = sqlite3_open_v2(path.c_str(), &db_, flags, nullptr);
   if (rc != SQLITE_OK) {
     // sqlite3_open_v2 hands back a handle even on failure (for the message); close it after use.
@@ -25,16 +25,17 @@ Connection::Connection(const std::string& path, int flags) : path_(path) {
   sqlite3_extended_result_codes(db_, 1);
 }
 
-Connection::~Connection() { sqlite3_close(db_); }
+SqliteConnection::~SqliteConnection() { sqlite3_close(db_); }
 
-void Connection::exec(const std::string& sql) {
+void SqliteConnection::exec(const std::string& sql) {
   check(sqlite3_exec(db_, sql.c_str(), nullptr, nullptr, nullptr), sql);
 }
 
-void Connection::check(int result_code, std::string_view what) const {
+void SqliteConnection::check(int result_code, std::string_view what) const {
   const int primary = result_code & 0xff;
   if (primary == SQLITE_OK || primary == SQLITE_ROW || primary == SQLITE_DONE) return;
   const std::string message = sqlite3_errmsg(db_);
+  const std::string& path_ = path();
   if (primary == SQLITE_NOTADB || primary == SQLITE_CORRUPT) {
     throw InputError(path_, "is not a usable model database: " + message + " (a damaged file or not a database at all)");
   }
@@ -45,44 +46,42 @@ void Connection::check(int result_code, std::string_view what) const {
   throw std::runtime_error("model database " + path_ + ": " + message + " (" + std::string(what) + ")");
 }
 
-std::int64_t Connection::last_insert_rowid() const { return sqlite3_last_insert_rowid(db_); }
+std::int64_t SqliteConnection::last_insert_rowid() const { return sqlite3_last_insert_rowid(db_); }
 
-Statement::Statement(const Connection& connection, std::string_view sql) : connection_(connection), sql_(sql) {
+std::unique_ptr<StatementBackend> SqliteConnection::prepare(std::string_view sql) const {
+  return std::make_unique<SqliteStatement>(*this, sql);
+}
+
+void SqliteConnection::begin_write() { exec("BEGIN IMMEDIATE"); }
+
+void SqliteConnection::commit() { exec("COMMIT"); }
+
+void SqliteConnection::rollback() noexcept { sqlite3_exec(db_, "ROLLBACK", nullptr, nullptr, nullptr); }
+
+SqliteStatement::SqliteStatement(const SqliteConnection& connection, std::string_view sql) : connection_(connection), sql_(sql) {
   connection_.check(sqlite3_prepare_v2(connection_.get(), sql_.data(), static_cast<int>(sql_.size()), &statement_, nullptr),
                     sql_);
 }
 
-Statement::~Statement() { sqlite3_finalize(statement_); }
+SqliteStatement::~SqliteStatement() { sqlite3_finalize(statement_); }
 
-Statement& Statement::bind(double value) {
-  connection_.check(sqlite3_bind_double(statement_, next_parameter_++, value), sql_);
-  return *this;
+void SqliteStatement::bind_double(int parameter, double value) {
+  connection_.check(sqlite3_bind_double(statement_, parameter, value), sql_);
 }
 
-Statement& Statement::bind(std::int64_t value) {
-  connection_.check(sqlite3_bind_int64(statement_, next_parameter_++, value), sql_);
-  return *this;
+void SqliteStatement::bind_int64(int parameter, std::int64_t value) {
+  connection_.check(sqlite3_bind_int64(statement_, parameter, value), sql_);
 }
 
-Statement& Statement::bind(int value) { return bind(static_cast<std::int64_t>(value)); }
-
-Statement& Statement::bind(bool value) { return bind(static_cast<std::int64_t>(value ? 1 : 0)); }
-
-Statement& Statement::bind(std::string_view value) {
-  connection_.check(sqlite3_bind_text(statement_, next_parameter_++, value.data(), static_cast<int>(value.size()),
+void SqliteStatement::bind_text(int parameter, std::string_view value) {
+  connection_.check(sqlite3_bind_text(statement_, parameter, value.data(), static_cast<int>(value.size()),
                                       SQLITE_TRANSIENT),
                     sql_);
-  return *this;
 }
 
-Statement& Statement::bind(std::optional<std::int64_t> value) { return value ? bind(*value) : bind_null(); }
+void SqliteStatement::bind_null(int parameter) { connection_.check(sqlite3_bind_null(statement_, parameter), sql_); }
 
-Statement& Statement::bind_null() {
-  connection_.check(sqlite3_bind_null(statement_, next_parameter_++), sql_);
-  return *this;
-}
-
-bool Statement::step() {
+bool SqliteStatement::step() {
   const int rc = sqlite3_step(statement_);
   if (rc == SQLITE_ROW) return true;
   if (rc == SQLITE_DONE) return false;
@@ -90,18 +89,12 @@ bool Statement::step() {
   return false;
 }
 
-void Statement::run() {
-  while (step()) {
-  }
-}
-
-void Statement::reset() {
+void SqliteStatement::reset() {
   sqlite3_reset(statement_);
   sqlite3_clear_bindings(statement_);
-  next_parameter_ = 1;
 }
 
-std::string Statement::value_place(int index) const {
+std::string SqliteStatement::value_place(int index) const {
   const char* table = sqlite3_column_table_name(statement_, index);
   const char* column = sqlite3_column_origin_name(statement_, index);
   if (table == nullptr || column == nullptr) return "result column " + std::to_string(index + 1) + " of " + sql_;
@@ -120,7 +113,7 @@ std::string Statement::value_place(int index) const {
   return "table " + std::string(table) + ", column " + column + row;
 }
 
-void Statement::refuse_value(int index, const std::string& shown, const std::string& expected) const {
+void SqliteStatement::refuse_value(int index, const std::string& shown, const std::string& expected) const {
   throw InputError(connection_.path() + " " + value_place(index),
                    "= " + shown + ": " + expected +
                        "; the file was changed outside feedplan: correct the row or restore the file from a backup");
@@ -139,13 +132,13 @@ std::string shown_text(sqlite3_stmt* statement, int index) {
 
 }  // namespace
 
-double Statement::column_double(int index) const {
+double SqliteStatement::column_double(int index) const {
   const int type = sqlite3_column_type(statement_, index);
   if (type == SQLITE_TEXT || type == SQLITE_BLOB) refuse_value(index, shown_text(statement_, index), "must be a number");
   return sqlite3_column_double(statement_, index);
 }
 
-std::int64_t Statement::column_int64(int index) const {
+std::int64_t SqliteStatement::column_int64(int index) const {
   const int type = sqlite3_column_type(statement_, index);
   if (type == SQLITE_TEXT || type == SQLITE_BLOB) {
     refuse_value(index, shown_text(statement_, index), "must be a whole number");
@@ -161,7 +154,7 @@ std::int64_t Statement::column_int64(int index) const {
   return sqlite3_column_int64(statement_, index);
 }
 
-int Statement::column_int(int index) const {
+int SqliteStatement::column_int(int index) const {
   const std::int64_t value = column_int64(index);
   if (value < std::numeric_limits<int>::min() || value > std::numeric_limits<int>::max()) {
     refuse_value(index, std::to_string(value),
@@ -171,7 +164,7 @@ int Statement::column_int(int index) const {
   return static_cast<int>(value);
 }
 
-std::string Statement::column_text(int index) const {
+std::string SqliteStatement::column_text(int index) const {
   const auto* text = sqlite3_column_text(statement_, index);
   if (text == nullptr) return {};
   std::string value(reinterpret_cast<const char*>(text), static_cast<std::size_t>(sqlite3_column_bytes(statement_, index)));
@@ -181,27 +174,6 @@ std::string Statement::column_text(int index) const {
   return value;
 }
 
-bool Statement::column_is_null(int index) const { return sqlite3_column_type(statement_, index) == SQLITE_NULL; }
-
-std::optional<std::int64_t> Statement::column_optional_int64(int index) const {
-  if (column_is_null(index)) return std::nullopt;
-  return column_int64(index);
-}
-
-WriteTransaction::WriteTransaction(Connection& connection) : connection_(connection) {
-  connection_.exec("BEGIN IMMEDIATE");
-  open_ = true;
-}
-
-WriteTransaction::~WriteTransaction() {
-  // Unwinding from an error or exception: undo everything. A failing ROLLBACK (the connection is
-  // gone) leaves SQLite to roll back the hot journal on the next open.
-  if (open_) sqlite3_exec(connection_.get(), "ROLLBACK", nullptr, nullptr, nullptr);
-}
-
-void WriteTransaction::commit() {
-  connection_.exec("COMMIT");
-  open_ = false;
-}
+bool SqliteStatement::column_is_null(int index) const { return sqlite3_column_type(statement_, index) == SQLITE_NULL; }
 
 }  // namespace feedplan::model_db::detail

@@ -8,15 +8,20 @@
 #include <cmath>
 #include <system_error>
 
+#include "feedplan/model_db/database_url.hpp"
 #include "feedplan/model_db/stale_model_error.hpp"
 
 #include "catalog_rows.hpp"
 #include "cutting_test_rows.hpp"
 #include "learning_rows.hpp"
 #include "model_rows.hpp"
+#include "pg_connection.hpp"
+#include "pg_schema.hpp"
 #include "schema.hpp"
+#include "sqlite_handle.hpp"
 #include "store_impl.hpp"
 #include "utc_time.hpp"
+#include "write_transaction.hpp"
 
 namespace feedplan::model_db {
 
@@ -34,7 +39,19 @@ void append(std::vector<InputProblem>& to, std::vector<InputProblem> from) {
 
 }  // namespace
 
-Store Store::open(const std::filesystem::path& path, OpenMode mode, const StoreOptions& options) {
+namespace {
+
+// A store on a PostgreSQL server: the URL's server must answer, the database must exist (kCreate makes
+// the schema in an empty one, not the database itself).
+std::unique_ptr<Store::Impl> open_server(const std::string& url, OpenMode mode, const StoreOptions& options) {
+  auto connection = std::make_unique<detail::PgConnection>(url, options.busy_timeout_ms, mode == OpenMode::kReadOnly);
+  const int version = detail::prepare_pg_schema(*connection, mode);
+  auto impl = std::make_unique<Store::Impl>(shown_location(url), std::move(connection));
+  impl->schema_version = version;
+  return impl;
+}
+
+std::unique_ptr<Store::Impl> open_file(const std::filesystem::path& path, OpenMode mode, const StoreOptions& options) {
   std::error_code ec;
   const bool exists = std::filesystem::exists(path, ec);
   if (!exists && mode != OpenMode::kCreate) {
@@ -54,12 +71,21 @@ Store Store::open(const std::filesystem::path& path, OpenMode mode, const StoreO
     case OpenMode::kExisting: flags |= SQLITE_OPEN_READWRITE; break;
     case OpenMode::kReadOnly: flags |= SQLITE_OPEN_READONLY; break;
   }
-  auto impl = std::make_unique<Impl>(path, flags);
-  sqlite3_busy_timeout(impl->db.get(), options.busy_timeout_ms);
-  impl->schema_version = detail::prepare_schema(impl->db, mode, options.quick_check_on_open);
-  impl->db.exec("PRAGMA foreign_keys = ON");
-  impl->db.exec("PRAGMA cache_size = " + std::to_string(-std::max(options.cache_size_kib, 1)));
-  return Store(std::move(impl));
+  auto connection = std::make_unique<detail::SqliteConnection>(path.string(), flags);
+  sqlite3_busy_timeout(connection->get(), options.busy_timeout_ms);
+  const int version = detail::prepare_schema(*connection, mode, options.quick_check_on_open);
+  connection->exec("PRAGMA foreign_keys = ON");
+  connection->exec("PRAGMA cache_size = " + std::to_string(-std::max(options.cache_size_kib, 1)));
+  auto impl = std::make_unique<Store::Impl>(path, std::move(connection));
+  impl->schema_version = version;
+  return impl;
+}
+
+}  // namespace
+
+Store Store::open(const std::filesystem::path& path, OpenMode mode, const StoreOptions& options) {
+  const std::string location = path.string();
+  return Store(is_server_url(location) ? open_server(location, mode, options) : open_file(path, mode, options));
 }
 
 Store::Store(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
@@ -73,8 +99,12 @@ int Store::schema_version() const { return impl_->schema_version; }
 
 IntegrityReport Store::integrity_check() const {
   IntegrityReport report;
-  detail::Statement statement(impl_->db, "PRAGMA integrity_check");
-  while (statement.step()) report.messages.push_back(statement.column_text(0));
+  if (impl_->db.engine() == detail::Engine::kPostgres) {
+    report.messages = detail::pg_consistency_check(static_cast<const detail::PgConnection&>(impl_->db));
+  } else {
+    detail::Statement statement(impl_->db, "PRAGMA integrity_check");
+    while (statement.step()) report.messages.push_back(statement.column_text(0));
+  }
   report.ok = report.messages.size() == 1 && report.messages.front() == "ok";
   return report;
 }

@@ -19,7 +19,9 @@
 //                    steady_peaks_n[], synchronous_fx_n[], synchronous_fy_n[] (optional: the force over a
 //                    revolution averaged over the steady ones, force_log/synchronous_average.hpp),
 //                    source, notes[], created_at
-//   learning_history by created_at: model_before / model_after as {tool, material, version}, …
+//   learning_history by created_at: model_before / model_after as {tool, material, version}, …, and
+//                    samples[] {chip_mm, contact_length_mm, force_n, weight, s_mm} (optional: the
+//                    per-revolution samples the step learned from, absent when it stored none)
 // Row ids never appear (references are by name and version); versions, created_at and the active flags
 // are kept, so export → import into an empty store → export gives byte-identical text. Not exported:
 // the activation audit trail (the import records its own activations, reason "imported").

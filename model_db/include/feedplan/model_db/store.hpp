@@ -1,6 +1,7 @@
 #pragma once
-// The model database: one SQLite file holding tools, workpiece materials, the versions of the force
-// models of each tool in each material (response surfaces and mechanistic models; exactly one version of
+// The model database: one SQLite file — or one database on a PostgreSQL server, opened by its URL
+// (database_url.hpp) — holding tools, workpiece materials, the versions of the force models of each tool
+// in each material (response surfaces and mechanistic models; exactly one version of
 // each kind active), the cutting tests
 // they were fitted on, the audit trail of which version was active when, and the learning history.
 //
@@ -14,6 +15,11 @@
 // - The schema carries a version (PRAGMA user_version; PRAGMA application_id marks the file as a
 //   feedplan database). Opening a file of an older version migrates it in one transaction; a newer
 //   one is refused with a message asking to upgrade feedplan.
+//
+// On a PostgreSQL server the same holds, with the server's means: a write transaction takes one advisory
+// lock (the server's single writer; readers are never blocked) and waits up to the busy timeout for it; a
+// client killed mid-write is rolled back by the server; the schema version is kept in the table
+// feedplan_schema, with the same versions and migrations as a file.
 //
 // A Store is one connection: use it from one thread at a time (open one Store per thread or process).
 //
@@ -67,7 +73,10 @@ using WriteHook = std::function<void(std::string_view step)>;
 
 class Store {
  public:
-  //! Opens (or with kCreate creates) the database at `path`. Throws InputError naming the path when
+  //! Opens (or with kCreate creates) the database at `path`: a file, or with a postgresql:// (postgres://)
+  //! URL an existing database on a PostgreSQL server (kCreate makes the schema in an empty one; the server
+  //! must answer: InputError naming the URL, the host and port and what may help otherwise). Throws
+  //! InputError naming the path when
   //! the file is missing (kExisting, kReadOnly), is not a SQLite database or not a feedplan one, is
   //! damaged (quick_check), has a schema newer than kStoreSchemaVersion ("… upgrade feedplan"), or
   //! (kReadOnly) an older one that needs migrating.
@@ -78,7 +87,7 @@ class Store {
   Store& operator=(Store&&) noexcept;
   ~Store();
 
-  //! The file this store was opened from.
+  //! The file this store was opened from, or the server's URL without its password.
   const std::filesystem::path& path() const;
 
   //! The schema version of the open file (kStoreSchemaVersion after open).
