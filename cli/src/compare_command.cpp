@@ -283,7 +283,8 @@ int run_compare_command(const CompareOptions& o) {
   if (o.json) {
     std::cout << json;
   } else {
-    std::cout << markdown << "\nwritten: " << in.markdown_path << ", " << in.json_path << ", " << in.plot_path << "\n";
+    std::cout << markdown << "\nwritten: " << in.markdown_path << ", " << in.json_path << ", " << in.plot_path
+              << (o.html_path.empty() ? "" : ", ") << o.html_path << "\n";
   }
   for (const trial::StrategyRow& row : comparison.rows) {
     for (const std::string& warning : row.warnings) std::cerr << "feedplan: warning: " << row.name << ": " << warning << "\n";
