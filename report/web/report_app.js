@@ -439,7 +439,9 @@
   function drawComparison() {
     const c = data.comparison;
     const s = section('comparison', 'Strategies compared');
-    drawTable(s, 'comparison-table', c.table);
+    // Numbered: the bars carry the numbers, as a dozen strategy names do not fit under them.
+    drawTable(s, 'comparison-table', { columns: ['#'].concat(c.table.columns),
+                                       rows: c.table.rows.map((r, i) => [String(i + 1)].concat(r)) });
     const names = c.rows.map((r) => r.name);
     const xs = names.map((_, i) => i + 1);
     for (const figure of c.figures) {
@@ -449,7 +451,8 @@
         width: chartWidth(), height: 220,
         scales: { x: { time: false, range: [0.5, names.length + 0.5] },
                   y: { range: (u, min, max) => [Math.min(0, min), max > 0 ? 1.1 * max : 1] } },  // bars from zero
-        axes: [{ values: (u, ticks) => ticks.map((t) => names[t - 1] || ''), incrs: [1], size: 40 },
+        axes: [{ label: 'strategy (# in the table)', values: (u, ticks) => ticks.map((t) => (names[t - 1] ? String(t) : '')),
+                 incrs: [1], size: 30 },
                { label: figure.label, size: 60 }],
         series: [{ label: 'strategy', value: (u, v) => (v === null ? '' : names[v - 1] || '') },
                  { label: figure.label, stroke: '#1f77b4', fill: 'rgba(31,119,180,0.3)',

@@ -195,7 +195,7 @@ async function checkComparison(browser) {
   const opened = await open(browser, args.comparison, 'comparison');
   const { page } = opened;
   const expected = JSON.parse(fs.readFileSync(args['compare-json'], 'utf8')).rows;
-  const names = await page.$$eval('#comparison-table tr td:first-child', (c) => c.map((e) => e.textContent));
+  const names = await page.$$eval('#comparison-table tr td:nth-child(2)', (c) => c.map((e) => e.textContent));
   check(names.length === expected.length && names.every((n, k) => n === expected[k].name),
         'comparison: one table row per strategy, in order (' + names.join(' | ') + ')');
   await chartsPresent(page, ['chart-max_peak_n', 'chart-cycle_time_s'], 'comparison');
