@@ -14,15 +14,8 @@ namespace feedplan::learning::detail {
 namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-// The tool is in contact where the measured peak envelope exceeds this share of its (robust) maximum …
+// The tool is in contact where the measured peak envelope exceeds this share of its (robust) maximum.
 constexpr double kContactFraction = 0.03;
-// … and this multiple of the envelope's level out of the cut (its 5th percentile: every program moves in air
-// somewhere), where the sensor's noise alone sets it: a dynamometer with 9 N of noise per axis has a peak
-// envelope of 15–20 N in air, over 3 % of a 500 N maximum, and took the whole log for contact.
-constexpr double kNoiseEnvelopeFactor = 2.0;
-constexpr double kNoiseQuantile = 0.05;
-// … but never above this share of the maximum (a log cut throughout has no air to measure the noise in).
-constexpr double kMaxContactFraction = 0.3;
 
 }  // namespace
 
@@ -52,15 +45,9 @@ std::vector<double> in_contact(const std::vector<double>& force_bins, int width)
     if (std::isfinite(v)) finite.push_back(v);
   }
   if (finite.empty()) return envelope;
-  const auto quantile = [&finite](double q) {
-    const std::size_t k = static_cast<std::size_t>(q * static_cast<double>(finite.size() - 1));
-    std::nth_element(finite.begin(), finite.begin() + static_cast<long>(k), finite.end());
-    return finite[k];
-  };
-  const double maximum = quantile(0.999);
-  const double noise_envelope = quantile(kNoiseQuantile);
-  const double threshold =
-      std::max(kContactFraction * maximum, std::min(kNoiseEnvelopeFactor * noise_envelope, kMaxContactFraction * maximum));
+  const std::size_t k = static_cast<std::size_t>(0.999 * static_cast<double>(finite.size() - 1));
+  std::nth_element(finite.begin(), finite.begin() + static_cast<long>(k), finite.end());
+  const double threshold = kContactFraction * finite[k];
   for (double& v : envelope) {
     if (std::isfinite(v)) v = v > threshold ? 1.0 : 0.0;
   }

@@ -1,7 +1,6 @@
 #pragma once
 // When the tool touches the stock by the measured force (log_alignment.hpp, "Why contact"): |F_xy| per
-// row, its peak envelope over one spindle revolution, and 1 where that stands clear of its maximum's 3 % and
-// of the noise.
+// row, its peak envelope over one spindle revolution, and 1 where that exceeds a tenth of its maximum.
 // Internal to learning.
 
 #include <vector>
@@ -22,8 +21,7 @@ double spindle_rpm_for(const force_log::ForceLog& log, const planner::PlanResult
 int revolution_bins(double rpm, double bin_s);
 
 //! 1 where the measured peak envelope (running maximum over `width` bins) exceeds 3 % of its maximum
-//! (the 99.9th percentile, so single spikes do not set it) and twice its level in air (its 5th percentile:
-//! the noise's envelope; at most 30 % of the maximum), 0 elsewhere, NaN without data.
+//! (the 99.9th percentile, so single spikes do not set it), 0 elsewhere, NaN without data.
 std::vector<double> in_contact(const std::vector<double>& force_bins, int width);
 
 }  // namespace feedplan::learning::detail

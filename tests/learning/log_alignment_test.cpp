@@ -184,30 +184,6 @@ TEST(LogAlignment, ForcesLaggingBy50msAreEstimated) {
   EXPECT_EQ(align_log(log, run().corner.plan, no_delay).delay_s, 0.0);
 }
 
-// A dynamometer with 9 N of noise per axis (the family's noisiest have 9–10 N): in air the noise's envelope
-// over a revolution lies above 3 % of the cut's; the contact threshold stands clear of it (contact_signal.hpp),
-// so the 50 ms lag is still found. With the 3 % threshold alone this log passed for contact throughout (no
-// delay estimated), and on the corner of a family machine the air passed for contact in places and the
-// correlation found −170 ms at 0.08, which learning applied and read air at the entry.
-TEST(LogAlignment, ALagIsFoundThroughANoisyDynamometer) {
-  force_log::ForceLog log = run().result.log;
-  const std::size_t shift = 500;  // 50 ms at 10 kHz
-  std::mt19937 random(7);
-  std::normal_distribution<double> noise_n(0.0, 9.0);
-  // The force scaled to what a long log's bins see: they average over several milliseconds (log_alignment's
-  // delay search keeps to 20 000 bins), less than a tooth's peak.
-  constexpr double kCutShare = 0.4;
-  for (std::size_t i = log.rows.size(); i-- > 0;) {
-    const bool before = i < shift;
-    log.rows[i].fx_n = (before ? 0.0 : kCutShare * log.rows[i - shift].fx_n) + noise_n(random);
-    log.rows[i].fy_n = (before ? 0.0 : kCutShare * log.rows[i - shift].fy_n) + noise_n(random);
-  }
-  const Alignment a = align_log(log, run().corner.plan);
-  ASSERT_EQ(a.status, AlignmentStatus::kOk) << a.message;
-  EXPECT_NEAR(a.delay_s, 0.050, 0.005) << a.message;
-  EXPECT_GT(a.delay_correlation, 0.9) << a.message;
-}
-
 // Forces whose contact has nothing to do with the plan's (bursts of 300 N every 0.6 s): no lag explains them,
 // the best correlation is weak, and it is said but not applied — the forces stay where the positions put them.
 TEST(LogAlignment, AWeakDelayIsSaidButNotApplied) {

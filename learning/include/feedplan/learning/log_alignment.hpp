@@ -32,15 +32,17 @@
 // the least trustworthy thing here (a plan holds it flat at the target while the real peak rises over the
 // entry); where the tool touches the stock is geometry, which the plan and the machine share. Contact:
 // the peak envelope of |F_xy| (running maximum over one spindle revolution, centred; the speed from the
-// log's spindle_rpm column, else its metadata, else the program's S) above 3 % of its maximum and above
-// twice its level in air (the noise's envelope, which on a 9 N dynamometer exceeds 3 % of 500 N);
+// log's spindle_rpm column, else its metadata, else the program's S) above 3 % of its maximum;
 // engagement: PlannedSample::engaged under the same running maximum, so both edges move alike.
 // Accuracy on the virtual machine: the measured edge is where the force passes 3 % of its peak, the
 // planned one where the tool first touches, so the estimate is late by about half the difference of the
 // force's rise times at the entry and at the exit: under 2 ms over a corner cycle entered at 11 mm/s
 // (at 10 % it was 6–10 ms there: the force passed 10 % 0.11 mm after the first touch); about 5 ms when
 // only the entry is logged. 3 % stays well above the noise of a dynamometer (a few newtons on peaks of
-// hundreds).
+// hundreds) on short logs; on long ones, whose delay bins average over milliseconds, a 9 N dynamometer's
+// noise may pass for contact in places — the correlation then comes out weak and the delay is not applied.
+// (Raising the threshold above the noise instead moved the contact edge of gradual entries, a spiral's, and
+// biased the delay by −13 ms there.)
 
 #include <string>
 #include <vector>
