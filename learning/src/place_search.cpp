@@ -11,6 +11,13 @@ double PlaceModel::force_n(double chip_mm) const {
   return transfer_factor * model::predict(*model, chip_mm, contact_length_mm).force_n;
 }
 
+double PlaceModel::force_exponent(double chip_mm) const {
+  constexpr double kStep = 1.1;
+  const double at = force_n(chip_mm);
+  const double above = force_n(chip_mm * kStep);
+  return at > 0.0 && above > 0.0 ? std::log(above / at) / std::log(kStep) : 0.0;
+}
+
 double PlaceModel::correction_at(double chip_mm, double target_force_n) const {
   const double predicted = force_n(chip_mm);
   return predicted > 0.0 ? target_force_n / predicted : 0.0;
@@ -95,6 +102,14 @@ double largest_correction_not_slower(const PlaceModel& place, double target_forc
   return c > 0.0 ? c : kMaxPathCorrection;
 }
 
+double smallest_correction_not_past_proportional(const PlaceModel& place, double target_force_n,
+                                                 const PlaceBracket& bracket) {
+  if (!bracket.has_below() || !(bracket.below_force_n > 0.0)) return kMinPathCorrection;
+  const double chip_mm = bracket.below_chip_mm * std::max(target_force_n / bracket.below_force_n, 1.0);
+  const double c = place.correction_at(chip_mm, target_force_n);
+  return c > 0.0 ? c : kMinPathCorrection;
+}
+
 double next_place_correction(const PlaceModel& place, double target_force_n, const PathMeasurement& now,
                              const PathMeasurement& before, const PlaceBracket& bracket, double previous,
                              double noise_n) {
@@ -111,7 +126,16 @@ double next_place_correction(const PlaceModel& place, double target_force_n, con
   }
   if (!(c > 0.0)) c = now.force_n / place.force_n(now.chip_mm);
   // Never past an end of the bracket: c falls as the t_m it runs grows.
-  if (bracket.has_below()) c = std::min(c, largest_correction_not_slower(place, target_force_n, bracket));
+  if (bracket.has_below()) {
+    c = std::min(c, largest_correction_not_slower(place, target_force_n, bracket));
+    // … and, where the model's force is nearly flat in the chip, faster than it only as far as a force
+    // proportional to the chip would allow, unless the bracket is closed above (a secant between the two
+    // ends lands at or under the target). A model flat in the chip gives no chip to aim at.
+    const double exponent = place.force_exponent(bracket.below_chip_mm);
+    if (!bracket.has_above() && exponent > 0.0 && exponent < kMinTrustedForceExponent) {
+      c = std::max(c, smallest_correction_not_past_proportional(place, target_force_n, bracket));
+    }
+  }
   if (bracket.has_above()) {
     const double at_above = place.correction_at(bracket.above_chip_mm, target_force_n);
     if (at_above > 0.0) c = std::max(c, at_above);

@@ -16,6 +16,8 @@ struct PlaceModel {
   double transfer_factor = 1.0;    //!< the plan sample's chip-load or depth transfer (> 0)
 
   double force_n(double chip_mm) const;  //!< the planner's F̂ at t_m = chip_mm, N
+  //! d ln F̂ / d ln t_m at chip_mm (over the next 10 %); 0 where F̂ ≤ 0.
+  double force_exponent(double chip_mm) const;
   //! The c with which the planner runs t_m = chip_mm here (c · F̂(t_m) = target), 0 when F̂ ≤ 0.
   double correction_at(double chip_mm, double target_force_n) const;
 };
@@ -35,5 +37,13 @@ double next_place_correction(const PlaceModel& place, double target_force_n, con
 //! The largest c that does not run the place slower than its bracket's lower end (the thickest chip
 //! measured at or under the target); kMaxPathCorrection when there is none.
 double largest_correction_not_slower(const PlaceModel& place, double target_force_n, const PlaceBracket& bracket);
+
+//! The smallest c that runs the place no thicker a chip than t_b · target / F_b, (t_b, F_b) the bracket's
+//! lower end (kMinPathCorrection when there is none): the chip at which a force proportional to the chip
+//! would reach the target. A cutting force is concave in the chip with F(0) ≥ 0 (edge forces, a size
+//! effect), so F(t) / t does not rise with t and F(t) ≤ F_b · t / t_b above t_b: a step to that chip
+//! stays at or under the target whatever the force's shape.
+double smallest_correction_not_past_proportional(const PlaceModel& place, double target_force_n,
+                                                 const PlaceBracket& bracket);
 
 }  // namespace feedplan::learning::detail

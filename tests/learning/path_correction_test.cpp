@@ -291,6 +291,26 @@ TEST(LearnAlongPath, AimsAtAChipSoAGlobalRefitBetweenPartsDoesNotMoveTheNextFeed
   EXPECT_NEAR(moved.place_correction[5] * 1.3, second.place_correction[5], 1e-12);  // the same t_m is run
 }
 
+// Near the force floor the model extrapolates nearly flat: F̂ = 175 + 500 t_m (d ln F̂ / d ln t_m = 0.03 at
+// 0.01 mm). A place read 178 N at t_m 0.010 mm under a 190 N target: the model's shape scaled would run the
+// chip to the reach (kSecantReach × 0.010 mm). The force's shape is not known, only that it is concave with
+// F(0) ≥ 0; of those, the one rising fastest past the reading is F = 178 · t / 0.010 (no edge force), which
+// is 356 N at the reach. The next chip is the one at which that force meets the target: 0.010 · 190 / 178 mm.
+TEST(LearnAlongPath, WhereTheModelIsFlatAPlaceUnderTheTargetSpeedsUpNoFurtherThanAProportionalForceAllows) {
+  model::ResponseSurfaceModel flat_in_chip;
+  flat_in_chip.chip_center_mm = 0.01;
+  flat_in_chip.chip_scale_mm = 0.01;
+  flat_in_chip.beta = {180.0, 5.0, 0, 0, 0, 0};
+  const auto plan = plan_on_a_line();
+  const PathLearning step = learn_along_path(plan, flat_in_chip, {at_sample_5(0.010, 178.0)}, 190.0, {});
+  const double next_chip_mm = (190.0 / step.place_correction[5] - 175.0) / 500.0;  // c · F̂(t_m) = target
+  EXPECT_NEAR(next_chip_mm, 0.010 * 190.0 / 178.0, 1e-12);
+  EXPECT_LE(178.0 * next_chip_mm / 0.010, 190.0 + 1e-9);  // the fastest-rising concave force: at the target
+  // Where the model rises as a cutting force does (linear_model: exponent 0.8 at 0.04 mm), its shape is kept.
+  const PathLearning steep = learn_along_path(plan, linear_model(), {at_sample_5(0.04, 290.0)}, 400.0, {});
+  EXPECT_NEAR(steep.place_correction[5], 290.0 / 180.0, 1e-12);
+}
+
 TEST(LearnAlongPath, WithinTheHoldBandThePlaceKeepsItsChip) {
   const auto model = linear_model();
   const auto plan = plan_on_a_line();
