@@ -162,6 +162,13 @@ PathLearning learn_along_path(const planner::PlanResult& plan, const model::Resp
         detail::next_place_correction(places[i], target_force_n, now, before, out.bracket[i], out.place_correction[i],
                                       noise_n);
     out.measurement[i] = now;
+    // The next plan's tooth period here is as much longer than this one's as its chip is thicker: a place sped
+    // up slows down before a rise that far ahead of it.
+    const double next_chip_mm = detail::chip_at_correction_mm(places[i], target_force_n, out.place_correction[i],
+                                                              now.chip_mm / kSlowingReach, now.chip_mm * kSecantReach);
+    if (next_chip_mm > now.chip_mm && now.chip_mm > 0.0) {
+      out.measurement[i].window_mm = std::max(now.window_mm, sum[i].window_mm * next_chip_mm / now.chip_mm);
+    }
     out.step_force_n[i] = now.force_n;
   }
   // Look ahead one tooth period: where the force rises along the path (an entry), the next plan slows

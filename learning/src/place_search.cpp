@@ -102,6 +102,24 @@ double largest_correction_not_slower(const PlaceModel& place, double target_forc
   return c > 0.0 ? c : kMaxPathCorrection;
 }
 
+double chip_at_correction_mm(const PlaceModel& place, double target_force_n, double c, double lo_mm, double hi_mm) {
+  const double c_thin = place.correction_at(lo_mm, target_force_n);
+  const double c_thick = place.correction_at(hi_mm, target_force_n);
+  if (!(c_thick > 0.0 && c_thick < c_thin)) return 0.0;  // no chip to aim at
+  if (c >= c_thin) return lo_mm;
+  if (c <= c_thick) return hi_mm;
+  double lo = std::log(lo_mm), hi = std::log(hi_mm);
+  for (int k = 0; k < 50; ++k) {  // c falls as t_m grows (within the reach, checked at its ends)
+    const double mid = 0.5 * (lo + hi);
+    if (place.correction_at(std::exp(mid), target_force_n) > c) {
+      lo = mid;
+    } else {
+      hi = mid;
+    }
+  }
+  return std::exp(0.5 * (lo + hi));
+}
+
 double smallest_correction_not_past_proportional(const PlaceModel& place, double target_force_n,
                                                  const PlaceBracket& bracket) {
   if (!bracket.has_below() || !(bracket.below_force_n > 0.0)) return kMinPathCorrection;

@@ -38,6 +38,10 @@ double next_place_correction(const PlaceModel& place, double target_force_n, con
 //! measured at or under the target); kMaxPathCorrection when there is none.
 double largest_correction_not_slower(const PlaceModel& place, double target_force_n, const PlaceBracket& bracket);
 
+//! The t_m in [lo_mm, hi_mm] the planner runs here with correction c (c · F̂(t_m) = target), the nearer end
+//! when c lies beyond it; 0 when the model does not rise over the range (no chip to aim at).
+double chip_at_correction_mm(const PlaceModel& place, double target_force_n, double c, double lo_mm, double hi_mm);
+
 //! The smallest c that runs the place no thicker a chip than t_b · target / F_b, (t_b, F_b) the bracket's
 //! lower end (kMinPathCorrection when there is none): the chip at which a force proportional to the chip
 //! would reach the target. A cutting force is concave in the chip with F(0) ≥ 0 (edge forces, a size

@@ -336,6 +336,22 @@ TEST(LearnAlongPath, BracketKeepsTheNearestEndsAndDropsOneTheLatestMeasurementCo
   EXPECT_LT(chip_run_mm(state.place_correction[5], 300.0), 0.035);
 }
 
+// A place sped up runs a longer tooth period next time, by as much as its chip grows (the period's length on the
+// path is the feed per tooth): its look-ahead reaches that much further. Sample 5 read 290 N at t_m 0.04 mm in a
+// period 0.7 mm long (the next chip: c · F̂ = 400 N with c = 290 / 180); sample 6, a separate run, 600 N. Within
+// 0.7 mm of sample 5 lies no sample; within the longer period of the next plan lies sample 6, whose c would slow
+// 5 — but not below the chip 5 was measured to bear (0.04 mm: c = 400 / 180).
+TEST(LearnAlongPath, APlaceSpedUpLooksAheadAsFarAsItsNextToothPeriod) {
+  MeasuredRevolutions log;
+  log.tooth_periods = {period(0, 4.8, 5.5, 5.0, 290.0, 0.04), period(2, 5.5, 6.5, 6.0, 600.0, 0.04)};
+  const PathLearning step = learn_along_path(plan_on_a_line(), linear_model(), {log}, 400.0, {});
+  const double next_chip_mm = chip_run_mm(290.0 / 180.0, 400.0);
+  ASSERT_GE(5.0 + 0.7 * next_chip_mm / 0.04, 6.0);  // the next period reaches sample 6
+  EXPECT_NEAR(step.place_correction[5], 290.0 / 180.0, 1e-12);
+  EXPECT_NEAR(step.measurement[5].window_mm, 0.7 * next_chip_mm / 0.04, 1e-6);
+  EXPECT_NEAR(step.correction[5], 400.0 / 180.0, 1e-12);
+}
+
 TEST(LearnAlongPath, LookAheadDoesNotSlowAPlaceBelowTheChipItWasMeasuredUnderTheTargetAt) {
   // Sample 4 under the target at t_m 0.05 (300 N), sample 5 over it: the look-ahead would give 4 the c of 5.
   MeasuredRevolutions log;

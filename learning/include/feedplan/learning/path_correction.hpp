@@ -136,8 +136,13 @@ struct PathLearning {
 //! path — a peak is placed only to within its tooth period, and where the force rises along the path
 //! the plan must have slowed down before the place the rise was seen at (the trochoid's first entry:
 //! +38 % in cycle 3 without; the window is the longest seen at the place, as the next plan may run as
-//! fast as any earlier one) — but not beyond the c that runs the place at the thickest chip measured
-//! under the target there.
+//! fast as any earlier one, and where this step speeds the place up, the period of the next plan: this
+//! step's longest × the chip steered to over the chip measured, as a tooth period's length on the path is
+//! the feed per tooth — family-03's trochoid at 1.05 × its floor, an entry sped up twice by 2× looked ahead
+//! half a period and ran a revolution 17.9 % over the target in cycle 3, 5.6 % with the longer window; at
+//! 400 N over the twelve machines of the family the largest revolution over the target of cycle 3 summed
+//! 53.5 → 44.1 %, the cycle times within 2 %) — but not beyond the c that runs the place at the thickest
+//! chip measured under the target there.
 //!
 //! `model` is the model the plan was made with and the next plan of this program is made with: c is a factor
 //! on it, a fixed knob per place from part to part.
