@@ -92,14 +92,16 @@ class LearningLoop : public ::testing::Test {
 // brings to the target (planner/peak_comparison.hpp).
 //
 // What cycle 3 reaches depends on the sensor's noise at a few places, so the bounds are on figures that
-// do not: measured over five noise seeds (SensorOptions::seed 1–5, true peaks), held RMS 0.54–0.62 %
-// (family-02), 0.81–0.93 % (-04), 0.89–1.03 % (-09); held revolutions more than 3 % off: 0–12 of 730–890;
-// the largest revolution over the target +1.9 … +6.1 %; cycle time 26.2–26.4, 35.6–36.0 and 35.5–35.7 s.
-// The largest held error is not bounded here: it is one revolution, 2.5–8.0 % (median 4.9 %), mostly under
-// the target at a loop front; the ±3 % the product aims at is met in two of the fifteen runs (family-02
-// seed 1, family-09 seed 4). Before one-sided secants were gated on a force change the noise cannot make and
-// held to a trust region (learning/path_correction.hpp) it was 2.3–8.5 % (median 5.4 %) and 32 % under the
-// target on family-04 seed 5, a loop front slowed on two readings through the resonant dynamometer.
+// do not: measured over five noise seeds (SensorOptions::seed 1–5, true peaks), held RMS 0.51–0.59 %
+// (family-02), 0.82–0.87 % (-04), 0.89–0.99 % (-09); held revolutions more than 3 % off: 0–10 of 750–910;
+// the largest revolution over the target +1.4 … +6.0 %; cycle time 26.3–26.5, 35.7–36.0 and 35.5–35.8 s.
+// The largest held error is not bounded here: it is one revolution, 2.9–8.2 % (median 4.5 %), mostly under
+// the target at a loop front or exit, where the dynamometer's mode puts a factor on the reading that its
+// correction (learning/sensor_dynamics.hpp) does not fully take off; the ±3 % the product aims at is met in
+// one of the fifteen runs (family-09 seed 4). Before one-sided secants were gated on a force change the noise
+// cannot make and held to a trust region (learning/path_correction.hpp) it was 2.3–8.5 % (median 5.4 %) and
+// 32 % under the target on family-04 seed 5, a loop front slowed on two readings through the resonant
+// dynamometer.
 TEST_F(LearningLoop, TrochoidOnThreeMachinesOfTheFamilyConvergesWithoutDraggingTheCycle) {
   struct Case {
     std::string machine;
@@ -130,6 +132,14 @@ TEST_F(LearningLoop, TrochoidOnThreeMachinesOfTheFamilyConvergesWithoutDraggingT
     // Cycle 2 still overshot here, so cycle 3 may be slower; by how much is bounded.
     EXPECT_LE(result.cycles[2].simulated_cycle_time_s, 1.45 * result.cycles[1].simulated_cycle_time_s);
     EXPECT_LE(third.max_overshoot_percent, 9.0);
+    // Against the best achievable plan on the same machine (the feeds searched on its true peaks): cycle 3 at
+    // 1.04, 1.05 and 1.01 × T* (the goal: 1.05).
+    const BestPlan best = best_achievable_plan(search_for(request));
+    ASSERT_GE(best.best_iteration, 0);
+    std::printf("%s: T* %.2f s, cycle 3 at %.3f × T*\n", m.machine.c_str(), best.best_cycle_time_s,
+                result.cycles[2].simulated_cycle_time_s / best.best_cycle_time_s);
+    EXPECT_LE(result.cycles[2].simulated_cycle_time_s, 1.07 * best.best_cycle_time_s);
+    EXPECT_GE(result.cycles[2].simulated_cycle_time_s, 0.95 * best.best_cycle_time_s);
   }
 }
 
