@@ -164,8 +164,11 @@ PathLearning learn_along_path(const planner::PlanResult& plan, const model::Resp
     out.measurement[i] = now;
     // The next plan's tooth period here is as much longer than this one's as its chip is thicker: a place sped
     // up slows down before a rise that far ahead of it.
-    const double next_chip_mm = detail::chip_at_correction_mm(places[i], target_force_n, out.place_correction[i],
-                                                              now.chip_mm / kSlowingReach, now.chip_mm * kSecantReach);
+    const bool sped_up = out.place_correction[i] < places[i].correction_at(now.chip_mm, target_force_n);
+    const double next_chip_mm =
+        sped_up ? detail::chip_at_correction_mm(places[i], target_force_n, out.place_correction[i], now.chip_mm,
+                                                now.chip_mm * kSecantReach)
+                : 0.0;
     if (next_chip_mm > now.chip_mm && now.chip_mm > 0.0) {
       out.measurement[i].window_mm = std::max(now.window_mm, sum[i].window_mm * next_chip_mm / now.chip_mm);
     }

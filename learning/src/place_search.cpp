@@ -109,7 +109,7 @@ double chip_at_correction_mm(const PlaceModel& place, double target_force_n, dou
   if (c >= c_thin) return lo_mm;
   if (c <= c_thick) return hi_mm;
   double lo = std::log(lo_mm), hi = std::log(hi_mm);
-  for (int k = 0; k < 50; ++k) {  // c falls as t_m grows (within the reach, checked at its ends)
+  for (int k = 0; k < 40; ++k) {  // c falls as t_m grows (within the reach, checked at its ends)
     const double mid = 0.5 * (lo + hi);
     if (place.correction_at(std::exp(mid), target_force_n) > c) {
       lo = mid;
