@@ -16,6 +16,9 @@ namespace {
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 // The tool is in contact where the measured peak envelope exceeds this share of its (robust) maximum.
 constexpr double kContactFraction = 0.03;
+// The noise's envelope out of the cut is raised by this factor to make the contact threshold: its 99.5th
+// percentile is not its largest value, and a stretch of air read as contact moves the contact edge.
+constexpr double kNoiseEnvelopeMargin = 1.25;
 
 }  // namespace
 
@@ -38,7 +41,19 @@ int revolution_bins(double rpm, double bin_s) {
   return rpm > 0.0 ? 2 * static_cast<int>(0.5 * (60.0 / rpm) / bin_s) + 1 : 1;
 }
 
-std::vector<double> in_contact(const std::vector<double>& force_bins, int width) {
+double noise_envelope_n(const std::vector<double>& force_bins, int width, const std::vector<double>& in_air) {
+  const std::vector<double> envelope = moving_max(force_bins, width);
+  std::vector<double> air;
+  for (std::size_t i = 0; i < envelope.size() && i < in_air.size(); ++i) {
+    if (in_air[i] == 1.0 && std::isfinite(envelope[i])) air.push_back(envelope[i]);
+  }
+  if (air.size() < 4 * static_cast<std::size_t>(std::max(width, 1))) return 0.0;
+  const std::size_t k = static_cast<std::size_t>(0.995 * static_cast<double>(air.size() - 1));
+  std::nth_element(air.begin(), air.begin() + static_cast<long>(k), air.end());
+  return kNoiseEnvelopeMargin * air[k];
+}
+
+std::vector<double> in_contact(const std::vector<double>& force_bins, int width, double noise_level_n) {
   std::vector<double> envelope = moving_max(force_bins, width);
   std::vector<double> finite;
   for (double v : envelope) {
@@ -47,7 +62,7 @@ std::vector<double> in_contact(const std::vector<double>& force_bins, int width)
   if (finite.empty()) return envelope;
   const std::size_t k = static_cast<std::size_t>(0.999 * static_cast<double>(finite.size() - 1));
   std::nth_element(finite.begin(), finite.begin() + static_cast<long>(k), finite.end());
-  const double threshold = kContactFraction * finite[k];
+  const double threshold = std::max(kContactFraction * finite[k], noise_level_n);
   for (double& v : envelope) {
     if (std::isfinite(v)) v = v > threshold ? 1.0 : 0.0;
   }

@@ -21,7 +21,12 @@ double spindle_rpm_for(const force_log::ForceLog& log, const planner::PlanResult
 int revolution_bins(double rpm, double bin_s);
 
 //! 1 where the measured peak envelope (running maximum over `width` bins) exceeds 3 % of its maximum
-//! (the 99.9th percentile, so single spikes do not set it), 0 elsewhere, NaN without data.
-std::vector<double> in_contact(const std::vector<double>& force_bins, int width);
+//! (the 99.9th percentile, so single spikes do not set it) and `noise_level_n`, 0 elsewhere, NaN without data.
+std::vector<double> in_contact(const std::vector<double>& force_bins, int width, double noise_level_n = 0.0);
+
+//! The level the peak envelope of `force_bins` (running maximum over `width` bins) stays under where only
+//! noise is read: kNoiseEnvelopeMargin × its 99.5th percentile over the bins where `in_air` is 1 — 0 when fewer
+//! than 4 revolutions' worth of such bins (no estimate: the contact threshold is its share of the maximum alone).
+double noise_envelope_n(const std::vector<double>& force_bins, int width, const std::vector<double>& in_air);
 
 }  // namespace feedplan::learning::detail

@@ -43,6 +43,22 @@ std::vector<double> planned_engagement_at_rows(const force_log::ForceLog& log, c
   return predicted;
 }
 
+// Per bin: 1 where the plan has the tool out of the stock for `max_lag` bins either side (air whatever the
+// delay searched), 0 elsewhere. `engaged` is the plan's engagement per bin (NaN: no position).
+std::vector<double> surely_in_air(const std::vector<double>& engaged, long max_lag) {
+  const std::size_t n = engaged.size();
+  std::vector<std::size_t> engaged_before(n + 1, 0);  // bins engaged (> 0) among the first i
+  for (std::size_t i = 0; i < n; ++i) engaged_before[i + 1] = engaged_before[i] + (engaged[i] > 0.0 ? 1 : 0);
+  const auto reach = static_cast<std::size_t>(std::max(max_lag, 0L));
+  std::vector<double> air(n, 0.0);
+  for (std::size_t i = 0; i < n; ++i) {
+    const std::size_t from = i >= reach ? i - reach : 0;
+    const std::size_t to = std::min(n, i + reach + 1);
+    if (std::isfinite(engaged[i]) && engaged_before[to] == engaged_before[from]) air[i] = 1.0;
+  }
+  return air;
+}
+
 }  // namespace
 
 void estimate_delay(const force_log::ForceLog& log, const planner::PlanResult& plan, const AlignmentOptions& options,
@@ -61,10 +77,18 @@ void estimate_delay(const force_log::ForceLog& log, const planner::PlanResult& p
   bin_s = std::max(bin_s, span_s / 2e4);  // keeps the search small on long logs
   const std::size_t bins = static_cast<std::size_t>(span_s / bin_s) + 1;
   const int width = revolution_bins(spindle_rpm_for(log, plan), bin_s);
-  const std::vector<double> measured = in_contact(bin_means(t, measured_rows, t.front(), bin_s, bins), width);
   const std::vector<double> expected = moving_max(bin_means(t, predicted, t.front(), bin_s, bins), width);
   const long max_lag = static_cast<long>(std::ceil(options.max_delay_s / bin_s));
+  const std::vector<double> force_bins = bin_means(t, measured_rows, t.front(), bin_s, bins);
+  const double noise_n = noise_envelope_n(force_bins, width, surely_in_air(expected, max_lag));
+  const std::vector<double> measured = in_contact(force_bins, width, noise_n);
   const CorrelationPeak peak = correlate(measured, expected, -max_lag, max_lag, 0.0);
+  if (!peak.found && noise_n > 0.0) {
+    text += "; force delay not estimated (the log reads forces up to " + fixed(noise_n, 0) +
+            " N where the plan has the tool in the air, as large as any in the cut: check that the log belongs to "
+            "this plan)";
+    return;
+  }
   if (!peak.found) {
     text += "; force delay not estimated (no contact, or contact throughout, in the measured or planned force)";
     return;

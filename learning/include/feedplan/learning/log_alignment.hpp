@@ -38,11 +38,15 @@
 // planned one where the tool first touches, so the estimate is late by about half the difference of the
 // force's rise times at the entry and at the exit: under 2 ms over a corner cycle entered at 11 mm/s
 // (at 10 % it was 6–10 ms there: the force passed 10 % 0.11 mm after the first touch); about 5 ms when
-// only the entry is logged. 3 % stays well above the noise of a dynamometer (a few newtons on peaks of
-// hundreds) on short logs; on long ones, whose delay bins average over milliseconds, a 9 N dynamometer's
-// noise may pass for contact in places — the correlation then comes out weak and the delay is not applied.
-// (Raising the threshold above the noise instead moved the contact edge of gradual entries, a spiral's, and
-// biased the delay by −13 ms there.)
+// only the entry is logged. Where the noise's envelope reaches 3 % of the peak (a 7.6 N dynamometer on peaks
+// of 360 N, bins of 0.9 ms: the air before a corner's entry read as contact in places, and the delay came
+// out −19.6 ms where the virtual machine has none), the threshold is the noise's instead: 1.25 × the 99.5th
+// percentile of the envelope where the plan has the tool in the air for max_delay_s either side — there
+// the corner's estimate is −3.3 ms. No such air (a log that starts in the cut, a trochoid whose loops are
+// shorter than that): 3 % alone. A threshold above the noise is passed later at a gradual entry, so the
+// estimate comes out late by a few milliseconds (20 N of noise per axis on the corner above: +3 to +6 ms);
+// a fixed higher share instead (raised for every log) biased a spiral's delay by −13 ms. A log that reads
+// as much force in the air as in the cut gets no delay, and says so.
 
 #include <string>
 #include <vector>
