@@ -142,37 +142,6 @@ double extrapolated_to_no_noise(const std::vector<double>& u, const std::vector<
   return best;
 }
 
-// A tooth period with its rows and its peak reading.
-struct StrongPeriod {
-  RowRange rows;
-  double read_n = 0.0;
-};
-
-// The periods (with rows) whose peak reading is at least kStrongPeriodShare of the periods' 90th percentile.
-std::vector<StrongPeriod> strong_periods(const std::vector<double>& t_s, const std::vector<double>& fx_n,
-                                         const std::vector<double>& fy_n,
-                                         const std::vector<force_log::RevolutionPeak>& periods) {
-  std::vector<StrongPeriod> all;
-  for (const auto& period : periods) {
-    const RowRange r = rows_of(t_s, period);
-    if (r.end <= r.first) continue;
-    double read = 0.0;
-    for (std::size_t i = r.first; i < r.end; ++i) read = std::max(read, std::hypot(fx_n[i], fy_n[i]));
-    all.push_back({r, read});
-  }
-  if (all.empty()) return all;
-  std::vector<double> reads;
-  for (const StrongPeriod& p : all) reads.push_back(p.read_n);
-  const std::size_t k = static_cast<std::size_t>(0.9 * static_cast<double>(reads.size() - 1));
-  std::nth_element(reads.begin(), reads.begin() + static_cast<long>(k), reads.end());
-  const double threshold_n = kStrongPeriodShare * reads[k];
-  std::vector<StrongPeriod> strong;
-  for (const StrongPeriod& p : all) {
-    if (p.read_n >= threshold_n) strong.push_back(p);
-  }
-  return strong;
-}
-
 }  // namespace
 
 PeakNoise peak_noise(const std::vector<double>& t_s, const std::vector<double>& fx_n, const std::vector<double>& fy_n,
@@ -202,12 +171,14 @@ PeakNoise peak_noise(const std::vector<double>& t_s, const std::vector<double>& 
   std::vector<double> added_sigma_n;  // the noise added to reach u σ²
   for (std::size_t l = 1; l < u.size(); ++l) added_sigma_n.push_back(out.sigma_n * std::sqrt(u[l] - 1.0));
   std::size_t windows = 0;
-  const std::vector<StrongPeriod> strong = strong_periods(t_s, fx_n, fy_n, periods);
-  const std::size_t step = std::max<std::size_t>(1, strong.size() / kNoiseBiasWindows);
-  for (std::size_t k = 0; k < strong.size(); k += step) {
-    const RowRange r = strong[k].rows;
+  const std::size_t step = std::max<std::size_t>(1, periods.size() / kNoiseBiasWindows);
+  for (std::size_t k = 0; k < periods.size(); k += step) {
+    const RowRange r = rows_of(t_s, periods[k]);
+    if (r.end <= r.first) continue;
     ++windows;
-    mean_peak[0] += strong[k].read_n;
+    double read = 0.0;
+    for (std::size_t i = r.first; i < r.end; ++i) read = std::max(read, std::hypot(fx_n[i], fy_n[i]));
+    mean_peak[0] += read;
     const std::vector<double> noisy = noisy_largest_n(fx_n, fy_n, r, added_sigma_n, out.lag1, random);
     for (std::size_t l = 1; l < u.size(); ++l) mean_peak[l] += noisy[l - 1];
   }

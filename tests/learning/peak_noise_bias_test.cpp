@@ -18,14 +18,14 @@ constexpr double kRowStepS = 1e-4;
 constexpr double kToothPeriodS = 60.0 / (2800.0 * 4);  // 4 flutes at 2800 rpm
 constexpr double kPi = 3.14159265358979323846;
 
-// The noise-free force at t (cutting from t_cut_s on): one pulse of `peak_n` per tooth period over its first
-// half, rotating with the tooth so that x and y both carry it.
-void true_force(double t, double t_cut_s, double& fx, double& fy, double peak_n = 400.0) {
+// The noise-free force at t (cutting from t_cut_s on): one pulse per tooth period over its first half,
+// rotating with the tooth so that x and y both carry it.
+void true_force(double t, double t_cut_s, double& fx, double& fy) {
   fx = fy = 0.0;
   if (t < t_cut_s) return;
   const double phase = std::fmod(t - t_cut_s, kToothPeriodS) / kToothPeriodS;
   if (phase > 0.5) return;
-  const double magnitude = peak_n * std::sin(2.0 * kPi * phase);
+  const double magnitude = 400.0 * std::sin(2.0 * kPi * phase);
   const double angle = 2.0 * kPi * phase;
   fx = magnitude * std::cos(angle);
   fy = magnitude * std::sin(angle);
@@ -63,15 +63,14 @@ struct SyntheticLog {
   std::vector<force_log::RevolutionPeak> air, periods;
 };
 
-// 0.2 s of air, then 1 s of cutting, windows of one tooth period each; with `weak_until_s`, the pulses up to
-// then are of 40 N instead of 400 N (an entry's thin cut).
-SyntheticLog make_log(Noise noise, double weak_until_s = 0.0) {
+// 0.2 s of air, then 1 s of cutting, windows of one tooth period each.
+SyntheticLog make_log(Noise noise) {
   SyntheticLog log;
   const double t_cut_s = 0.2;
   NoiseSeries series(noise, 7u);
   for (double t = 0.0; t < 1.2; t += kRowStepS) {
     double fx, fy, nx, ny;
-    true_force(t, t_cut_s, fx, fy, t < weak_until_s ? 40.0 : 400.0);
+    true_force(t, t_cut_s, fx, fy);
     series.next(nx, ny);
     log.t.push_back(t);
     log.fx.push_back(fx + nx);
@@ -120,17 +119,6 @@ TEST(PeakNoise, CorrelatedNoiseIsSeenAsSuchAndRaisesThePeaksLess) {
   EXPECT_NEAR(got.lag1, 0.8, 0.06);
   const double truth = true_excess_n(noise);
   EXPECT_LT(truth, true_excess_n({6.0, 0.0}));
-  EXPECT_NEAR(got.peak_excess_n, truth, 0.3 * truth);
-}
-
-// Half the cut in pulses of 40 N, on which 6 N of noise reads several times the excess it puts on 400 N: the
-// excess is that of the strong peaks, where learning holds the target (taken over all the periods it came out
-// 60 % larger).
-TEST(PeakNoise, TheExcessIsThatOfTheStrongPeaksNotOfTheWeak) {
-  const Noise noise{6.0, 0.0};
-  const SyntheticLog log = make_log(noise, 0.7);
-  const PeakNoise got = peak_noise(log.t, log.fx, log.fy, log.air, log.periods);
-  const double truth = true_excess_n(noise);
   EXPECT_NEAR(got.peak_excess_n, truth, 0.3 * truth);
 }
 

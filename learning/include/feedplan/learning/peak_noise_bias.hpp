@@ -16,13 +16,6 @@
 // S = P + k u^p fitted through the four means, taken back to u = 0, is the mean peak without noise.
 // On pulses of known excess the estimate's spread over seeds is about ±12 % with kNoiseBiasDraws = 48
 // (±35 % with 16 independent draws per level).
-// The excess is larger the weaker a peak is against the noise (on a period of noise alone, the noise's own
-// largest value), so it is simulated on the periods learning holds at the target — those whose peak reading
-// is at least kStrongPeriodShare of the 90th percentile of the log's — and not on the weak ones at entries
-// and exits: taken off the strong peaks, their excess made learning read the force under what it was (the
-// trochoid at 1.05 × family-03's force floor, 167 N with 7.6 N of noise: the steady revolutions of cycle 2
-// read 1.7 % under their true peaks; now 1.7 % over, 0.9 % of it the dynamometer's, as without noise; at
-// 400 N the two differ by under 0.1 %). A weak peak keeps part of its excess: it reads high, on the safe side.
 // Adding the noise once more to the readings alone would miss half the excess: their tops already hold
 // a draw of it.
 
@@ -38,8 +31,6 @@ namespace feedplan::learning {
 inline constexpr std::size_t kNoiseBiasWindows = 300;
 //! Noise draws per period (each scaled to every noise level).
 inline constexpr int kNoiseBiasDraws = 48;
-//! Tooth periods whose peak reading is at least this share of the log's 90th percentile carry the excess.
-inline constexpr double kStrongPeriodShare = 0.8;
 //! Rows out of the cut below which the noise is not estimated.
 inline constexpr std::size_t kMinNoiseRows = 200;
 
