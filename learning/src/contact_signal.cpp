@@ -41,8 +41,7 @@ int revolution_bins(double rpm, double bin_s) {
   return rpm > 0.0 ? 2 * static_cast<int>(0.5 * (60.0 / rpm) / bin_s) + 1 : 1;
 }
 
-double noise_envelope_n(const std::vector<double>& force_bins, int width, const std::vector<double>& in_air) {
-  const std::vector<double> envelope = moving_max(force_bins, width);
+double noise_envelope_n(const std::vector<double>& envelope, int width, const std::vector<double>& in_air) {
   std::vector<double> air;
   for (std::size_t i = 0; i < envelope.size() && i < in_air.size(); ++i) {
     if (in_air[i] == 1.0 && std::isfinite(envelope[i])) air.push_back(envelope[i]);
@@ -54,7 +53,10 @@ double noise_envelope_n(const std::vector<double>& force_bins, int width, const 
 }
 
 std::vector<double> in_contact(const std::vector<double>& force_bins, int width, double noise_level_n) {
-  std::vector<double> envelope = moving_max(force_bins, width);
+  return contact_of_envelope(moving_max(force_bins, width), noise_level_n);
+}
+
+std::vector<double> contact_of_envelope(std::vector<double> envelope, double noise_level_n) {
   std::vector<double> finite;
   for (double v : envelope) {
     if (std::isfinite(v)) finite.push_back(v);

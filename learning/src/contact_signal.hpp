@@ -24,9 +24,12 @@ int revolution_bins(double rpm, double bin_s);
 //! (the 99.9th percentile, so single spikes do not set it) and `noise_level_n`, 0 elsewhere, NaN without data.
 std::vector<double> in_contact(const std::vector<double>& force_bins, int width, double noise_level_n = 0.0);
 
-//! The level the peak envelope of `force_bins` (running maximum over `width` bins) stays under where only
-//! noise is read: kNoiseEnvelopeMargin × its 99.5th percentile over the bins where `in_air` is 1 — 0 when fewer
-//! than 4 revolutions' worth of such bins (no estimate: the contact threshold is its share of the maximum alone).
-double noise_envelope_n(const std::vector<double>& force_bins, int width, const std::vector<double>& in_air);
+//! in_contact for a peak envelope already taken (moving_max of the force bins over one revolution).
+std::vector<double> contact_of_envelope(std::vector<double> envelope, double noise_level_n);
+
+//! The level a peak `envelope` (running maximum over `width` bins) stays under where only noise is read:
+//! kNoiseEnvelopeMargin × its 99.5th percentile over the bins where `in_air` is 1 — 0 when fewer than 4
+//! revolutions' worth of such bins (no estimate: the contact threshold is its share of the maximum alone).
+double noise_envelope_n(const std::vector<double>& envelope, int width, const std::vector<double>& in_air);
 
 }  // namespace feedplan::learning::detail

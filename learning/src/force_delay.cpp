@@ -79,9 +79,9 @@ void estimate_delay(const force_log::ForceLog& log, const planner::PlanResult& p
   const int width = revolution_bins(spindle_rpm_for(log, plan), bin_s);
   const std::vector<double> expected = moving_max(bin_means(t, predicted, t.front(), bin_s, bins), width);
   const long max_lag = static_cast<long>(std::ceil(options.max_delay_s / bin_s));
-  const std::vector<double> force_bins = bin_means(t, measured_rows, t.front(), bin_s, bins);
-  const double noise_n = noise_envelope_n(force_bins, width, surely_in_air(expected, max_lag));
-  const std::vector<double> measured = in_contact(force_bins, width, noise_n);
+  const std::vector<double> envelope = moving_max(bin_means(t, measured_rows, t.front(), bin_s, bins), width);
+  const double noise_n = noise_envelope_n(envelope, width, surely_in_air(expected, max_lag));
+  const std::vector<double> measured = contact_of_envelope(envelope, noise_n);
   const CorrelationPeak peak = correlate(measured, expected, -max_lag, max_lag, 0.0);
   if (!peak.found && noise_n > 0.0) {
     text += "; force delay not estimated (the log reads forces up to " + fixed(noise_n, 0) +
