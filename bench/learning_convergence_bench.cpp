@@ -17,6 +17,9 @@
 //   FEEDPLAN_FAMILY_T_STAR_ONLY set: the T* search only (the learning counters are then absent)
 //   FEEDPLAN_FAMILY_NO_SENSOR set: peaks taken as read (default: corrected for the machine's dynamometer
 //                             mode as its tap test gives it, as `loop --sensor-hz --sensor-damping`)
+//   FEEDPLAN_FAMILY_SEED      the dynamometer noise's seed (default 1): a cycle's largest errors are single
+//                             revolutions, and how large they come out depends on the draw of the noise
+//   FEEDPLAN_FAMILY_NO_NOISE  set: a dynamometer without noise (what the noise costs, apart from the rest)
 // Run: build/bench/learning_convergence_bench --benchmark_counters_tabular=true
 
 #include <benchmark/benchmark.h>
@@ -88,6 +91,8 @@ trial::LoopRequest request_for(const std::string& sample, const std::string& mac
   request.machine.stock = cycle.stock;
   request.machine.machine = spec.machine;
   request.machine.spindle_rpm = spec.spindle_rpm;
+  if (const char* seed = std::getenv("FEEDPLAN_FAMILY_SEED")) request.machine.sensors.seed = std::strtoull(seed, nullptr, 10);
+  if (std::getenv("FEEDPLAN_FAMILY_NO_NOISE")) request.machine.sensors.dynamometer.noise_n = 0.0;
   return request;
 }
 
