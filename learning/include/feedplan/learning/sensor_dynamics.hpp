@@ -32,7 +32,9 @@
 // the catalogue helix (3.8° off on family-04) it comes out 0.5–1.5 % high in the steady cut, and learning
 // with it ran family-04's trochoid 2–3 % faster than T* with a held RMS of 2.5–2.8 % instead of 0.7–0.9 %.
 // The chip's shape errs to the safe side in the steady cut (the reading stays over the force), so it is
-// kept until the helix can be read from the log.
+// kept until the helix is read from the log: folded over the tooth period, the longest steady stretch of
+// the first cycle's log (1.6 mm, 2 600 rows, noise included) matches the kernel's force through the mode
+// best at the true helix to about 1° on family-01, -04 and -09 (31°, 26.2° and 35° against the catalogue's 30°).
 
 #include <string>
 #include <vector>
