@@ -25,6 +25,9 @@
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
+#include <charconv>
+#include <cstdint>
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <sstream>
@@ -91,7 +94,16 @@ trial::LoopRequest request_for(const std::string& sample, const std::string& mac
   request.machine.stock = cycle.stock;
   request.machine.machine = spec.machine;
   request.machine.spindle_rpm = spec.spindle_rpm;
-  if (const char* seed = std::getenv("FEEDPLAN_FAMILY_SEED")) request.machine.sensors.seed = std::strtoull(seed, nullptr, 10);
+  if (const char* seed = std::getenv("FEEDPLAN_FAMILY_SEED")) {
+    const std::string text = seed;
+    std::uint64_t value = 0;
+    const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
+    if (text.empty() || error != std::errc() || end != text.data() + text.size()) {
+      std::fprintf(stderr, "FEEDPLAN_FAMILY_SEED = \"%s\": must be a whole number ≥ 0 (the noise's seed)\n", seed);
+      std::exit(2);
+    }
+    request.machine.sensors.seed = value;
+  }
   if (std::getenv("FEEDPLAN_FAMILY_NO_NOISE")) request.machine.sensors.dynamometer.noise_n = 0.0;
   return request;
 }
