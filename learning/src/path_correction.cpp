@@ -3,7 +3,9 @@
 #include <algorithm>
 #include <cmath>
 
+#include "feedplan/model/model_prediction.hpp"
 #include "feedplan/planner/feed_limit.hpp"
+#include "local_linear_smoothing.hpp"
 #include "place_search.hpp"
 
 namespace feedplan::learning {
@@ -15,6 +17,7 @@ struct Placed {
   double s_mm = 0.0;
   PathMeasurement m;
   double feed_mm_per_min = 0.0;
+  double predicted_n = 0.0;  // the planner's F̂ for the chip and L measured there, its transfer included
 };
 
 Placed lerp(const Placed& a, const Placed& b, double w) {
@@ -22,7 +25,7 @@ Placed lerp(const Placed& a, const Placed& b, double w) {
   return {mix(a.s_mm, b.s_mm),
           {mix(a.m.chip_mm, b.m.chip_mm), mix(a.m.contact_length_mm, b.m.contact_length_mm), mix(a.m.force_n, b.m.force_n),
            std::max(a.m.window_mm, b.m.window_mm)},
-          mix(a.feed_mm_per_min, b.feed_mm_per_min)};
+          mix(a.feed_mm_per_min, b.feed_mm_per_min), mix(a.predicted_n, b.predicted_n)};
 }
 
 // The measurement at s inside a run of consecutive tooth periods: linear between the peak places
@@ -71,6 +74,32 @@ PathMeasurement measurement_at_sample(const Placed& at, const planner::PlannedSa
   return m;
 }
 
+// The run's forces with the noise of single peak readings averaged out (see kReadingSmoothingHalfWidth):
+// smoothed as the ratio to the planner's F̂ at each reading's chip and L, so that the force's own rise and
+// fall with the chip is kept as the model has it and only the model's error is averaged, and only over
+// readings whose contact length is within kReadingSmoothingLengthSpread of the reading's own; and no reading
+// is moved further than kReadingSmoothingNoiseSigmas × the log's noise per row (`noise_n`; none without noise).
+void smooth_forces(std::vector<Placed>& run, double noise_n) {
+  std::vector<double> s_mm;
+  std::vector<double> ratio;
+  std::vector<double> length_mm;
+  std::vector<std::size_t> at;
+  for (std::size_t k = 0; k < run.size(); ++k) {
+    if (!(run[k].predicted_n > 0.0)) continue;
+    s_mm.push_back(run[k].s_mm);
+    ratio.push_back(run[k].m.force_n / run[k].predicted_n);
+    length_mm.push_back(run[k].m.contact_length_mm);
+    at.push_back(k);
+  }
+  const std::vector<double> smoothed = detail::local_linear_smoothed(s_mm, ratio, length_mm, kReadingSmoothingHalfWidth,
+                                                                     kReadingSmoothingLengthSpread);
+  for (std::size_t j = 0; j < at.size(); ++j) {
+    const double read_n = run[at[j]].m.force_n;
+    const double reach_n = kReadingSmoothingNoiseSigmas * noise_n;
+    run[at[j]].m.force_n = std::max(std::clamp(smoothed[j] * run[at[j]].predicted_n, read_n - reach_n, read_n + reach_n), 0.0);
+  }
+}
+
 }  // namespace
 
 PathLearning learn_along_path(const planner::PlanResult& plan, const model::ResponseSurfaceModel& model,
@@ -113,10 +142,13 @@ PathLearning learn_along_path(const planner::PlanResult& plan, const model::Resp
                                        half_turn_envelope_n(periods, first, k, log.flutes));
         run.push_back({p.s_peak_mm, {p.sample.chip_mm, p.sample.contact_length_mm, std::max(read_n - noise_excess_n, 0.0),
                                      p.s_end_mm - p.s_start_mm},
-                       p.sample.feed_mm_per_min});
+                       p.sample.feed_mm_per_min,
+                       p.sample.transfer_factor *
+                           model::predict(model, p.sample.chip_mm, p.sample.contact_length_mm).force_n});
       }
       if (run.empty()) continue;
       std::stable_sort(run.begin(), run.end(), [](const Placed& a, const Placed& b) { return a.s_mm < b.s_mm; });
+      smooth_forces(run, log.noise.sigma_n);
       for (std::size_t i = first_at_or_after(s_start_mm); i < n && samples[i].s_mm <= s_end_mm; ++i) {
         if (!samples[i].engaged) continue;
         const PathMeasurement m = measurement_at_sample(measurement_at(run, samples[i].s_mm), samples[i], model);

@@ -54,12 +54,23 @@ ToothPeriodPeak period(long window, double s_start_mm, double s_end_mm, double s
   return p;
 }
 
+// `log` with each tooth period's contact length 30 % over the one before: more apart than
+// kReadingSmoothingLengthSpread, so every reading stands alone (no averaging with its neighbours).
+MeasuredRevolutions each_alone(MeasuredRevolutions log) {
+  double length_mm = 2.0;
+  for (ToothPeriodPeak& p : log.tooth_periods) {
+    p.sample.contact_length_mm = length_mm;
+    length_mm *= 1.3;
+  }
+  return log;
+}
+
 // Four consecutive tooth periods of 2 mm with peaks at 3, 5, 7, 9 mm: ratios 1.2, 1.6, 1.6, 1.0 to F̂ = 100.
 MeasuredRevolutions four_periods() {
   MeasuredRevolutions log;
   log.tooth_periods = {period(0, 1.5, 3.5, 3.0, 120.0), period(1, 3.5, 5.5, 5.0, 160.0), period(2, 5.5, 7.5, 7.0, 160.0),
                        period(3, 7.5, 9.5, 9.0, 100.0)};
-  return log;
+  return each_alone(log);
 }
 
 TEST(LearnAlongPath, FirstStepInterpolatesTheRatioBetweenPeakPlaces) {
@@ -122,6 +133,7 @@ TEST(LearnAlongPath, APlaceIsNeverTakenForLessThanAPeriodLeftOutWithinHalfATurn)
   log.tooth_periods = {period(0, 1.5, 3.5, 3.0, 120.0), period(1, 3.5, 5.5, 5.0, 160.0), period(2, 5.5, 7.5, 7.0, 120.0),
                        period(3, 7.5, 9.5, 9.0, 100.0), period(4, 9.5, 11.5, 11.0, 100.0), period(5, 11.5, 13.5, 13.0, 100.0)};
   log.tooth_periods[1].runout_factor = 1.25;  // left out itself, as a flute that cuts less
+  log = each_alone(log);
   const PathLearning alone = learn_along_path(plan_on_a_line(), flat_model(), {log}, 300.0, {});
   log.flutes = 4;
   const PathLearning step = learn_along_path(plan_on_a_line(), flat_model(), {log}, 300.0, {});
@@ -132,6 +144,51 @@ TEST(LearnAlongPath, APlaceIsNeverTakenForLessThanAPeriodLeftOutWithinHalfATurn)
   // Window 4 is three periods from window 1: its own peak (the kept window 2 does not raise it); halfway
   // between 160 N at 9 mm and 100 N at 11 mm.
   EXPECT_NEAR(step.measurement[10].force_n, 130.0, 1e-9);
+}
+
+// Tooth periods of 0.25 mm from s = 1.5 mm to 10 mm (peaks at their middles), at a constant chip and
+// contact length, whose readings are F̂ = 100 N plus noise alternating ±6 N (+ at the plan's samples), from
+// a log whose noise per row was measured at `noise_n` out of the cut.
+MeasuredRevolutions steady_run_with_noise(double noise_n = 4.0) {
+  MeasuredRevolutions log;
+  log.noise.sigma_n = noise_n;
+  for (long k = 0; k < 34; ++k) {
+    const double s_mm = 1.5 + 0.25 * static_cast<double>(k);
+    log.tooth_periods.push_back(period(k, s_mm - 0.125, s_mm + 0.125, s_mm, 100.0 + (k % 2 == 0 ? 6.0 : -6.0)));
+  }
+  return log;
+}
+
+// Single readings are averaged over kReadingSmoothingHalfWidth tooth periods either side by a local
+// straight line: alternating noise of ±a comes out at ∓a / 7 in the middle of a steady run (three either
+// side: the reading's own sign three times, the other four times) — moved by no more than
+// kReadingSmoothingNoiseSigmas × the noise per row, and not at all from a log without noise.
+TEST(LearnAlongPath, SingleReadingsOnASteadyStretchAreAveragedOverTheirNeighbours) {
+  ASSERT_EQ(kReadingSmoothingHalfWidth, 3);
+  ASSERT_EQ(kReadingSmoothingNoiseSigmas, 2.0);
+  const PathLearning step = learn_along_path(plan_on_a_line(), flat_model(), {steady_run_with_noise(4.0)}, 300.0, {});
+  const PathLearning bounded = learn_along_path(plan_on_a_line(), flat_model(), {steady_run_with_noise(2.0)}, 300.0, {});
+  const PathLearning quiet = learn_along_path(plan_on_a_line(), flat_model(), {steady_run_with_noise(0.0)}, 300.0, {});
+  for (std::size_t i = 3; i <= 8; ++i) {
+    EXPECT_NEAR(step.measurement[i].force_n, 100.0 - 6.0 / 7.0, 1e-9) << "sample " << i;  // read: 106 N
+    EXPECT_NEAR(bounded.measurement[i].force_n, 106.0 - 2.0 * 2.0, 1e-9) << "sample " << i;
+    EXPECT_NEAR(quiet.measurement[i].force_n, 106.0, 1e-9) << "sample " << i;
+  }
+}
+
+// Where the engagement changes (a loop's entry or exit), readings are averaged only with those whose
+// contact length is within kReadingSmoothingLengthSpread of their own: a step in the force where L steps
+// by 30 % is kept as measured, on both sides of it.
+TEST(LearnAlongPath, ReadingsAreNotAveragedAcrossAChangeOfTheEngagement) {
+  MeasuredRevolutions log = steady_run_with_noise();
+  for (ToothPeriodPeak& p : log.tooth_periods) {
+    const bool after = p.s_peak_mm > 6.0;  // peaks from 6.25 mm on
+    p.sample.force_n = after ? 150.0 : 100.0;
+    p.sample.contact_length_mm = after ? 5.2 : 4.0;
+  }
+  const PathLearning step = learn_along_path(plan_on_a_line(), flat_model(), {log}, 300.0, {});
+  for (std::size_t i = 2; i <= 6; ++i) EXPECT_NEAR(step.measurement[i].force_n, 100.0, 1e-9) << "sample " << i;
+  for (std::size_t i = 7; i <= 9; ++i) EXPECT_NEAR(step.measurement[i].force_n, 150.0, 1e-9) << "sample " << i;
 }
 
 TEST(LearnAlongPath, SkippedToothPeriodsAreNotBridgedAndUncoveredSamplesKeepThePreviousCorrection) {
