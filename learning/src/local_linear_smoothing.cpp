@@ -1,5 +1,6 @@
 #include "local_linear_smoothing.hpp"
 
+#include <algorithm>
 #include <cassert>
 #include <cmath>
 
@@ -27,14 +28,20 @@ double local_linear_at(const std::vector<double>& x, const std::vector<double>& 
 }
 
 std::vector<double> local_linear_smoothed(const std::vector<double>& x, const std::vector<double>& y,
-                                          const std::vector<double>& like, int half_width, double like_tolerance) {
-  assert(x.size() == y.size() && like.size() == y.size());
+                                          const std::vector<std::vector<double>>& like, int half_width,
+                                          double like_tolerance) {
+  assert(x.size() == y.size());
   if (half_width <= 0) return y;
   const std::size_t n = y.size();
   const auto h = static_cast<std::size_t>(half_width);
   std::vector<double> out(n);
   for (std::size_t k = 0; k < n; ++k) {
-    const auto alike = [&](std::size_t j) { return std::abs(like[j] - like[k]) <= like_tolerance * std::abs(like[k]); };
+    const auto alike = [&](std::size_t j) {
+      return std::all_of(like.begin(), like.end(), [&](const std::vector<double>& v) {
+        assert(v.size() == n);
+        return std::abs(v[j] - v[k]) <= like_tolerance * std::abs(v[k]);
+      });
+    };
     std::size_t lo = k;
     std::size_t hi = k;
     while (lo > 0 && k - lo < h && alike(lo - 1)) --lo;

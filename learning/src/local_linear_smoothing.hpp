@@ -14,12 +14,13 @@ namespace feedplan::learning::detail {
 double local_linear_at(const std::vector<double>& x, const std::vector<double>& y, std::size_t lo, std::size_t hi,
                        std::size_t k);
 
-//! y smoothed at each x (x increasing; x, y and `like` equally long). The window of point k takes up to
-//! `half_width` neighbours either side, each side stopping before the first j with
-//! |like[j] − like[k]| > like_tolerance · |like[k]|: only points alike in `like` are averaged (at an
-//! end of the data, or of the alike stretch, the window is cut on that side and the line still fitted).
-//! half_width ≤ 0: y as given.
+//! y smoothed at each x (x increasing; x, y and each of `like` equally long). The window of point k takes
+//! up to `half_width` neighbours either side, each side stopping before the first j with
+//! |like[m][j] − like[m][k]| > like_tolerance · |like[m][k]| for some m: only points alike in every one
+//! of `like` are averaged (at an end of the data, or of the alike stretch, the window is cut on that side
+//! and the line still fitted). half_width ≤ 0: y as given.
 std::vector<double> local_linear_smoothed(const std::vector<double>& x, const std::vector<double>& y,
-                                          const std::vector<double>& like, int half_width, double like_tolerance);
+                                          const std::vector<std::vector<double>>& like, int half_width,
+                                          double like_tolerance);
 
 }  // namespace feedplan::learning::detail

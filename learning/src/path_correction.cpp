@@ -83,15 +83,17 @@ void smooth_forces(std::vector<Placed>& run, double noise_n) {
   std::vector<double> s_mm;
   std::vector<double> ratio;
   std::vector<double> length_mm;
+  std::vector<double> chip_mm;
   std::vector<std::size_t> at;
   for (std::size_t k = 0; k < run.size(); ++k) {
     if (!(run[k].predicted_n > 0.0)) continue;
     s_mm.push_back(run[k].s_mm);
     ratio.push_back(run[k].m.force_n / run[k].predicted_n);
     length_mm.push_back(run[k].m.contact_length_mm);
+    chip_mm.push_back(run[k].m.chip_mm);
     at.push_back(k);
   }
-  const std::vector<double> smoothed = detail::local_linear_smoothed(s_mm, ratio, length_mm, kReadingSmoothingHalfWidth,
+  const std::vector<double> smoothed = detail::local_linear_smoothed(s_mm, ratio, {length_mm, chip_mm}, kReadingSmoothingHalfWidth,
                                                                      kReadingSmoothingLengthSpread);
   for (std::size_t j = 0; j < at.size(); ++j) {
     const double read_n = run[at[j]].m.force_n;

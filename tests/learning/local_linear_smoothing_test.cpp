@@ -21,7 +21,7 @@ TEST(LocalLinearSmoothing, AStraightLinePassesUnchangedAlsoAtTheEndsAndOnUnevenS
     y.push_back(4.0 - 2.5 * x.back());
   }
   const std::vector<double> like(x.size(), 1.0);
-  const std::vector<double> out = local_linear_smoothed(x, y, like, 3, 0.1);
+  const std::vector<double> out = local_linear_smoothed(x, y, {like}, 3, 0.1);
   for (std::size_t k = 0; k < y.size(); ++k) EXPECT_NEAR(out[k], y[k], 1e-12) << k;
 }
 
@@ -34,7 +34,7 @@ TEST(LocalLinearSmoothing, WhiteNoiseComesOutAtItsVarianceOverTheWindowsLength) 
     x[k] = static_cast<double>(k);
     y[k] = 10.0 + noise(random);
   }
-  const std::vector<double> out = local_linear_smoothed(x, y, std::vector<double>(n, 1.0), 3, 0.1);
+  const std::vector<double> out = local_linear_smoothed(x, y, {std::vector<double>(n, 1.0)}, 3, 0.1);
   double sum = 0.0, sum_sq = 0.0;
   for (std::size_t k = 3; k + 3 < n; ++k) {
     sum += out[k];
@@ -55,17 +55,17 @@ TEST(LocalLinearSmoothing, TheWindowStopsAtPointsThatAreNotAlike) {
     y.push_back(k < 6 ? 1.0 : 3.0);
     like.push_back(k < 6 ? 1.0 : 1.5);
   }
-  const std::vector<double> apart = local_linear_smoothed(x, y, like, 3, 0.1);
+  const std::vector<double> apart = local_linear_smoothed(x, y, {like}, 3, 0.1);
   for (std::size_t k = 0; k < y.size(); ++k) EXPECT_NEAR(apart[k], y[k], 1e-12) << k;
   // Alike within a tolerance of 60 %: the step is smoothed into a ramp next to it.
-  const std::vector<double> together = local_linear_smoothed(x, y, like, 3, 0.6);
+  const std::vector<double> together = local_linear_smoothed(x, y, {like}, 3, 0.6);
   EXPECT_GT(together[5], 1.1);
   EXPECT_LT(together[6], 2.9);
 }
 
 TEST(LocalLinearSmoothing, NoWindowLeavesTheValuesAsGiven) {
   const std::vector<double> x{0.0, 1.0, 2.0, 3.0}, y{1.0, 5.0, 2.0, 8.0};
-  EXPECT_EQ(local_linear_smoothed(x, y, std::vector<double>(4, 1.0), 0, 0.1), y);
+  EXPECT_EQ(local_linear_smoothed(x, y, {std::vector<double>(4, 1.0)}, 0, 0.1), y);
 }
 
 }  // namespace

@@ -176,19 +176,23 @@ TEST(LearnAlongPath, SingleReadingsOnASteadyStretchAreAveragedOverTheirNeighbour
   }
 }
 
-// Where the engagement changes (a loop's entry or exit), readings are averaged only with those whose
-// contact length is within kReadingSmoothingLengthSpread of their own: a step in the force where L steps
-// by 30 % is kept as measured, on both sides of it.
-TEST(LearnAlongPath, ReadingsAreNotAveragedAcrossAChangeOfTheEngagement) {
-  MeasuredRevolutions log = steady_run_with_noise();
-  for (ToothPeriodPeak& p : log.tooth_periods) {
-    const bool after = p.s_peak_mm > 6.0;  // peaks from 6.25 mm on
-    p.sample.force_n = after ? 150.0 : 100.0;
-    p.sample.contact_length_mm = after ? 5.2 : 4.0;
+// Where the engagement or the feed changes (a loop's entry or exit), readings are averaged only with
+// those whose contact length and chip are within kReadingSmoothingLengthSpread of their own: a step in the
+// force where L or t_m steps by 30 % is kept as measured, on both sides of it.
+TEST(LearnAlongPath, ReadingsAreNotAveragedAcrossAChangeOfTheEngagementOrTheChip) {
+  for (const bool chip_steps : {false, true}) {
+    SCOPED_TRACE(chip_steps ? "t_m steps" : "L steps");
+    MeasuredRevolutions log = steady_run_with_noise(30.0);  // the bound on the move out of the way
+    for (ToothPeriodPeak& p : log.tooth_periods) {
+      const bool after = p.s_peak_mm > 6.0;  // peaks from 6.25 mm on
+      p.sample.force_n = after ? 150.0 : 100.0;
+      if (after && chip_steps) p.sample.chip_mm *= 1.3;
+      if (after && !chip_steps) p.sample.contact_length_mm *= 1.3;
+    }
+    const PathLearning step = learn_along_path(plan_on_a_line(), flat_model(), {log}, 300.0, {});
+    for (std::size_t i = 2; i <= 6; ++i) EXPECT_NEAR(step.measurement[i].force_n, 100.0, 1e-9) << "sample " << i;
+    for (std::size_t i = 7; i <= 9; ++i) EXPECT_NEAR(step.measurement[i].force_n, 150.0, 1e-9) << "sample " << i;
   }
-  const PathLearning step = learn_along_path(plan_on_a_line(), flat_model(), {log}, 300.0, {});
-  for (std::size_t i = 2; i <= 6; ++i) EXPECT_NEAR(step.measurement[i].force_n, 100.0, 1e-9) << "sample " << i;
-  for (std::size_t i = 7; i <= 9; ++i) EXPECT_NEAR(step.measurement[i].force_n, 150.0, 1e-9) << "sample " << i;
 }
 
 TEST(LearnAlongPath, SkippedToothPeriodsAreNotBridgedAndUncoveredSamplesKeepThePreviousCorrection) {
