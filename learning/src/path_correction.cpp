@@ -77,8 +77,9 @@ PathMeasurement measurement_at_sample(const Placed& at, const planner::PlannedSa
 // The run's forces with the noise of single peak readings averaged out (see kReadingSmoothingHalfWidth):
 // smoothed as the ratio to the planner's F̂ at each reading's chip and L, so that the force's own rise and
 // fall with the chip is kept as the model has it and only the model's error is averaged, and only over
-// readings whose contact length is within kReadingSmoothingLengthSpread of the reading's own; and no reading
-// is moved further than kReadingSmoothingNoiseSigmas × the log's noise per row (`noise_n`; none without noise).
+// readings whose contact length and chip are within kReadingSmoothingLengthSpread of the reading's own; and
+// no reading is moved further than kReadingSmoothingNoiseSigmas × the log's noise per row (`noise_n`; not at
+// all where the noise was not measured).
 void smooth_forces(std::vector<Placed>& run, double noise_n) {
   std::vector<double> s_mm;
   std::vector<double> ratio;
@@ -93,12 +94,14 @@ void smooth_forces(std::vector<Placed>& run, double noise_n) {
     chip_mm.push_back(run[k].m.chip_mm);
     at.push_back(k);
   }
-  const std::vector<double> smoothed = detail::local_linear_smoothed(s_mm, ratio, {length_mm, chip_mm}, kReadingSmoothingHalfWidth,
-                                                                     kReadingSmoothingLengthSpread);
+  const std::vector<double> smoothed =
+      detail::local_linear_smoothed(s_mm, ratio, {length_mm, chip_mm}, kReadingSmoothingHalfWidth,
+                                    kReadingSmoothingLengthSpread);
+  const double reach_n = std::isfinite(noise_n) && noise_n > 0.0 ? kReadingSmoothingNoiseSigmas * noise_n : 0.0;
   for (std::size_t j = 0; j < at.size(); ++j) {
     const double read_n = run[at[j]].m.force_n;
-    const double reach_n = kReadingSmoothingNoiseSigmas * noise_n;
-    run[at[j]].m.force_n = std::max(std::clamp(smoothed[j] * run[at[j]].predicted_n, read_n - reach_n, read_n + reach_n), 0.0);
+    const double averaged_n = smoothed[j] * run[at[j]].predicted_n;
+    run[at[j]].m.force_n = std::max(std::clamp(averaged_n, read_n - reach_n, read_n + reach_n), 0.0);
   }
 }
 
