@@ -105,6 +105,54 @@ void smooth_forces(std::vector<Placed>& run, double noise_n) {
   }
 }
 
+// The feed per tooth (XY) at which the next plan runs plan sample `j` with correction c: the chip it is
+// steered to over the sample's chip factor (t_m / f_z); 0 where it has none or the model gives no chip.
+double steered_feed_per_tooth_mm(const planner::PlannedSample& sample, const detail::PlaceModel& place,
+                                 const PathMeasurement& measured, double target_force_n, double c) {
+  if (!sample.engaged || !(sample.chip_factor > 0.0)) return 0.0;
+  const double reference_mm = measured.chip_mm > 0.0 ? measured.chip_mm : sample.chip_thickness_mm;
+  if (!(reference_mm > 0.0)) return 0.0;
+  const double chip_mm = detail::chip_at_correction_mm(place, target_force_n, c, reference_mm / (2.0 * kSlowingReach),
+                                                       reference_mm * 2.0 * kSecantReach);
+  return chip_mm > 0.0 ? chip_mm / sample.chip_factor : 0.0;
+}
+
+// The look-ahead's c at plan sample i from sample j ahead of it (see learn_along_path): no more than j's own
+// c, nor more than what runs i at j's feed per tooth (`feed_per_tooth_mm`, 0 where not known: c alone).
+double looked_ahead_correction(const planner::PlannedSample& sample_i, const detail::PlaceModel& place_i,
+                               double feed_per_tooth_i_mm, double feed_per_tooth_j_mm, double correction_j,
+                               double target_force_n) {
+  if (!(feed_per_tooth_i_mm > 0.0) || !(feed_per_tooth_j_mm > 0.0)) return correction_j;
+  if (feed_per_tooth_j_mm >= feed_per_tooth_i_mm) return 0.0;
+  const double at_j_feed = place_i.correction_at(feed_per_tooth_j_mm * sample_i.chip_factor, target_force_n);
+  return at_j_feed > 0.0 ? std::min(correction_j, at_j_feed) : correction_j;
+}
+
+// Look ahead one tooth period: a peak is placed only to within its tooth period, and where the force rises
+// along the path (an entry) the next plan slows down before the place the rise was seen at (see
+// learn_along_path).
+void look_ahead(const std::vector<planner::PlannedSample>& samples, const std::vector<detail::PlaceModel>& places,
+                double target_force_n, PathLearning& out) {
+  const std::size_t n = samples.size();
+  std::vector<double> feed_per_tooth_mm(n, 0.0);
+  for (std::size_t j = 0; j < n; ++j) {
+    feed_per_tooth_mm[j] =
+        steered_feed_per_tooth_mm(samples[j], places[j], out.measurement[j], target_force_n, out.place_correction[j]);
+  }
+  out.correction = out.place_correction;
+  for (std::size_t i = 0; i < n; ++i) {
+    const double reach_mm = samples[i].s_mm + out.measurement[i].window_mm;
+    for (std::size_t j = i + 1; j < n && samples[j].s_mm <= reach_mm; ++j) {
+      out.correction[i] =
+          std::max(out.correction[i], looked_ahead_correction(samples[i], places[i], feed_per_tooth_mm[i],
+                                                              feed_per_tooth_mm[j], out.place_correction[j], target_force_n));
+    }
+    // … but not slower than the place itself was measured to bear.
+    const double not_slower = detail::largest_correction_not_slower(places[i], target_force_n, out.bracket[i]);
+    out.correction[i] = std::max(out.place_correction[i], std::min(out.correction[i], not_slower));
+  }
+}
+
 }  // namespace
 
 PathLearning learn_along_path(const planner::PlanResult& plan, const model::ResponseSurfaceModel& model,
@@ -185,7 +233,9 @@ PathLearning learn_along_path(const planner::PlanResult& plan, const model::Resp
   std::vector<detail::PlaceModel> places(n);
   for (std::size_t i = 0; i < n; ++i) {
     places[i].model = &model;
-    places[i].contact_length_mm = out.measurement[i].contact_length_mm;
+    places[i].contact_length_mm = out.measurement[i].contact_length_mm > 0.0
+                                      ? out.measurement[i].contact_length_mm
+                                      : planner::model_contact_length_mm(model, samples[i].contact_length_mm);
     places[i].transfer_factor = samples[i].transfer_factor > 0.0 ? samples[i].transfer_factor : 1.0;
     if (count[i] == 0) continue;
     const double w = 1.0 / count[i];
@@ -211,18 +261,7 @@ PathLearning learn_along_path(const planner::PlanResult& plan, const model::Resp
     }
     out.step_force_n[i] = now.force_n;
   }
-  // Look ahead one tooth period: where the force rises along the path (an entry), the next plan slows
-  // down before the place the rise was seen at.
-  out.correction = out.place_correction;
-  for (std::size_t i = 0; i < n; ++i) {
-    const double reach_mm = samples[i].s_mm + out.measurement[i].window_mm;
-    for (std::size_t j = i + 1; j < n && samples[j].s_mm <= reach_mm; ++j) {
-      out.correction[i] = std::max(out.correction[i], out.place_correction[j]);
-    }
-    // … but not slower than the place itself was measured to bear.
-    const double not_slower = detail::largest_correction_not_slower(places[i], target_force_n, out.bracket[i]);
-    out.correction[i] = std::max(out.place_correction[i], std::min(out.correction[i], not_slower));
-  }
+  look_ahead(samples, places, target_force_n, out);
   return out;
 }
 

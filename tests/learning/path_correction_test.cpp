@@ -233,6 +233,23 @@ TEST(LearnAlongPath, SecantInTheLogOfTheChipBetweenAFeedUnderAndOneOverTheTarget
   EXPECT_GT(true_force_n(chip_mm), 0.96 * 400.0);
 }
 
+// Beyond two readings (both over the target) the power law through them is the nearer of the two secants
+// to a force convex in ln t_m that still stays on its side: true force F = 50 + 6000 t_m read at 0.07 mm
+// (470 N) and 0.055 mm (380 N) — the next chip's true force is at or over the 330 N target, closer to it
+// than the line in ln t_m would have run it.
+TEST(LearnAlongPath, BeyondTwoReadingsOverTheTargetThePowerLawStepsNearerThanTheLineAndNotPastTheTarget) {
+  const auto model = linear_model();
+  const auto plan = plan_on_a_line();
+  const PathLearning first = learn_along_path(plan, model, {at_sample_5(0.07, true_force_n(0.07))}, 330.0, {});
+  const PathLearning second = learn_along_path(plan, model, {at_sample_5(0.055, true_force_n(0.055))}, 330.0, first);
+  const double steered_mm = (330.0 / second.place_correction[5] - 100.0) / 2000.0;  // c · F̂(t) = target
+  const double power_law_mm = 0.055 * std::pow(330.0 / 380.0, std::log(0.055 / 0.07) / std::log(380.0 / 470.0));
+  const double line_mm = 0.055 * std::exp((330.0 - 380.0) * std::log(0.055 / 0.07) / (380.0 - 470.0));
+  EXPECT_NEAR(steered_mm, power_law_mm, 1e-9);
+  EXPECT_GE(true_force_n(steered_mm), 330.0);
+  EXPECT_LT(true_force_n(steered_mm) - 330.0, true_force_n(line_mm) - 330.0);
+}
+
 TEST(LearnAlongPath, SecantTargetIsKeptNearTheMeasuredFeeds) {
   // F = 50 + 3000 t_m measured at 0.04 and 0.07 mm, both under the target; 700 N would need t_m = 0.217 mm —
   // beyond kSecantReach × 0.07, so the next plan is steered to t_m = 0.14 mm: c · F̂(0.14) = 700.
@@ -262,13 +279,14 @@ TEST(LearnAlongPath, CloseFeedsOrAForceFallingWithTheFeedScaleTheModelInstead) {
 
 // Two readings over the target at chips 20 % apart: a secant through them is trusted only when their forces
 // differ by more than the noise could make them (kMinSecantForceChange of the target, kSecantNoiseSigmas × the
-// log's noise per row). 470 N at t_m 0.05 mm, then 440 N at 0.04 mm: the secant in ln t_m meets 400 N at
-// t_m = 0.04 · exp((400 − 440) / ((440 − 470) / ln 0.8)) mm, in closed form.
+// log's noise per row). 470 N at t_m 0.05 mm, then 440 N at 0.04 mm: both over the target, the power law
+// through them, F = 440 (t / 0.04)^q with q = ln(440 / 470) / ln 0.8, meets 400 N at
+// t_m = 0.04 · (400 / 440)^(1 / q) mm, in closed form.
 TEST(LearnAlongPath, ASecantIsTrustedOnlyOnAForceChangeTheNoiseCannotMake) {
   const auto model = linear_model();
   const auto plan = plan_on_a_line();
   const PathLearning first = learn_along_path(plan, model, {at_sample_5(0.05, 470.0)}, 400.0, {});
-  const double secant_chip_mm = 0.04 * std::exp((400.0 - 440.0) / ((440.0 - 470.0) / std::log(0.8)));
+  const double secant_chip_mm = 0.04 * std::pow(400.0 / 440.0, std::log(0.8) / std::log(440.0 / 470.0));
   for (const double noise_n : {0.0, 5.0, 12.0}) {
     SCOPED_TRACE(noise_n);
     MeasuredRevolutions log = at_sample_5(0.04, 440.0);
@@ -421,6 +439,35 @@ TEST(LearnAlongPath, LookAheadDoesNotSlowAPlaceBelowTheChipItWasMeasuredUnderThe
   EXPECT_GT(step.place_correction[5], step.place_correction[4]);
   EXPECT_GE(chip_run_mm(step.correction[4], 400.0), 0.05 - 1e-12);
   EXPECT_NEAR(step.correction[5], step.place_correction[5], 1e-12);
+}
+
+// The look-ahead carries the feed per tooth ahead as well as the c: a tooth period spans both places at one
+// feed per tooth, while L — and with it F̂ and c — changes under it. Model F̂ = 100 + 2000 t_m; sample 4
+// (chip factor t_m / f_z = 1) read 500 N at t_m 0.05 mm, so it is steered to c = 2.5, t_m 0.03 mm, f_z 0.03 mm;
+// sample 5 read 450 N at t_m 0.02 mm: c = 450 / 140, steered to 100 + 2000 t_m = 400 / c, t_m = 0.0122 mm.
+// At an exit (sample 5's chip factor 0.3: f_z 0.041 mm, faster than sample 4's) sample 4 keeps its own c;
+// at an entry (chip factor 0.5: f_z 0.0244 mm) it runs that feed per tooth, a c below sample 5's.
+TEST(LearnAlongPath, LookAheadSlowsAPlaceToTheFeedPerToothAheadNotToTheCorrectionAhead) {
+  MeasuredRevolutions log;
+  log.tooth_periods = {period(0, 3.5, 4.5, 4.0, 500.0, 0.05), period(1, 4.5, 5.5, 5.0, 450.0, 0.02)};
+  const double c5 = 450.0 / 140.0;
+  const double chip5_mm = (400.0 / c5 - 100.0) / 2000.0;
+  for (const double chip_factor_5 : {0.3, 0.5}) {
+    SCOPED_TRACE(chip_factor_5);
+    planner::PlanResult plan = plan_on_a_line();
+    plan.samples[4].chip_factor = 1.0;
+    plan.samples[5].chip_factor = chip_factor_5;
+    const PathLearning step = learn_along_path(plan, linear_model(), {log}, 400.0, {});
+    ASSERT_NEAR(step.place_correction[4], 2.5, 1e-12);
+    ASSERT_NEAR(step.place_correction[5], c5, 1e-12);
+    const double feed_per_tooth_5_mm = chip5_mm / chip_factor_5;
+    if (feed_per_tooth_5_mm > 0.03) {
+      EXPECT_NEAR(step.correction[4], 2.5, 1e-12);  // c-max would have given it c5
+    } else {
+      EXPECT_NEAR(step.correction[4], 400.0 / (100.0 + 2000.0 * feed_per_tooth_5_mm * 1.0), 1e-6);
+      EXPECT_LT(step.correction[4], c5);
+    }
+  }
 }
 
 }  // namespace

@@ -91,26 +91,27 @@ class LearningLoop : public ::testing::Test {
 // gives it (learning/sensor_dynamics.hpp); the program keeps its model. Held revolutions are those the plan
 // brings to the target (planner/peak_comparison.hpp).
 //
-// What cycle 3 reaches depends on the sensor's noise at a few places, so the bounds are on figures that
-// do not: measured over six noise seeds (SensorOptions::seed 1–6, true peaks; build/bench/
-// learning_convergence_bench with FEEDPLAN_FAMILY_SEED), held RMS 0.52–0.66 % (family-02), 0.68–0.77 % (-04),
-// 0.93–1.11 % (-09); the largest revolution over the target +1.8 … +7.7 %; cycle time 26.2–26.3, 35.3–35.6
-// and 35.2–35.5 s. The largest held error is not bounded here: it is one revolution, and with single peak
-// readings averaged over their neighbours (learning/path_correction.hpp) it is within ±3 % on family-09 in
-// three of the six draws (2.2–5.2 %), on family-02 in one (2.7–9.9 %: seed 1 runs a loop exit 10 % under the
-// target, slowed in cycle 3 by the look-ahead though cycle 2 measured it under the target), and on family-04
-// in none (5.0–7.8 %, under the target at loop fronts and exits, where the dynamometer's mode puts a factor
-// on the reading that its correction, learning/sensor_dynamics.hpp, does not fully take off). Before
-// one-sided secants were gated on a force change the noise cannot make and held to a trust region it was
-// 32 % under the target on family-04 seed 5, a loop front slowed on two readings through the resonant
-// dynamometer.
+// What cycle 3 reaches depends on the sensor's noise at a few places, so the bounds hold over six noise
+// seeds (SensorOptions::seed 1–6, true peaks; build/bench/learning_convergence_bench with
+// FEEDPLAN_FAMILY_SEED): held RMS 0.35–0.41 % (family-02), 0.62–0.77 % (-04), 0.49–0.57 % (-09); the largest
+// revolution over the target +1.0 … +6.5 %; cycle time 26.3–26.4, 35.9–36.3 and 36.0–36.4 s. The largest
+// held error, one revolution, is within ±3 % on family-02 in five of the six draws (2.0–3.3 %), on family-09
+// in all six (1.5–2.8 %), and on family-04 in none (4.4–6.6 %, under the target at loop fronts and exits,
+// where the dynamometer's mode puts a factor on the reading that its correction,
+// learning/sensor_dynamics.hpp, does not fully take off). Before one-sided secants were gated on a force
+// change the noise cannot make and held to a trust region it was 32 % under the target on family-04 seed 5,
+// a loop front slowed on two readings through the resonant dynamometer; before the look-ahead carried the
+// feed per tooth and secants beyond two readings took the power law, family-02 seed 1 ran a loop exit 9.9 %
+// under the target (slowed by the larger correction of the thinner engagement ahead) and family-09 was within
+// ±3 % in three draws.
 TEST_F(LearningLoop, TrochoidOnThreeMachinesOfTheFamilyConvergesWithoutDraggingTheCycle) {
   struct Case {
     std::string machine;
     double third_rms_percent;  // bound on cycle 3's held RMS error
+    double third_max_percent;  // bound on cycle 3's largest held error
   };
-  for (const Case& m : {Case{"family/family-02.yaml", 1.0}, Case{"family/family-04.yaml", 1.0},
-                        Case{"family/family-09.yaml", 1.4}}) {
+  for (const Case& m : {Case{"family/family-02.yaml", 0.6, 3.5}, Case{"family/family-04.yaml", 1.0, 7.0},
+                        Case{"family/family-09.yaml", 0.8, 3.5}}) {
     SCOPED_TRACE(m.machine);
     LoopRequest request = request_on_machine("trochoid.yaml", m.machine, 400.0);
     request.cycles = 3;
@@ -129,13 +130,14 @@ TEST_F(LearningLoop, TrochoidOnThreeMachinesOfTheFamilyConvergesWithoutDraggingT
     }
     EXPECT_GT(result.cycles[0].comparison.max_overshoot_percent, 15.0);
     EXPECT_LE(third.rms_error_percent, m.third_rms_percent);
+    EXPECT_LE(third.max_abs_error_percent, m.third_max_percent);
     EXPECT_GT(third.held, 600) << "most revolutions in the cut are held";
     EXPECT_LE(off_by_more_than_5_percent, third.held / 100) << "at most 1 % of the held revolutions more than 5 % off";
     // Cycle 2 still overshot here, so cycle 3 may be slower; by how much is bounded.
     EXPECT_LE(result.cycles[2].simulated_cycle_time_s, 1.45 * result.cycles[1].simulated_cycle_time_s);
-    EXPECT_LE(third.max_overshoot_percent, 9.0);
+    EXPECT_LE(third.max_overshoot_percent, 8.0);
     // Against the best achievable plan on the same machine (the feeds searched on its true peaks): cycle 3 at
-    // 1.04, 1.05 and 1.01 × T* (the goal: 1.05).
+    // 1.040, 1.065 and 1.022 × T* (the goal: 1.05).
     const BestPlan best = best_achievable_plan(search_for(request));
     ASSERT_GE(best.best_iteration, 0);
     std::printf("%s: T* %.2f s, cycle 3 at %.3f × T*\n", m.machine.c_str(), best.best_cycle_time_s,
