@@ -91,19 +91,18 @@ class LearningLoop : public ::testing::Test {
 // gives it (learning/sensor_dynamics.hpp); the program keeps its model. Held revolutions are those the plan
 // brings to the target (planner/peak_comparison.hpp).
 //
-// What cycle 3 reaches depends on the sensor's noise at a few places, so the bounds hold over six noise
-// seeds (SensorOptions::seed 1–6, true peaks; build/bench/learning_convergence_bench with
-// FEEDPLAN_FAMILY_SEED): held RMS 0.35–0.41 % (family-02), 0.62–0.77 % (-04), 0.49–0.57 % (-09); the largest
-// revolution over the target +1.0 … +6.5 %; cycle time 26.3–26.4, 35.9–36.3 and 36.0–36.4 s. The largest
-// held error, one revolution, is within ±3 % on family-02 in five of the six draws (2.0–3.3 %), on family-09
-// in all six (1.5–2.8 %), and on family-04 in none (4.4–6.6 %, under the target at loop fronts and exits,
-// where the dynamometer's mode puts a factor on the reading that its correction,
-// learning/sensor_dynamics.hpp, does not fully take off). Before one-sided secants were gated on a force
-// change the noise cannot make and held to a trust region it was 32 % under the target on family-04 seed 5,
-// a loop front slowed on two readings through the resonant dynamometer; before the look-ahead carried the
-// feed per tooth and secants beyond two readings took the power law, family-02 seed 1 ran a loop exit 9.9 %
-// under the target (slowed by the larger correction of the thinner engagement ahead) and family-09 was within
-// ±3 % in three draws.
+// What cycle 3 reaches depends on the sensor's noise at a few places, so the bounds hold over six noise seeds
+// (SensorOptions::seed 1–6, true peaks; build/bench/learning_convergence_bench with FEEDPLAN_FAMILY_SEED): held RMS
+// 0.35–0.41 % (family-02), 0.62–0.77 % (-04), 0.49–0.57 % (-09); the largest revolution over the target
+// +1.0 … +6.5 %; cycle time 26.3–26.4, 35.9–36.3 and 36.0–36.4 s (0.998–1.003, 1.015–1.026 and 0.991–1.003 ×
+// T*). The largest held error, one revolution, is within ±3 % on family-02 in five of the six draws (2.0–3.3 %), on family-09 in all
+// six (1.5–2.8 %), and on family-04 in none (4.4–6.6 %, under the target at loop fronts and exits, where the
+// dynamometer's mode puts a factor on the reading that its correction, learning/sensor_dynamics.hpp, does not fully
+// take off). Before one-sided secants were gated on a force change the noise cannot make and held to a trust region
+// it was 32 % under the target on family-04 seed 5, a loop front slowed on two readings through the resonant
+// dynamometer; before the look-ahead carried the feed per tooth and secants beyond two readings took the power law,
+// family-02 seed 1 ran a loop exit 9.9 % under the target (slowed by the larger correction of the thinner engagement
+// ahead) and family-09 was within ±3 % in three draws.
 TEST_F(LearningLoop, TrochoidOnThreeMachinesOfTheFamilyConvergesWithoutDraggingTheCycle) {
   struct Case {
     std::string machine;
@@ -136,13 +135,18 @@ TEST_F(LearningLoop, TrochoidOnThreeMachinesOfTheFamilyConvergesWithoutDraggingT
     // Cycle 2 still overshot here, so cycle 3 may be slower; by how much is bounded.
     EXPECT_LE(result.cycles[2].simulated_cycle_time_s, 1.45 * result.cycles[1].simulated_cycle_time_s);
     EXPECT_LE(third.max_overshoot_percent, 8.0);
-    // Against the best achievable plan on the same machine (the feeds searched on its true peaks): cycle 3 at
-    // 1.040, 1.065 and 1.022 × T* (the goal: 1.05).
+    // Against the best achievable plan on the same machine (the feeds searched on its true peaks, within
+    // ±0.5 % of the target): cycle 3 at 1.003, 1.027 and 0.996 × T* (T* 26.4, 35.4 and 36.3 s; the goal:
+    // within 5 %). That plan's own largest held error is 4.1, 4.9 and 3.6 % (held RMS 0.4, 0.3 and 0.5 %: the
+    // search steps places by the revolutions over them, whose windows shift as the feeds change), learning's
+    // 2.0, 4.4 and 2.0 %.
     const BestPlan best = best_achievable_plan(search_for(request));
     ASSERT_GE(best.best_iteration, 0);
-    std::printf("%s: T* %.2f s, cycle 3 at %.3f × T*\n", m.machine.c_str(), best.best_cycle_time_s,
+    const BestPlanIteration& oracle = best.iterations[static_cast<std::size_t>(best.best_iteration)];
+    std::printf("%s: T* %.2f s (held RMS %.2f %%, max %.2f %%), cycle 3 at %.3f × T*\n", m.machine.c_str(),
+                best.best_cycle_time_s, oracle.held_rms_error_percent, oracle.held_max_abs_error_percent,
                 result.cycles[2].simulated_cycle_time_s / best.best_cycle_time_s);
-    EXPECT_LE(result.cycles[2].simulated_cycle_time_s, 1.07 * best.best_cycle_time_s);
+    EXPECT_LE(result.cycles[2].simulated_cycle_time_s, 1.05 * best.best_cycle_time_s);
     EXPECT_GE(result.cycles[2].simulated_cycle_time_s, 0.95 * best.best_cycle_time_s);
   }
 }
@@ -230,8 +234,8 @@ TEST_F(LearningLoop, ATargetBelowTheForceAtTheMinimumFeedIsNamedWithItsFloor) {
 // turns into the wall its force at the minimum feed is up to 399 N. Learning names those places and their
 // floor, runs them at the minimum feed, and does not drag the rest of the cycle down: its third cycle takes
 // at most 1.3 × T*, the best plan searched against the virtual machine's true peaks with the same places at
-// the minimum feed. Measured: T* 69.9 s with 115 samples infeasible; cycle 3 71.9 s (1.03 T*), 124
-// revolutions named with a floor of 397 N, held RMS 1.2 %.
+// the minimum feed. Measured: T* 70.8 s with 121 samples infeasible; cycle 3 71.6 s (1.01 T*), 129
+// revolutions named with a floor of 394 N, held RMS 1.1 %.
 TEST_F(LearningLoop, AnInfeasibleTargetIsNamedAndTheRestOfTheCycleIsNotDraggedDown) {
   LoopRequest loop = request_on_machine("corner.yaml", "family/family-06.yaml", 350.0);
   const BestPlan best = best_achievable_plan(search_for(loop));
@@ -312,9 +316,10 @@ TEST_F(LearningLoop, CautiousFirstCutStaysWithinFivePercentWhenTheModelIsFortyPe
 }
 
 // The best achievable plan (trial/best_achievable_plan.hpp) on family-02, the trochoid at 400 N: the feeds
-// searched against the simulator's own true peaks. Its shortest plan that holds the target within 2 % is T*; no
-// cycle of the learning loop within the same 2 % may be more than 2 % faster than it (or T* would not be the
-// shortest), and learning's cycles are printed against it.
+// searched against the simulator's own true peaks. Its shortest plan that holds the target within its
+// tolerance (0.5 %, or the settled plan's 2 %) is T*; no cycle of the learning loop within the same tolerance
+// may be more than 2 % faster than it (or T* would not be the shortest), and learning's cycles are printed
+// against it.
 TEST_F(LearningLoop, BestAchievablePlanIsTheFloorOfWhatLearningReaches) {
   LoopRequest loop = request_on_machine("trochoid.yaml", "family/family-02.yaml", 400.0);
   const BestPlanRequest request = search_for(loop);
@@ -327,12 +332,14 @@ TEST_F(LearningLoop, BestAchievablePlanIsTheFloorOfWhatLearningReaches) {
   std::printf("T* %.2f s (search %d), converged %s, %d samples infeasible\n", best.best_cycle_time_s,
               best.best_iteration + 1, best.converged ? "yes" : "no", best.infeasible_samples);
   ASSERT_GE(best.best_iteration, 0);
+  const double t_star_overshoot = best.iterations[static_cast<std::size_t>(best.best_iteration)].max_overshoot_percent;
+  const double tolerance = t_star_overshoot <= 100 * request.tolerance ? request.tolerance : kMaxSettledOvershoot;
   loop.cycles = 4;
   const LoopResult learned = run_learning_loop(loop);
   for (const LoopCycle& c : learned.cycles) {
     std::printf("learning cycle %d: %.2f s (%.3f × T*), largest over %+.2f %%\n", c.cycle, c.simulated_cycle_time_s,
                 c.simulated_cycle_time_s / best.best_cycle_time_s, c.comparison.max_overshoot_percent);
-    if (c.comparison.max_overshoot_percent <= 100 * request.tolerance) {
+    if (c.comparison.max_overshoot_percent <= 100 * tolerance) {
       EXPECT_GE(c.simulated_cycle_time_s, best.best_cycle_time_s * 0.98) << "cycle " << c.cycle;
     }
   }

@@ -49,6 +49,17 @@ double inside(double value, double lo, double hi) {
   return value <= lo ? lo * 1.5 : hi / 1.5;
 }
 
+//! True when the cycle times of the last kStallPlans plans differ by less than kStallTimeShare.
+bool stalled(const std::vector<BestPlanIteration>& iterations) {
+  if (iterations.size() < static_cast<std::size_t>(kStallPlans)) return false;
+  double shortest = INFINITY, longest = 0.0;
+  for (auto it = iterations.end() - kStallPlans; it != iterations.end(); ++it) {
+    shortest = std::min(shortest, it->cycle_time_s);
+    longest = std::max(longest, it->cycle_time_s);
+  }
+  return longest - shortest < kStallTimeShare * shortest;
+}
+
 }  // namespace
 
 BestPlan best_achievable_plan(const BestPlanRequest& request) {
@@ -68,6 +79,7 @@ BestPlan best_achievable_plan(const BestPlanRequest& request) {
   machine.keep_log = false;
   BestPlan best;
   const double target_n = settings.target_force_n;
+  bool settled = false;  // the search settled (file comment)
   for (int iteration = 0; iteration < request.max_iterations; ++iteration) {
     settings.force_correction = c;
     const planner::PlanResult plan = planner::plan(request.geometry, settings);
@@ -114,6 +126,16 @@ BestPlan best_achievable_plan(const BestPlanRequest& request) {
       best.converged = true;
       break;
     }
+    if (stalled(best.iterations) && it.max_overshoot_percent <= 100.0 * kMaxSettledOvershoot) {
+      settled = true;
+      break;
+    }
+  }
+  const BestPlanIteration& last = best.iterations.back();
+  if (best.best_iteration < 0 && (best.converged || settled)) {
+    best.best_cycle_time_s = last.cycle_time_s;
+    best.best_iteration = static_cast<int>(best.iterations.size()) - 1;
+    best.force_correction = settings.force_correction;
   }
   if (best.best_iteration < 0) best.force_correction = c;
   return best;
