@@ -21,10 +21,10 @@
 // Tolerance. T* is the fastest plan whose feasible in-cut revolutions are none more than the tolerance over
 // the target, so the tolerance must be small against what T* judges. The search closes in from above (the
 // first plan overshoots where the model is soft), and stops as soon as every revolution is inside the band:
-// with a band of ±2 % the plans it stopped at sat +1.4 % over the target on average (family-04's trochoid,
-// family-06's spiral), and where the force hardly rises with the feed (edge forces, a size effect) that is
-// 4–5 % of cycle time: T* 34.1 s instead of 35.4 s and 98.6 s instead of 103.0 s, with held RMS 1.3–1.5 %
-// instead of 0.2–0.3 %. Learning that holds the target exactly would have been judged 4 % slow. Hence a
+// with a band of ±2 % the plans it stopped at sat +1.4 % over the target on average (family-02's and -06's
+// spiral), and where the force hardly rises with the feed (edge forces, a size effect) that is 4–5 % of
+// cycle time: T* 34.1 s instead of 35.4 s (family-04's trochoid) and 98.6 s instead of 103.0 s (family-06's
+// spiral), with held RMS 1.3–1.5 % instead of 0.2–0.3 %. Learning that holds the target exactly would have been judged 4 % slow. Hence a
 // band of ±0.5 %: within it the plans' bias is at most 0.5 % of force. The search also ends when it has
 // settled — kStallPlans plans in a row whose cycle times differ by less than kStallTimeShare, the last no
 // more than kMaxSettledOvershoot over the target. Some revolutions never enter the band: a revolution's
