@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
 #include "feedplan/model/model_prediction.hpp"
 #include "feedplan/planner/feed_limit.hpp"
@@ -130,22 +131,28 @@ double looked_ahead_correction(const planner::PlannedSample& sample_i, const det
 
 // Look ahead one tooth period: a peak is placed only to within its tooth period, and where the force rises
 // along the path (an entry) the next plan slows down before the place the rise was seen at (see
-// learn_along_path).
+// learn_along_path). Only a place ahead with a larger c can raise a c (looked_ahead_correction gives no more
+// than the c ahead, and every c is ≥ kMinPathCorrection > 0), so the feed per tooth a correction steers to — a
+// search on the place's model — is found only for the samples such a place involves.
 void look_ahead(const std::vector<planner::PlannedSample>& samples, const std::vector<detail::PlaceModel>& places,
                 double target_force_n, PathLearning& out) {
   const std::size_t n = samples.size();
-  std::vector<double> feed_per_tooth_mm(n, 0.0);
-  for (std::size_t j = 0; j < n; ++j) {
-    feed_per_tooth_mm[j] =
-        steered_feed_per_tooth_mm(samples[j], places[j], out.measurement[j], target_force_n, out.place_correction[j]);
-  }
+  std::vector<std::optional<double>> steered_mm(n);
+  const auto feed_per_tooth_mm = [&](std::size_t j) {
+    if (!steered_mm[j]) {
+      steered_mm[j] =
+          steered_feed_per_tooth_mm(samples[j], places[j], out.measurement[j], target_force_n, out.place_correction[j]);
+    }
+    return *steered_mm[j];
+  };
   out.correction = out.place_correction;
   for (std::size_t i = 0; i < n; ++i) {
     const double reach_mm = samples[i].s_mm + out.measurement[i].window_mm;
     for (std::size_t j = i + 1; j < n && samples[j].s_mm <= reach_mm; ++j) {
-      out.correction[i] =
-          std::max(out.correction[i], looked_ahead_correction(samples[i], places[i], feed_per_tooth_mm[i],
-                                                              feed_per_tooth_mm[j], out.place_correction[j], target_force_n));
+      if (out.place_correction[j] <= out.correction[i]) continue;
+      out.correction[i] = std::max(out.correction[i], looked_ahead_correction(samples[i], places[i], feed_per_tooth_mm(i),
+                                                                              feed_per_tooth_mm(j), out.place_correction[j],
+                                                                              target_force_n));
     }
     // … but not slower than the place itself was measured to bear.
     const double not_slower = detail::largest_correction_not_slower(places[i], target_force_n, out.bracket[i]);
