@@ -32,6 +32,16 @@
 // the force shares its places with its neighbour, over the target on one side and under it on the other (on
 // family-02's trochoid one revolution stays +1.7 % over while the held RMS falls to 0.34 %). Where no plan
 // kept every revolution within the band, the settled plan gives T*.
+//
+// Where T* is not the floor. Only held revolutions (planner/peak_comparison.hpp) are sped up, and at a few
+// mm/min rounding F down to its step leaves a revolution further below its limit than a held one may be:
+// family-04's corner at 350 N crawls at 11 mm/min (limit 11.5) 29 % under the target, so T* (66.2 s) is
+// slower than learning (42.7 s); family-10's corner has the same (21 mm/min, limit 23.6, 23 % under), and
+// learning also beats T* on family-09's and -12's. Letting the search also speed up such
+// revolutions (not done) gave family-09 a T* of 45.9 s, where learning runs 58.8 s, but left family-04, -10
+// and -12 without a plan within the band after 20: at the lower end of the model's fitted chip range c maps
+// onto the feed with a jump (family-10, s = 53.6 mm: c 1.09 → 137 mm/min, c 1.20 → 24 mm/min, the true
+// peak +35 % and −23 %), so the search, steering c, cannot reach the feeds between.
 
 #include <vector>
 
