@@ -47,6 +47,14 @@
 // RMS 0.75 → 1.2–3.1 %; (b) the factor read off the log itself, its synchronous average over 3–9
 // revolutions divided by H up to 1.5–3 kHz — within 0.3–0.6 % of the truth in the steady cut at the best
 // setting, but up to 21 % off at 20–40° of engagement, and dependent on the band and the revolutions averaged.
+// The kernel with the material table's S50C coefficients (catalogue helix, no runout, no size effect) over the
+// whole family, on the held revolutions of the trochoid's first plan (noise-free reading against the true
+// force, 40–60° of engagement): within ±0.3 % of the true factor on nine machines of eleven, +0.6…+1.5 % on
+// family-04 and -12; the chip's shape is 0.2–1.7 % under it on ten (+0.1 % on family-12). Learning with the
+// kernel's factor (capped as here, computed per cycle at the feeds cut) over noise draws 1–2: held RMS summed
+// 23.5 → 23.6 %, runs within ±3 % 5 → 6 of 22, cycle time −3 %, but the largest revolutions over the target
+// summed 63 → 86 % (family-04's held RMS 0.7 → 2.2 %: its tangential edge force is 0.6 × the table's). One evaluation
+// takes 9 ms (kSensedPeakSamples angles, every layer), so per plan sample it needs a cheaper form.
 
 #include <string>
 #include <vector>
