@@ -150,9 +150,9 @@ void look_ahead(const std::vector<planner::PlannedSample>& samples, const std::v
     const double reach_mm = samples[i].s_mm + out.measurement[i].window_mm;
     for (std::size_t j = i + 1; j < n && samples[j].s_mm <= reach_mm; ++j) {
       if (out.place_correction[j] <= out.correction[i]) continue;
-      out.correction[i] = std::max(out.correction[i], looked_ahead_correction(samples[i], places[i], feed_per_tooth_mm(i),
-                                                                              feed_per_tooth_mm(j), out.place_correction[j],
-                                                                              target_force_n));
+      const double ahead = looked_ahead_correction(samples[i], places[i], feed_per_tooth_mm(i), feed_per_tooth_mm(j),
+                                                   out.place_correction[j], target_force_n);
+      out.correction[i] = std::max(out.correction[i], ahead);
     }
     // … but not slower than the place itself was measured to bear.
     const double not_slower = detail::largest_correction_not_slower(places[i], target_force_n, out.bracket[i]);

@@ -53,8 +53,8 @@
 // family-04 and -12; the chip's shape is 0.2–1.7 % under it on ten (+0.1 % on family-12). Learning with the
 // kernel's factor (capped as here, computed per cycle at the feeds cut) over noise draws 1–2: held RMS summed
 // 23.5 → 23.6 %, runs within ±3 % 5 → 6 of 22, cycle time −3 %, but the largest revolutions over the target
-// summed 63 → 86 % (family-04's held RMS 0.7 → 2.2 %: its tangential edge force is 0.6 × the table's). One evaluation
-// takes 9 ms (kSensedPeakSamples angles, every layer), so per plan sample it needs a cheaper form.
+// summed 63 → 86 % (family-04's held RMS 0.7 → 2.2 %: its tangential edge force is 0.6 × the table's). One
+// evaluation takes 9 ms (kSensedPeakSamples angles, every layer), so per plan sample it needs a cheaper form.
 
 #include <string>
 #include <vector>
