@@ -21,6 +21,9 @@
 //   FEEDPLAN_FAMILY_SEED      the dynamometer noise's seed (default 1): a cycle's largest errors are single
 //                             revolutions, and how large they come out depends on the draw of the noise
 //   FEEDPLAN_FAMILY_NO_NOISE  set: a dynamometer without noise (what the noise costs, apart from the rest)
+//   FEEDPLAN_FAMILY_IDEAL_SENSOR set: a dynamometer of 100 kHz (ζ 0.7) without noise, read as it is (what the
+//                             sensor's mode and noise cost together: the machine's physics alone; slow — the
+//                             virtual machine steps fast enough for that bandwidth)
 // Run: build/bench/learning_convergence_bench --benchmark_counters_tabular=true
 
 #include <benchmark/benchmark.h>
@@ -106,6 +109,12 @@ trial::LoopRequest request_for(const std::string& sample, const std::string& mac
     request.machine.sensors.seed = value;
   }
   if (std::getenv("FEEDPLAN_FAMILY_NO_NOISE")) request.machine.sensors.dynamometer.noise_n = 0.0;
+  if (std::getenv("FEEDPLAN_FAMILY_IDEAL_SENSOR")) {
+    request.machine.sensors.dynamometer.bandwidth_hz = 100000.0;
+    request.machine.sensors.dynamometer.damping_ratio = 0.7;
+    request.machine.sensors.dynamometer.noise_n = 0.0;
+    request.sensor.reset();
+  }
   return request;
 }
 
