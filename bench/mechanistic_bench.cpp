@@ -3,7 +3,9 @@
 // loop cuts it), as one section and as three sections left by earlier layers, without and with the
 // size effect and runout. A plan has about 7 000 samples, and a feed solve evaluates the peak about 10
 // to 20 times per sample with bisection, a handful with the secant method (the peak is nearly affine in the
-// feed), so 7 000 samples × one feed solve must fit in well under 1 s.
+// feed), so 7 000 samples × one feed solve must fit in well under 1 s. And the peak a ringing dynamometer
+// reads of the same force (model/sensed_peak.hpp: the kernel at 720 angles over the revolution, through the
+// sensor's modes), which identification through the sensor and the learning's sensor factor evaluate.
 //
 // Run: build/bench/mechanistic_bench
 
@@ -15,6 +17,7 @@
 #include <vector>
 
 #include "feedplan/model/mechanistic_force.hpp"
+#include "feedplan/model/sensed_peak.hpp"
 
 namespace {
 
@@ -78,6 +81,23 @@ void BM_MechanisticFeedSolveTrochoidFront(benchmark::State& state) {
   state.SetItemsProcessed(state.iterations());
   state.counters["predictions_per_solve"] = static_cast<double>(predictions) / static_cast<double>(state.iterations());
 }
+
+// The sensed peak at 2546 rpm through a plate ringing at 605 Hz, ζ 0.38 on both axes; range(0): sections.
+void BM_SensedPeakTrochoidFront(benchmark::State& state) {
+  const std::vector<EngagedSection> sections = trochoid_front(state.range(0));
+  const MechanisticModel model = al7075(true, true);
+  const CutterGeometry cutter{5.0, 4, 30.0};
+  SensorResponse sensor;
+  sensor.modes[0] = sensor.modes[1] = {605.0, 0.38};
+  double fz = 0.05;
+  for (auto _ : state) {
+    benchmark::DoNotOptimize(predicted_sensed_peak(model, sections, cutter, fz, sensor, 2546.0).force_n);
+    fz = fz < 0.15 ? fz + 1e-4 : 0.05;
+  }
+  state.SetItemsProcessed(state.iterations());
+}
+
+BENCHMARK(BM_SensedPeakTrochoidFront)->ArgNames({"sections"})->Arg(1)->Arg(3)->Unit(benchmark::kMicrosecond);
 
 BENCHMARK(BM_MechanisticFeedSolveTrochoidFront)
     ->ArgNames({"sections", "size_effect", "runout"})

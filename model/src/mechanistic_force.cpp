@@ -208,6 +208,16 @@ ForceRegressors regressors(const MechanisticModel& model, std::span<const Engage
   return to_regressors(Kernel(model, sections, cutter, feed_per_tooth_mm).at(spindle_angle_rad));
 }
 
+std::vector<ForceRegressors> regressors_at_angles(const MechanisticModel& model, std::span<const EngagedSection> sections,
+                                                  const CutterGeometry& cutter, double feed_per_tooth_mm,
+                                                  std::span<const double> spindle_angles_rad) {
+  const Kernel kernel(model, sections, cutter, feed_per_tooth_mm);
+  std::vector<ForceRegressors> out;
+  out.reserve(spindle_angles_rad.size());
+  for (const double angle : spindle_angles_rad) out.push_back(to_regressors(kernel.at(angle)));
+  return out;
+}
+
 MechanisticForce predicted_force(const MechanisticModel& model, std::span<const EngagedSection> sections,
                                  const CutterGeometry& cutter, double feed_per_tooth_mm, double spindle_angle_rad) {
   return to_force(Kernel(model, sections, cutter, feed_per_tooth_mm).at(spindle_angle_rad), coefficients(model));

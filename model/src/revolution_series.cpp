@@ -2,12 +2,11 @@
 
 #include <cassert>
 #include <cmath>
-#include <numbers>
+
+#include <unsupported/Eigen/FFT>
 
 namespace feedplan::model::detail {
 namespace {
-
-constexpr double kTwoPi = 2.0 * std::numbers::pi;
 
 //! a_k of the series (see the header).
 double series_weight(int k, int samples) { return k == 0 || 2 * k == samples ? 1.0 : 2.0; }
@@ -15,16 +14,14 @@ double series_weight(int k, int samples) { return k == 0 || 2 * k == samples ? 1
 }  // namespace
 
 Harmonics revolution_harmonics(std::span<const double> samples) {
-  const int n = static_cast<int>(samples.size());
+  const std::size_t n = samples.size();
   assert(n >= 1);
-  std::vector<std::complex<double>> root(static_cast<std::size_t>(n));
-  for (int m = 0; m < n; ++m) root[static_cast<std::size_t>(m)] = std::polar(1.0, -kTwoPi * m / n);
-  Harmonics c(static_cast<std::size_t>(n / 2 + 1));
-  for (int k = 0; k <= n / 2; ++k) {
-    std::complex<double> sum = 0.0;
-    for (int j = 0; j < n; ++j) sum += samples[static_cast<std::size_t>(j)] * root[static_cast<std::size_t>((k * j) % n)];
-    c[static_cast<std::size_t>(k)] = sum / static_cast<double>(n);
-  }
+  const std::vector<double> input(samples.begin(), samples.end());
+  std::vector<std::complex<double>> spectrum;
+  Eigen::FFT<double> fft;
+  fft.fwd(spectrum, input);
+  Harmonics c(n / 2 + 1);
+  for (std::size_t k = 0; k < c.size(); ++k) c[k] = spectrum[k] / static_cast<double>(n);
   return c;
 }
 
@@ -37,18 +34,23 @@ double series_value(const Harmonics& harmonics, int samples, double angle_rad) {
 }
 
 std::vector<double> series_samples(const Harmonics& harmonics, int samples) {
-  const int n = samples;
-  std::vector<std::complex<double>> root(static_cast<std::size_t>(n));
-  for (int m = 0; m < n; ++m) root[static_cast<std::size_t>(m)] = std::polar(1.0, kTwoPi * m / n);
-  std::vector<double> x(static_cast<std::size_t>(n), 0.0);
-  for (int j = 0; j < n; ++j) {
-    double value = 0.0;
-    for (int k = 0; k < static_cast<int>(harmonics.size()); ++k) {
-      value += series_weight(k, n) *
-               (harmonics[static_cast<std::size_t>(k)] * root[static_cast<std::size_t>((k * j) % n)]).real();
-    }
-    x[static_cast<std::size_t>(j)] = value;
+  const std::size_t n = static_cast<std::size_t>(samples);
+  assert(harmonics.size() == n / 2 + 1);
+  // The full spectrum of the real series: c_k and its conjugate at n − k, the ends (k = 0, k = n/2 of an
+  // even n) by their real parts, as the series takes them.
+  std::vector<std::complex<double>> spectrum(n);
+  const double scale = static_cast<double>(n);
+  for (std::size_t k = 0; k < harmonics.size(); ++k) {
+    const bool end = k == 0 || 2 * k == n;
+    const std::complex<double> c = end ? std::complex<double>(harmonics[k].real(), 0.0) : harmonics[k];
+    spectrum[k] = scale * c;
+    if (!end) spectrum[n - k] = scale * std::conj(c);
   }
+  std::vector<std::complex<double>> values;
+  Eigen::FFT<double> fft;
+  fft.inv(values, spectrum);  // divides by n
+  std::vector<double> x(n);
+  for (std::size_t j = 0; j < n; ++j) x[j] = values[j].real();
   return x;
 }
 

@@ -1,8 +1,8 @@
 #pragma once
 // The Fourier series of a signal that repeats every spindle revolution, from n samples at equal steps over
 // one revolution (private to the model module): what the sensor response (sensor_response.hpp) multiplies
-// harmonic by harmonic. A direct transform with a table of the n roots of unity: n²/2 complex products,
-// for the few hundred samples of a revolution.
+// harmonic by harmonic. From the samples and back by Eigen's FFT (n log n for any n; the few hundred
+// samples of a revolution are products of small primes); at one angle by the series directly (n/2 terms).
 //
 // Convention. Samples x_j at Ω_j = Ω_0 + 2π j / n, harmonics c_k = (1/n) Σ_j x_j e^{−ikΩ_j'} with
 // Ω_j' = 2π j / n, k = 0 … ⌊n/2⌋, and the real series

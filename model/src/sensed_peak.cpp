@@ -43,8 +43,11 @@ SensedPeak predicted_sensed_peak(const MechanisticModel& model, std::span<const 
   }
   SensedPeak peak;
   const std::array<double, 6> k = coefficients(model);
+  std::vector<double> angles_rad(static_cast<std::size_t>(n));
+  for (int j = 0; j < n; ++j) angles_rad[static_cast<std::size_t>(j)] = j * step_rad;
+  const std::vector<ForceRegressors> samples = regressors_at_angles(model, sections, cutter, feed_per_tooth_mm, angles_rad);
   for (int j = 0; j < n; ++j) {
-    const ForceRegressors r = regressors(model, sections, cutter, feed_per_tooth_mm, j * step_rad);
+    const ForceRegressors& r = samples[static_cast<std::size_t>(j)];
     double f[2] = {0.0, 0.0};
     for (int axis = 0; axis < 2; ++axis) {
       for (int c = 0; c < kColumns; ++c) {

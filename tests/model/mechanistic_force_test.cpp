@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <numbers>
@@ -233,6 +234,46 @@ TEST(MechanisticForce, PeakWithRunoutMatchesADenseScanOverRandomEngagements) {
     worst = std::max(worst, std::abs(peak - truth) / truth);
   }
   std::printf("peak with runout against a dense scan: worst relative error %.2e\n", worst);
+}
+
+// Many angles at once (one set-up for them all) give each angle's regressors exactly, with the size effect and
+// runout whose tables the set-up builds; and with runout alone, the force they give averaged over a revolution
+// is the closed form's mean (every tooth cuts on [π/4, 3π/4], as above).
+TEST(MechanisticForce, RegressorsAtManyAnglesAreThoseAtEachAngle) {
+  MechanisticModel model = al7075();
+  model.size_exponent = 0.2;
+  model.runout_mm = {0.008, -0.003, 0.0, 0.002};
+  const std::vector<ImmersionArc> low{{1.6, 2.9}}, high{{0.4, 2.2}, {2.5, 3.0}};
+  const std::vector<EngagedSection> sections{{0.0, 4.0, low}, {4.0, 10.0, high}};
+  const CutterGeometry cutter{5.0, 4, 30.0};
+  std::vector<double> angles;
+  for (int i = 0; i < 97; ++i) angles.push_back(-1.0 + 0.0731 * i);
+  const std::vector<ForceRegressors> many = regressors_at_angles(model, sections, cutter, 0.07, angles);
+  ASSERT_EQ(many.size(), angles.size());
+  for (std::size_t i = 0; i < angles.size(); ++i) {
+    const ForceRegressors one = regressors(model, sections, cutter, 0.07, angles[i]);
+    for (std::size_t row = 0; row < one.rows.size(); ++row) {
+      for (std::size_t c = 0; c < one.rows[row].size(); ++c) {
+        EXPECT_EQ(many[i].rows[row][c], one.rows[row][c]) << "angle " << angles[i] << " row " << row << " column " << c;
+      }
+    }
+  }
+
+  model.size_exponent = 0.0;
+  model.runout_mm = {0.008, 0.0, 0.0, 0.0};
+  const std::vector<ImmersionArc> mid{{kPi / 4, 3 * kPi / 4}};
+  const std::vector<EngagedSection> cut{{0.0, 6.0, mid}};
+  std::vector<double> revolution;
+  for (int i = 0; i < 3600; ++i) revolution.push_back(2 * kPi * (i + 0.5) / 3600);
+  const std::array<double, 6> k = coefficients(model);
+  MechanisticForce mean;
+  for (const ForceRegressors& r : regressors_at_angles(model, cut, cutter, 0.1, revolution)) {
+    for (std::size_t c = 0; c < k.size(); ++c) {
+      mean.fx_n += r.rows[0][c] * k[c] / 3600;
+      mean.fy_n += r.rows[1][c] * k[c] / 3600;
+    }
+  }
+  EXPECT_LT(relative_xy_error(mean, textbook_mean(4, 6.0, 0.1, kPi / 4, 3 * kPi / 4, model)), 0.005);
 }
 
 TEST(MechanisticForce, NothingEngagedGivesNoForce) {

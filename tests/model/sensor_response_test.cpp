@@ -148,6 +148,33 @@ TEST(SensorResponse, SteadyReadingOfAPulseTrainMatchesATimeDomainIntegration) {
   EXPECT_LT(largest_error, 0.3);      // 1e-3 of the force's 300 N: the pulses' kinks fold above 200 harmonics
 }
 
+// One harmonic is read as its amplitude times |H| and shifted by arg H (the closed form of a mode), at any
+// sample count, odd or even, prime factors small or not; the harmonic n/2 of an even count, which samples
+// cannot tell from its phase, as a cosine through them (times Re H).
+TEST(SensorResponse, AHarmonicIsReadThroughTheModeAtAnySampleCount) {
+  const SensorResponse sensor = as_sensor({800, 0.05, 1000, 0.02, 0.0});
+  constexpr double kRpm = 6000;  // 100 Hz revolutions
+  for (int n : {7, 8, 45, 97, 720}) {
+    const int k = n > 8 ? 7 : 3;  // 700 Hz, or 300 Hz
+    const std::complex<double> h = sensor_gain(sensor, k * kRpm / 60).xy[0][0];
+    std::vector<double> fx, fy;
+    for (int j = 0; j < n; ++j) {
+      fx.push_back(120 * std::cos(k * 2 * kPi * j / n + 0.4));
+      fy.push_back(0.0);
+    }
+    const RevolutionForce read = sensed_revolution(sensor, kRpm, fx, fy);
+    for (int j = 0; j < n; ++j) {
+      const double expected = 120 * std::abs(h) * std::cos(k * 2 * kPi * j / n + 0.4 + std::arg(h));
+      EXPECT_NEAR(read.fx_n[static_cast<std::size_t>(j)], expected, 1e-9) << "n " << n << " sample " << j;
+      EXPECT_NEAR(read.fy_n[static_cast<std::size_t>(j)], 0.0, 1e-9) << "n " << n << " sample " << j;
+    }
+  }
+  const std::vector<double> alternating = {50, -50, 50, -50, 50, -50, 50, -50}, zero(8, 0.0);
+  const double re_h = sensor_gain(sensor, 4 * kRpm / 60).xy[1][1].real();
+  const RevolutionForce read = sensed_revolution(sensor, kRpm, zero, alternating);
+  for (std::size_t j = 0; j < 8; ++j) EXPECT_NEAR(read.fy_n[j], alternating[j] * re_h, 1e-9) << j;
+}
+
 TEST(SensorResponse, BadSensorsAreNamed) {
   SensorResponse s;
   s.modes[0].natural_frequency_hz = -5;

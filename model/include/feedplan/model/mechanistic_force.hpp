@@ -84,6 +84,14 @@ std::vector<InputProblem> validate(const MechanisticModel& model, const CutterGe
 ForceRegressors regressors(const MechanisticModel& model, std::span<const EngagedSection> sections,
                            const CutterGeometry& cutter, double feed_per_tooth_mm, double spindle_angle_rad);
 
+//! regressors() at each of `spindle_angles_rad`, on one engagement and feed: what every angle shares — the
+//! teeth's chip rules and, with the size effect or runout, each tooth's integrals tabulated over the arcs —
+//! is set up once, not per angle (with runout, the set-up costs more than a few hundred angles' sums).
+//! The same values as regressors() angle by angle. Same requirements as regressors().
+std::vector<ForceRegressors> regressors_at_angles(const MechanisticModel& model, std::span<const EngagedSection> sections,
+                                                  const CutterGeometry& cutter, double feed_per_tooth_mm,
+                                                  std::span<const double> spindle_angles_rad);
+
 //! The force at spindle angle `spindle_angle_rad`: regressors(…) times the model's coefficients.
 //! Same requirements as regressors().
 MechanisticForce predicted_force(const MechanisticModel& model, std::span<const EngagedSection> sections,

@@ -72,7 +72,7 @@ struct RevolutionForce {
 //! `spindle_rpm`: each harmonic multiplied by sensor_gain() at its frequency (file comment). Exact for a
 //! force whose harmonics above n/2 vanish; otherwise those fold onto the lower ones, as in any sampling.
 //! Needs a sensor that passes validate(), spindle_rpm finite and > 0 and equal sample counts (asserted).
-//! Cost: a direct Fourier transform, n²/2 complex products per axis.
+//! Cost: a fast Fourier transform there and back per axis, O(n log n).
 RevolutionForce sensed_revolution(const SensorResponse& sensor, double spindle_rpm, std::span<const double> fx_n,
                                   std::span<const double> fy_n);
 
