@@ -5,7 +5,7 @@
 // to 20 times per sample with bisection, a handful with the secant method (the peak is nearly affine in the
 // feed), so 7 000 samples × one feed solve must fit in well under 1 s. And the peak a ringing dynamometer
 // reads of the same force (model/sensed_peak.hpp: the kernel at 720 angles over the revolution, through the
-// sensor's modes), which identification through the sensor and the learning's sensor factor evaluate.
+// sensor's modes), which identification through the sensor evaluates many times.
 //
 // Run: build/bench/mechanistic_bench
 
