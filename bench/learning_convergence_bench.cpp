@@ -18,6 +18,7 @@
 //   FEEDPLAN_FAMILY_T_STAR_ONLY set: the T* search only (the learning counters are then absent)
 //   FEEDPLAN_FAMILY_NO_SENSOR set: peaks taken as read (default: corrected for the machine's dynamometer
 //                             mode as its tap test gives it, as `loop --sensor-hz --sensor-damping`)
+//   FEEDPLAN_FAMILY_CYCLES    learning cycles (default 3; the counters c1_…, c2_…, … for each)
 //   FEEDPLAN_FAMILY_SEED      the dynamometer noise's seed (default 1): a cycle's largest errors are single
 //                             revolutions, and how large they come out depends on the draw of the noise
 //   FEEDPLAN_FAMILY_NO_NOISE  set: a dynamometer without noise (what the noise costs, apart from the rest)
@@ -153,6 +154,13 @@ void BM_LearningAgainstBestAchievable(benchmark::State& state, const std::string
     if (!std::getenv("FEEDPLAN_FAMILY_NO_T_STAR")) best = trial::best_achievable_plan(request);
     if (std::getenv("FEEDPLAN_FAMILY_T_STAR_ONLY")) continue;
     loop.cycles = 3;
+    if (const char* cycles = std::getenv("FEEDPLAN_FAMILY_CYCLES"); cycles && *cycles) {
+      loop.cycles = std::atoi(cycles);
+      if (loop.cycles < 1 || loop.cycles > 20) {
+        std::fprintf(stderr, "FEEDPLAN_FAMILY_CYCLES = \"%s\": must be a whole number in [1, 20]\n", cycles);
+        std::exit(2);
+      }
+    }
     learned = trial::run_learning_loop(loop);
   }
   const double t_star_s = best.best_cycle_time_s;

@@ -62,6 +62,15 @@ bool stalled(const std::vector<BestPlanIteration>& iterations) {
 
 }  // namespace
 
+planner::PlanSettings planned_with_own_physics(const planner::PlanSettings& settings, const VirtualMachine& machine) {
+  planner::PlanSettings out = settings;
+  out.mechanistic = own_physics(machine);
+  out.uncertainty.reset();
+  out.force_correction.clear();
+  if (!settings.mechanistic) out.options.max_chip_thickness_mm = settings.model.range.chip_max_mm;
+  return out;
+}
+
 BestPlan best_achievable_plan(const BestPlanRequest& request) {
   if (request.max_iterations < 1) {
     throw InputError("max_iterations", "= " + std::to_string(request.max_iterations) + ": must be ≥ 1");
@@ -69,10 +78,10 @@ BestPlan best_achievable_plan(const BestPlanRequest& request) {
   if (!(request.tolerance > 0.0 && request.tolerance < 0.5)) {
     throw InputError("tolerance", "= " + shortest_number_text(request.tolerance) + ": must be in (0, 0.5)");
   }
-  planner::PlanSettings settings = request.settings;
+  planner::PlanSettings settings = planned_with_own_physics(request.settings, request.machine);
   // One correction per plan sample (every plan of the geometry has the same samples).
   const std::size_t n = planner::plan(request.geometry, settings).samples.size();
-  std::vector<double> c = settings.force_correction.size() == n ? settings.force_correction : std::vector<double>(n, 1.0);
+  std::vector<double> c(n, 1.0);
   std::vector<double> lo(n, 0.0), hi(n, INFINITY);
   std::vector<CorrectionTry> previous(n);
   VirtualMachine machine = request.machine;

@@ -52,6 +52,23 @@ void use_machine_file(VirtualMachine& machine, const sim::MachineFile& file, con
   machine.sensors.dynamometer = physics.sensors.dynamometer;
 }
 
+model::MechanisticModel own_physics(const VirtualMachine& machine) {
+  const sim::CuttingCoefficients& k = machine.coefficients;
+  model::MechanisticModel out;
+  out.ktc_n_per_mm2 = k.ktc_n_per_mm2;
+  out.krc_n_per_mm2 = k.krc_n_per_mm2;
+  out.kac_n_per_mm2 = k.kac_n_per_mm2;
+  out.kte_n_per_mm = k.kte_n_per_mm;
+  out.kre_n_per_mm = k.kre_n_per_mm;
+  out.kae_n_per_mm = k.kae_n_per_mm;
+  out.size_exponent = k.size_exponent;
+  out.size_reference_chip_mm = k.size_reference_chip_mm;
+  out.size_min_chip_mm = k.size_min_chip_mm;
+  out.runout_mm = machine.runout_mm;
+  out.helix_deg = machine.tool.helix_deg;
+  return out;
+}
+
 learning::SensorDynamics dynamometer_mode(const sim::DynamometerOptions& dynamometer) {
   const double zeta = dynamometer.damping_ratio;
   const double a = 1.0 - 2.0 * zeta * zeta;

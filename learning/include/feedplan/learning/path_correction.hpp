@@ -150,7 +150,12 @@ struct PathLearning {
 //!  - bracketed on both sides: the secant through the two ends (F = α + β t_m there; edge forces make α > 0,
 //!    which no ratio to a straight-cut model represents). Every secant here is the more cautious of a line
 //!    in ln t_m and a power law through the two readings (the thinner chip): the line between them, the
-//!    power law beyond them (a cutting force and its logarithm are both convex in ln t_m);
+//!    power law beyond them (a cutting force and its logarithm are both convex in ln t_m). From an end left
+//!    far away the line creeps where the force is nearly flat in the chip (family-09's corner at 350 N: 339 N
+//!    at 13 mm/min, 499 N at 109, the target met at 33; 14, 15, 16 mm/min in cycles 3–5). Weighing the end
+//!    left standing less each step in a row on the other side (the Illinois rule of regula falsi, halving)
+//!    reached 47.4 s instead of 53.7 s in cycle 6, but ran the corner +7.6 % over the target in cycle 5
+//!    (family-10: +8.3 % in cycle 4), so it is not used;
 //!  - one side only: the secant through this and the previous measurement when they are at least
 //!    kMinSecantSpread apart in t_m and the force rises by more than the noise could make it
 //!    (kMinSecantForceChange, kSecantNoiseSigmas × the logs' mean noise per row), within kSecantTrust;

@@ -30,7 +30,7 @@
 // the force's direction turning with the teeth, edge forces), given the machine's own coefficients, runout
 // and helix, reproduces the true factors within 0.5 % at 20–60°. With the material table's coefficients and
 // the catalogue helix (3.8° off on family-04) it comes out 0.5–1.5 % high in the steady cut, and learning
-// with it ran family-04's trochoid 2–3 % faster than T* with a held RMS of 2.5–2.8 % instead of 0.7–0.9 %.
+// with it ran family-04's trochoid 2–3 % faster than the T* of then (35.4 s) with a held RMS of 2.5–2.8 % instead of 0.7–0.9 %.
 // The chip's shape errs to the safe side in the steady cut (the reading stays over the force), so it is
 // kept until the helix is read from the log: folded over the tooth period, the longest steady stretch of
 // the first cycle's log (1.6 mm, 2 600 rows, noise included) matches the kernel's force through the mode

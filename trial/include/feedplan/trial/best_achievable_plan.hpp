@@ -19,8 +19,8 @@
 // limit, entries the plan does not hold) only ever raise c.
 //
 // Tolerance. T* is the fastest plan whose feasible in-cut revolutions are none more than the tolerance over
-// the target, so the tolerance must be small against what T* judges. The search closes in from above (the
-// first plan overshoots where the model is soft), and stops as soon as every revolution is inside the band:
+// the target, so the tolerance must be small against what T* judges. Measured when the search planned with the
+// response surface (below), which closes in from above where the model is soft and stops as soon as every revolution is inside the band:
 // with a band of ±2 % the plans it stopped at sat +1.4 % over the target on average (family-02's and -06's
 // spiral), and where the force hardly rises with the feed (edge forces, a size effect) that is 4–5 % of
 // cycle time: T* 34.1 s instead of 35.4 s (family-04's trochoid) and 98.6 s instead of 103.0 s (family-06's
@@ -33,15 +33,30 @@
 // family-02's trochoid one revolution stays +1.7 % over while the held RMS falls to 0.34 %). Where no plan
 // kept every revolution within the band, the settled plan gives T*.
 //
-// Where T* is not the floor. Only held revolutions (planner/peak_comparison.hpp) are sped up, and at a few
-// mm/min rounding F down to its step leaves a revolution further below its limit than a held one may be:
-// family-04's corner at 350 N crawls at 11 mm/min (limit 11.5) 29 % under the target, so T* (66.2 s) is
-// slower than learning (42.7 s); family-10's corner has the same (21 mm/min, limit 23.6, 23 % under), and
-// learning also beats T* on family-09's and -12's. Letting the search also speed up such
-// revolutions (not done) gave family-09 a T* of 45.9 s, where learning runs 58.8 s, but left family-04, -10
-// and -12 without a plan within the band after 20: at the lower end of the model's fitted chip range c maps
-// onto the feed with a jump (family-10, s = 53.6 mm: c 1.09 → 137 mm/min, c 1.20 → 24 mm/min, the true
-// peak +35 % and −23 %), so the search, steering c, cannot reach the feeds between.
+// The machine's own physics. The plans are made with the machine's own force (planned_with_own_physics): the
+// planner's mechanistic kernel with the machine's coefficients, size effect, runout and helix, which is the
+// simulator's force law with the same teeth. So the first plan already brings every place to the target as
+// far as a per-place peak can, and c corrects only what the planner's view of a place leaves out: where a
+// revolution's window falls on the path, the axes' acceleration between samples, blocks merged and F rounded
+// down to its step. On the trochoid at 400 N the first plan is within the band on family-02 (26.64 s, +0.44 %)
+// and the search ends there; family-04 settles after 4 plans at 35.86 s. Plans with the response surface,
+// as learning makes them, made a poor oracle: the search had to steer c across the surface's shape, and near
+// the force floor and at the lower end of its fitted chip range c maps onto the feed with jumps (family-10's
+// corner, s = 53.6 mm: c 1.09 → 137 mm/min, c 1.20 → 24 mm/min, the true peak +35 % and −23 %), so it
+// never reached the feeds between. Crawling revolutions (rounding F down to whole mm/min at 11 mm/min leaves
+// them more than kHeldFeedShortfall under their limit) are not held and were never sped up again: T* was
+// 66.2 s on family-04's corner at 350 N where learning ran 42.7 s; with the machine's physics it is 43.4 s,
+// from the first plan. Near the force floor learning was faster than that T* on all twelve spirals.
+// The chips stay within the response surface's fitted range (PlanOptions::max_chip_thickness_mm), as the
+// plans learning is judged with do.
+//
+// What a plan with perfect physics holds. The first plan, before any search, keeps every held revolution
+// of the trochoid at 400 N within 0.9 % of the target on family-04 and 1.3 % on family-09, and within 2.8 %
+// on family-02, held RMS 0.4 %; what remains is the plan's own: a revolution is held when one of its samples
+// runs within kHeldFeedShortfall of its limit, and family-02's worst (s = 155.8–156.0 mm, −2.8 %) runs
+// 2–8 % under its limits elsewhere in the window (a block's F under the limits it spans). The search's later
+// plans, stepping places by revolutions whose windows shift as the feeds change, can raise the largest held
+// error while they bring the overshoots into the band (family-04's T* plan, the fourth: 4.3 %).
 
 #include <vector>
 
@@ -62,7 +77,9 @@ inline constexpr double kMaxSettledOvershoot = 0.02;
 //! What to search.
 struct BestPlanRequest {
   planner::PlanGeometry geometry;  //!< path, tool and engagement (analysed once)
-  planner::PlanSettings settings;  //!< model, target, spindle, machine limits, options (force_correction: the start)
+  //! Target, spindle, machine limits, options and the model whose fitted range the plans keep to (the
+  //! search plans with the machine's own physics instead, planned_with_own_physics).
+  planner::PlanSettings settings;
   VirtualMachine machine;          //!< the machine whose true peaks decide
   int max_iterations = 20;         //!< plans cut at most (≥ 1)
   double tolerance = 0.005;        //!< relative band around the target that counts as met (> 0; file comment)
@@ -87,6 +104,12 @@ struct BestPlan {
   int infeasible_samples = 0;           //!< samples at the minimum feed still over the target (last plan)
   std::vector<double> force_correction;  //!< c per sample of the best plan (the last one when none is best)
 };
+
+//! `settings` planning with `machine`'s own physics (own_physics, virtual_machine_run.hpp): its mechanistic
+//! kernel as the force model, no uncertainty bound and no correction; chips no thicker than the response
+//! surface's fitted range (PlanOptions::max_chip_thickness_mm) when `settings` plans with the surface, so the
+//! search runs the chips the planner learning is judged with may run.
+planner::PlanSettings planned_with_own_physics(const planner::PlanSettings& settings, const VirtualMachine& machine);
 
 //! The search above. Throws InputError for max_iterations < 1 or a tolerance not in (0, 0.5), and as
 //! run_on_virtual_machine for an invalid machine.

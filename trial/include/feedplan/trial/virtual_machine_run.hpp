@@ -10,6 +10,7 @@
 #include "feedplan/geometry/stock.hpp"
 #include "feedplan/geometry/tool.hpp"
 #include "feedplan/learning/sensor_dynamics.hpp"
+#include "feedplan/model/mechanistic_model.hpp"
 #include "feedplan/planner/feed_plan.hpp"
 #include "feedplan/planner/peak_comparison.hpp"
 #include "feedplan/sim/cutting_coefficients.hpp"
@@ -43,6 +44,12 @@ struct VirtualMachine {
 //! tool with the file's helix offset, the cutting coefficients, the runout and the dynamometer. Throws
 //! InputError with sim::apply_machine's problems when the file does not fit the tool (machine unchanged).
 void use_machine_file(VirtualMachine& machine, const sim::MachineFile& file, const geometry::Tool& tool);
+
+//! The machine's own physics as the planner's mechanistic kernel (model/mechanistic_force.hpp): its cutting
+//! and edge coefficients with their size effect, its runout per tooth and its tool's helix — the force
+//! model of a planner that knows the machine perfectly. The simulator's teeth are the kernel's, in the same
+//! order (tests/model/mechanistic_simulator_test.cpp checks the two forces against each other).
+model::MechanisticModel own_physics(const VirtualMachine& machine);
 
 //! The first mode of a virtual dynamometer as its tap test would give it: the natural frequency from the
 //! −3 dB bandwidth and the damping (sim/sensors.hpp: ω_n = ω_bw / sqrt(1 − 2ζ² + sqrt((1 − 2ζ²)² + 1))).
