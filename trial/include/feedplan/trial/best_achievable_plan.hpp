@@ -19,9 +19,9 @@
 // limit, entries the plan does not hold) only ever raise c.
 //
 // Tolerance. T* is the fastest plan whose feasible in-cut revolutions are none more than the tolerance over
-// the target, so the tolerance must be small against what T* judges. Measured when the search planned with the
-// response surface (below), which closes in from above where the model is soft and stops as soon as every revolution is inside the band:
-// with a band of ±2 % the plans it stopped at sat +1.4 % over the target on average (family-02's and -06's
+// the target, so the tolerance must be small against what T* judges. Measured when the search planned with
+// the response surface (below), which closes in from above where the model is soft and stops as soon as
+// every revolution is inside the band: with a band of ±2 % the plans it stopped at sat +1.4 % over the target on average (family-02's and -06's
 // spiral), and where the force hardly rises with the feed (edge forces, a size effect) that is 4–5 % of
 // cycle time: T* 34.1 s instead of 35.4 s (family-04's trochoid) and 98.6 s instead of 103.0 s (family-06's
 // spiral), with held RMS 1.3–1.5 % instead of 0.2–0.3 %. Learning that holds the target exactly would have been judged 4 % slow. Hence a
@@ -39,7 +39,7 @@
 // far as a per-place peak can, and c corrects only what the planner's view of a place leaves out: where a
 // revolution's window falls on the path, the axes' acceleration between samples, blocks merged and F rounded
 // down to its step. On the trochoid at 400 N the first plan is within the band on family-02 (26.64 s, +0.44 %)
-// and the search ends there; family-04 settles after 4 plans at 35.86 s. Plans with the response surface,
+// and is T* (the search settles after 6); family-04's T* is its fourth plan, 35.86 s. Plans with the response surface,
 // as learning makes them, made a poor oracle: the search had to steer c across the surface's shape, and near
 // the force floor and at the lower end of its fitted chip range c maps onto the feed with jumps (family-10's
 // corner, s = 53.6 mm: c 1.09 → 137 mm/min, c 1.20 → 24 mm/min, the true peak +35 % and −23 %), so it
