@@ -79,12 +79,25 @@ double within_reach(const PlaceModel& place, double target_force_n, double c, do
   return std::clamp(c, at_thickest, at_thinnest);
 }
 
+// The largest c a first step from `now`, measured over the target, may take: the chip a force rising with
+// exponent kMinFirstSlowingExponent would meet the target at (see kMinFirstSlowingExponent); no bound where
+// the model does not rise between that chip and the one measured (no chip to aim at).
+double largest_first_slowing_correction(const PlaceModel& place, double target_force_n, const PathMeasurement& now) {
+  const double chip_mm = now.chip_mm * std::pow(target_force_n / now.force_n, 1.0 / kMinFirstSlowingExponent);
+  const double c = place.correction_at(chip_mm, target_force_n);
+  const double at_now = place.correction_at(now.chip_mm, target_force_n);
+  return c > at_now && at_now > 0.0 ? c : kMaxPathCorrection;
+}
+
 // The next c with the bracket open on one side: a secant through two spread measurements, or the model's
 // shape scaled to this one (c = F / F̂(t_m)), within kSecantReach of the measured chip.
 double one_sided_correction(const PlaceModel& place, double target_force_n, const PathMeasurement& now,
                             const PathMeasurement& before, double noise_n) {
   const double ratio = within_reach(place, target_force_n, now.force_n / place.force_n(now.chip_mm), now.chip_mm);
-  if (!(before.force_n > 0.0) || !(before.chip_mm > 0.0)) return ratio;
+  if (!(before.force_n > 0.0) || !(before.chip_mm > 0.0)) {
+    return now.force_n > target_force_n ? std::min(ratio, largest_first_slowing_correction(place, target_force_n, now))
+                                        : ratio;
+  }
   const double spread = std::abs(now.chip_mm - before.chip_mm);
   if (spread < kMinSecantSpread * std::max(now.chip_mm, before.chip_mm)) return ratio;
   const double min_change_n = std::max(kMinSecantForceChange * target_force_n, kSecantNoiseSigmas * noise_n);

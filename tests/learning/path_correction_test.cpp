@@ -370,16 +370,23 @@ TEST(LearnAlongPath, AimsAtAChipSoAGlobalRefitBetweenPartsDoesNotMoveTheNextFeed
   EXPECT_NEAR(moved.place_correction[5] * 1.3, second.place_correction[5], 1e-12);  // the same t_m is run
 }
 
+// F̂ = 175 + 500 t_m, N: nearly flat at t_m 0.01 mm (d ln F̂ / d ln t_m = 0.03), as a response surface
+// extrapolates below its thinnest straight cut.
+model::ResponseSurfaceModel flat_in_chip_model() {
+  model::ResponseSurfaceModel model;
+  model.chip_center_mm = 0.01;
+  model.chip_scale_mm = 0.01;
+  model.beta = {180.0, 5.0, 0, 0, 0, 0};
+  return model;
+}
+
 // Near the force floor the model extrapolates nearly flat: F̂ = 175 + 500 t_m (d ln F̂ / d ln t_m = 0.03 at
 // 0.01 mm). A place read 178 N at t_m 0.010 mm under a 190 N target: the model's shape scaled would run the
 // chip to the reach (kSecantReach × 0.010 mm). The force's shape is not known, only that it is concave with
 // F(0) ≥ 0; of those, the one rising fastest past the reading is F = 178 · t / 0.010 (no edge force), which
 // is 356 N at the reach. The next chip is the one at which that force meets the target: 0.010 · 190 / 178 mm.
 TEST(LearnAlongPath, WhereTheModelIsFlatAPlaceUnderTheTargetSpeedsUpNoFurtherThanAProportionalForceAllows) {
-  model::ResponseSurfaceModel flat_in_chip;
-  flat_in_chip.chip_center_mm = 0.01;
-  flat_in_chip.chip_scale_mm = 0.01;
-  flat_in_chip.beta = {180.0, 5.0, 0, 0, 0, 0};
+  const auto flat_in_chip = flat_in_chip_model();
   const auto plan = plan_on_a_line();
   const PathLearning step = learn_along_path(plan, flat_in_chip, {at_sample_5(0.010, 178.0)}, 190.0, {});
   const double next_chip_mm = (190.0 / step.place_correction[5] - 175.0) / 500.0;  // c · F̂(t_m) = target
@@ -388,6 +395,26 @@ TEST(LearnAlongPath, WhereTheModelIsFlatAPlaceUnderTheTargetSpeedsUpNoFurtherTha
   // Where the model rises as a cutting force does (linear_model: exponent 0.8 at 0.04 mm), its shape is kept.
   const PathLearning steep = learn_along_path(plan, linear_model(), {at_sample_5(0.04, 290.0)}, 400.0, {});
   EXPECT_NEAR(steep.place_correction[5], 290.0 / 180.0, 1e-12);
+}
+
+// 198 N at t_m 0.010 mm against 180 N: the model's shape would slow the chip to its slowing reach (1/8); the
+// first step slows it only as far as a force rising with kMinFirstSlowingExponent needs,
+// t_m = 0.010 · (180 / 198)^(1 / 0.25) mm. A second reading over the target that differs from the first by
+// less than the noise could make it says the force is flat there: the model's shape, within its reach.
+TEST(LearnAlongPath, AFirstStepFromOverTheTargetSlowsNoFurtherThanAForceOfTheSmallestTrustedRise) {
+  const auto model = flat_in_chip_model();
+  const auto plan = plan_on_a_line();
+  const auto chip_run_mm = [](double c) { return (180.0 / c - 175.0) / 500.0; };  // c · F̂(t_m) = target
+  const PathLearning first = learn_along_path(plan, model, {at_sample_5(0.010, 198.0)}, 180.0, {});
+  const double first_chip_mm = 0.010 * std::pow(180.0 / 198.0, 1.0 / kMinFirstSlowingExponent);
+  EXPECT_NEAR(chip_run_mm(first.place_correction[5]), first_chip_mm, 1e-12);
+  EXPECT_GT(first_chip_mm, 0.010 / kSlowingReach);  // the bound binds
+  const PathLearning second = learn_along_path(plan, model, {at_sample_5(first_chip_mm, 197.0)}, 180.0, first);
+  EXPECT_NEAR(chip_run_mm(second.place_correction[5]), first_chip_mm / kSlowingReach, 1e-12);
+  // Where the model rises as a cutting force does (linear_model: exponent 0.8 at 0.04 mm), the first step
+  // is the model's shape scaled.
+  const PathLearning steep = learn_along_path(plan, linear_model(), {at_sample_5(0.04, 470.0)}, 400.0, {});
+  EXPECT_NEAR(steep.place_correction[5], 470.0 / 180.0, 1e-12);
 }
 
 TEST(LearnAlongPath, WithinTheHoldBandThePlaceKeepsItsChip) {
@@ -444,15 +471,15 @@ TEST(LearnAlongPath, LookAheadDoesNotSlowAPlaceBelowTheChipItWasMeasuredUnderThe
 // The look-ahead carries the feed per tooth ahead as well as the c: a tooth period spans both places at one
 // feed per tooth, while L — and with it F̂ and c — changes under it. Model F̂ = 100 + 2000 t_m; sample 4
 // (chip factor t_m / f_z = 1) read 500 N at t_m 0.05 mm, so it is steered to c = 2.5, t_m 0.03 mm, f_z 0.03 mm;
-// sample 5 read 450 N at t_m 0.02 mm: c = 450 / 140, steered to 100 + 2000 t_m = 400 / c, t_m = 0.0122 mm.
-// At an exit (sample 5's chip factor 0.3: f_z 0.041 mm, faster than sample 4's) sample 4 keeps its own c;
-// at an entry (chip factor 0.5: f_z 0.0244 mm) it runs that feed per tooth, a c below sample 5's.
+// sample 5 read 450 N at t_m 0.025 mm: c = 450 / 150, steered to 100 + 2000 t_m = 400 / c, t_m = 0.0167 mm.
+// At an exit (sample 5's chip factor 0.3: f_z 0.056 mm, faster than sample 4's) sample 4 keeps its own c;
+// at an entry (chip factor 0.6: f_z 0.0278 mm) it runs that feed per tooth, a c below sample 5's.
 TEST(LearnAlongPath, LookAheadSlowsAPlaceToTheFeedPerToothAheadNotToTheCorrectionAhead) {
   MeasuredRevolutions log;
-  log.tooth_periods = {period(0, 3.5, 4.5, 4.0, 500.0, 0.05), period(1, 4.5, 5.5, 5.0, 450.0, 0.02)};
-  const double c5 = 450.0 / 140.0;
+  log.tooth_periods = {period(0, 3.5, 4.5, 4.0, 500.0, 0.05), period(1, 4.5, 5.5, 5.0, 450.0, 0.025)};
+  const double c5 = 450.0 / 150.0;
   const double chip5_mm = (400.0 / c5 - 100.0) / 2000.0;
-  for (const double chip_factor_5 : {0.3, 0.5}) {
+  for (const double chip_factor_5 : {0.3, 0.6}) {
     SCOPED_TRACE(chip_factor_5);
     planner::PlanResult plan = plan_on_a_line();
     plan.samples[4].chip_factor = 1.0;
