@@ -56,7 +56,7 @@ inline constexpr double kMinTrustedForceExponent = 0.25;
 //! The first step at a place measured over the target (one reading, no slope yet) slows its chip no further
 //! than a force rising with this exponent (d ln F / d ln t_m) would need: t_m · (target / F)^(1/exponent).
 //! A cutting force F = α + β t_m^p rises with the exponent p (1 − α / F), which the size effect (p 0.7–0.9)
-//! and an edge force at most a few times the chip force keep above this, while a response surface fitted
+//! and an edge force at most about twice the chip force keep above this, while a response surface fitted
 //! on straight cuts extrapolates flat below its thinnest chip and asks for up to kSlowingReach. Where the
 //! force truly is that flat (near the force floor) the place is still over the target after the first step,
 //! and the second reading gives the slope (or, when the two differ by less than the noise, the model's
