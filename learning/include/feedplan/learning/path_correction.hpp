@@ -68,7 +68,9 @@ inline constexpr double kMinTrustedForceExponent = 0.25;
 //! +14.3 → +20.5 %, -08 +5.6 → +9.4 %, -02 +5.5 → +7.4 %). At 1.05 × the force floor the trochoid's cycle 3
 //! on family-09 took 201.5 → 123.3 s, -10 285.7 → 233.1 s, -04 355.5 → 308.1 s, the corner's on -09 61.4 →
 //! 47.4 s. The trochoid and the spiral at 400 N did not change. An exponent of 0.2 left family-09's corner at
-//! 1.20; one of 0.3 brought it to 1.01 but ran cycle 2 up to +25 % over the target.
+//! 1.20; one of 0.3 brought it to 1.01 but ran cycle 2 up to +25 % over the target. Bounding the second step
+//! too (a secant through two readings over the target) took family-08's corner in cycle 3 from 1.16 to
+//! 1.01 T*, but family-06's to +9.2 % over the target (+3.7 % with the secant) and -12's to +6.0 % (+4.9 %).
 inline constexpr double kMinFirstSlowingExponent = 0.25;
 //! A place measured within this share of the target keeps the chip it ran (the search has converged
 //! there: a smaller step would chase the sensor's noise).
