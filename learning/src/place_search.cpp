@@ -90,7 +90,8 @@ double largest_first_slowing_correction(const PlaceModel& place, double target_f
 }
 
 // The next c with the bracket open on one side: a secant through two spread measurements, or the model's
-// shape scaled to this one (c = F / F̂(t_m)), within kSecantReach of the measured chip.
+// shape scaled to this one (c = F / F̂(t_m)), within kSecantReach of the measured chip — and, the first time a
+// place reads over the target, slowed no further than kMinFirstSlowingExponent allows.
 double one_sided_correction(const PlaceModel& place, double target_force_n, const PathMeasurement& now,
                             const PathMeasurement& before, double noise_n) {
   const double ratio = within_reach(place, target_force_n, now.force_n / place.force_n(now.chip_mm), now.chip_mm);
