@@ -3,11 +3,15 @@
 // feeds searched against the virtual machine's true peaks, trial/best_achievable_plan.hpp) and three
 // learning cycles from the sample model, reported as counters — cycle time over T*, and the largest and
 // RMS error of the true per-revolution peaks over the revolutions the plan holds at the target, and the
-// best plan's own largest held error (T*_held_max%).
+// best plan's own largest held error (T*_held_max%; T*_steady_max% and cK_steady_max% over the steady held
+// revolutions alone: straight cuts and steady arcs, planner/peak_comparison.hpp).
 //
 // The figures are quoted, never asserted (the learning tests assert the bounds on three machines).
 // Slow: a T* search is up to 20 runs of the virtual machine. Choose with the environment:
 //   FEEDPLAN_FAMILY_MACHINES  machine numbers, e.g. "02,04,09" (default: all 12)
+//   FEEDPLAN_FAMILY_DIR       the family's directory (default data/machines/family): another draw of the
+//                             family (scripts/generate-machine-family.sh OUT_DIR SEED) checks that what was
+//                             measured on the checked-in machines holds on machines it was not tuned on
 //   FEEDPLAN_FAMILY_SAMPLES   sample specs, e.g. "trochoid,spiral,corner" (default: trochoid)
 //   FEEDPLAN_FAMILY_TARGETS   target force per sample, N, e.g. "400,400,350" (default: the spec's own)
 //   FEEDPLAN_FAMILY_NEAR_FLOOR a factor, e.g. "1.05": the target is that factor × the machine's force floor
@@ -25,6 +29,15 @@
 //   FEEDPLAN_FAMILY_IDEAL_SENSOR set: a dynamometer of 100 kHz (ζ 0.7) without noise, read as it is (what the
 //                             sensor's mode and noise cost together: the machine's physics alone; slow — the
 //                             virtual machine steps fast enough for that bandwidth)
+//   FEEDPLAN_FAMILY_PHASES    a count N in [2, 20]: instead of T* and learning, the sample model's first plan is
+//                             cut N times with the spindle — and with it every feed — k per mille faster (k = 0 …
+//                             N − 1): the same chip per tooth at every place, the teeth at other angles there. The
+//                             counters give how far the true per-revolution peak at one place spreads over the N
+//                             cuts (max / min − 1, at every 0.02 mm of path where every cut has a revolution over
+//                             100 N in the cut), its median, 90th and 99th percentile and largest value, over
+//                             steady held revolutions (steady_…) and over held ones that are not steady — entries
+//                             and exits, where the engagement changes within a turn (entry_…): what no feed per
+//                             place can hold, as a plan cannot set the spindle's angle at a place
 // Run: build/bench/learning_convergence_bench --benchmark_counters_tabular=true
 
 #include <benchmark/benchmark.h>
@@ -119,6 +132,13 @@ trial::LoopRequest request_for(const std::string& sample, const std::string& mac
   return request;
 }
 
+// The file of family machine `machine` ("01" …): in FEEDPLAN_FAMILY_DIR, else data/machines/family.
+std::string machine_path(const std::string& machine) {
+  const char* dir = std::getenv("FEEDPLAN_FAMILY_DIR");
+  return (dir && *dir ? std::string(dir) : std::string(FEEDPLAN_DATA_DIR) + "/machines/family") + "/family-" + machine +
+         ".yaml";
+}
+
 // The force floor of the loop's cycle on its machine: the largest true per-revolution peak in the cut with
 // every engaged sample planned at the machine's minimum feed (a target of 1 N, which no feed meets), N.
 double force_floor_n(const trial::LoopRequest& loop) {
@@ -135,10 +155,77 @@ double force_floor_n(const trial::LoopRequest& loop) {
   return floor_n;
 }
 
+// The revolution of `revolutions` (in path order) whose span holds s_mm, or null.
+const planner::RevolutionComparison* revolution_at(const std::vector<planner::RevolutionComparison>& revolutions,
+                                                   double s_mm) {
+  auto after = std::upper_bound(revolutions.begin(), revolutions.end(), s_mm,
+                                [](double s, const planner::RevolutionComparison& r) { return s < r.revolution.s_start_mm; });
+  if (after == revolutions.begin()) return nullptr;
+  const planner::RevolutionComparison& r = *(after - 1);
+  return s_mm <= r.revolution.s_end_mm ? &r : nullptr;
+}
+
+// The spread of the true peak at one place over cuts of one plan at other spindle phases (FEEDPLAN_FAMILY_PHASES),
+// as counters `<prefix>p50%`, …, `<prefix>max%` and `<prefix>places`.
+void count_spreads(benchmark::State& state, const std::string& prefix, std::vector<double> spreads) {
+  std::sort(spreads.begin(), spreads.end());
+  const auto at = [&](double q) {
+    return spreads.empty() ? 0.0 : 100.0 * spreads[static_cast<std::size_t>(q * static_cast<double>(spreads.size() - 1))];
+  };
+  state.counters[prefix + "p50%"] = at(0.5);
+  state.counters[prefix + "p90%"] = at(0.9);
+  state.counters[prefix + "p99%"] = at(0.99);
+  state.counters[prefix + "max%"] = at(1.0);
+  state.counters[prefix + "places"] = static_cast<double>(spreads.size());
+}
+
+void BM_PeakSpreadOverSpindlePhases(benchmark::State& state, const std::string& sample, const std::string& path,
+                                    double target_force_n, int phases) {
+  constexpr double kPlaceStepMm = 0.02;
+  constexpr double kSmallestPeakN = 100.0;
+  const trial::LoopRequest loop = request_for(sample, path, target_force_n);
+  std::vector<std::vector<planner::RevolutionComparison>> cuts;
+  for (auto _ : state) {
+    cuts.clear();
+    for (int k = 0; k < phases; ++k) {
+      planner::PlanSettings settings = loop.settings;
+      settings.spindle_rpm *= 1.0 + 0.001 * k;
+      const planner::PlanResult plan = planner::plan(loop.geometry, settings);
+      trial::VirtualMachine machine = loop.machine;
+      machine.keep_log = false;
+      machine.spindle_rpm = settings.spindle_rpm;
+      cuts.push_back(trial::run_on_virtual_machine(plan.program, machine, plan, settings.target_force_n).comparison.revolutions);
+    }
+  }
+  std::vector<double> steady;
+  std::vector<double> entry;
+  const auto& first = cuts.front();
+  if (!first.empty()) {
+    for (double s_mm = first.front().revolution.s_start_mm; s_mm < first.back().revolution.s_end_mm; s_mm += kPlaceStepMm) {
+      double lo = 0.0;
+      double hi = 0.0;
+      bool every = true;
+      for (const auto& cut : cuts) {
+        const planner::RevolutionComparison* r = revolution_at(cut, s_mm);
+        if (!r || !r->in_cut || !(r->revolution.peak_n > kSmallestPeakN)) {
+          every = false;
+          break;
+        }
+        lo = lo > 0.0 ? std::min(lo, r->revolution.peak_n) : r->revolution.peak_n;
+        hi = std::max(hi, r->revolution.peak_n);
+      }
+      const planner::RevolutionComparison* reference = revolution_at(first, s_mm);
+      if (!every || !reference->held) continue;
+      (reference->steady ? steady : entry).push_back(hi / lo - 1.0);
+    }
+  }
+  count_spreads(state, "steady_", steady);
+  count_spreads(state, "entry_", entry);
+}
+
 void BM_LearningAgainstBestAchievable(benchmark::State& state, const std::string& sample, const std::string& machine,
                                       double target_force_n) {
-  const std::string path = std::string(FEEDPLAN_DATA_DIR) + "/machines/family/family-" + machine + ".yaml";
-  trial::LoopRequest loop = request_for(sample, path, target_force_n);
+  trial::LoopRequest loop = request_for(sample, machine_path(machine), target_force_n);
   double floor_n = 0.0;
   if (const char* factor = std::getenv("FEEDPLAN_FAMILY_NEAR_FLOOR"); factor && *factor) {
     floor_n = force_floor_n(loop);
@@ -172,7 +259,9 @@ void BM_LearningAgainstBestAchievable(benchmark::State& state, const std::string
   state.counters["T*_search"] = static_cast<double>(best.iterations.size());
   if (!best.iterations.empty()) state.counters["T*_last_over%"] = best.iterations.back().max_overshoot_percent;
   if (best.best_iteration >= 0) {  // the best plan's own largest held error
-    state.counters["T*_held_max%"] = best.iterations[static_cast<std::size_t>(best.best_iteration)].held_max_abs_error_percent;
+    const trial::BestPlanIteration& oracle = best.iterations[static_cast<std::size_t>(best.best_iteration)];
+    state.counters["T*_held_max%"] = oracle.held_max_abs_error_percent;
+    state.counters["T*_steady_max%"] = oracle.steady_max_abs_error_percent;
   }
   for (const trial::LoopCycle& c : learned.cycles) {
     std::string k = "c";  // built in place: GCC 12 warns (-Wrestrict, falsely) on "c" + std::to_string(…)
@@ -182,6 +271,7 @@ void BM_LearningAgainstBestAchievable(benchmark::State& state, const std::string
     state.counters[k + "_max%"] = c.comparison.max_abs_error_percent;
     state.counters[k + "_rms%"] = c.comparison.rms_error_percent;
     state.counters[k + "_over%"] = c.comparison.max_overshoot_percent;
+    state.counters[k + "_steady_max%"] = c.comparison.steady_max_abs_error_percent;
   }
 }
 
@@ -190,9 +280,26 @@ int register_all() {
       split(std::getenv("FEEDPLAN_FAMILY_MACHINES"), "01,02,03,04,05,06,07,08,09,10,11,12");
   const std::vector<std::string> samples = split(std::getenv("FEEDPLAN_FAMILY_SAMPLES"), "trochoid");
   const std::vector<std::string> targets = split(std::getenv("FEEDPLAN_FAMILY_TARGETS"), "");
+  int phases = 0;
+  if (const char* text = std::getenv("FEEDPLAN_FAMILY_PHASES"); text && *text) {
+    phases = std::atoi(text);
+    if (phases < 2 || phases > 20) {
+      std::fprintf(stderr, "FEEDPLAN_FAMILY_PHASES = \"%s\": must be a whole number in [2, 20]\n", text);
+      std::exit(2);
+    }
+  }
   for (std::size_t k = 0; k < samples.size(); ++k) {
     const double target_force_n = k < targets.size() ? std::atof(targets[k].c_str()) : 0.0;
     for (const std::string& machine : machines) {
+      if (phases > 0) {
+        std::string name = "phases/";
+        name += samples[k] + "/family-" + machine;
+        benchmark::RegisterBenchmark(name.c_str(), BM_PeakSpreadOverSpindlePhases, samples[k], machine_path(machine),
+                                     target_force_n, phases)
+            ->Iterations(1)
+            ->Unit(benchmark::kSecond);
+        continue;
+      }
       std::string name = "learning/";
       name += samples[k] + "/family-" + machine;
       benchmark::RegisterBenchmark(name.c_str(),

@@ -98,6 +98,7 @@ BestPlan best_achievable_plan(const BestPlanRequest& request) {
     BestPlanIteration it;
     it.cycle_time_s = run.simulation.summary.cycle_time_s;
     it.held_max_abs_error_percent = run.comparison.max_abs_error_percent;
+    it.steady_max_abs_error_percent = run.comparison.steady_max_abs_error_percent;
     it.held_rms_error_percent = run.comparison.rms_error_percent;
     int infeasible = 0;
     bool all_met = true;

@@ -91,6 +91,7 @@ struct BestPlanIteration {
   double max_overshoot_percent = 0.0;  //!< largest true peak over the target among feasible in-cut revolutions, %
   double held_max_abs_error_percent = 0.0;  //!< largest |error| over held revolutions, %
   double held_rms_error_percent = 0.0;      //!< RMS error over held revolutions, %
+  double steady_max_abs_error_percent = 0.0;  //!< largest |error| over steady held revolutions, %
 };
 
 //! The outcome.
