@@ -94,11 +94,14 @@ class LearningLoop : public ::testing::Test {
 // What cycle 3 reaches depends on the sensor's noise at a few places, so the bounds hold over six noise seeds
 // (SensorOptions::seed 1–6, true peaks; build/bench/learning_convergence_bench with FEEDPLAN_FAMILY_SEED): held RMS
 // 0.35–0.41 % (family-02), 0.62–0.77 % (-04), 0.49–0.57 % (-09); the largest revolution over the target
-// +1.0 … +6.5 %; cycle time 26.3–26.4, 35.9–36.3 and 36.0–36.4 s (0.987–0.991, 1.001–1.012 and 0.992–1.003 ×
+// +1.0 … +6.5 %; cycle time 26.3–26.5, 35.9–36.1 and 36.0–36.4 s (0.988–0.993, 1.000–1.007 and 0.991–1.002 ×
 // T*). The largest held error, one revolution, is within ±3 % on family-02 in five of the six draws (2.0–3.3 %), on family-09 in all
-// six (1.5–2.8 %), and on family-04 in none (4.4–6.6 %, under the target at loop fronts and exits, where the
+// six (1.5–2.8 %), and on family-04 in none (4.2–7.0 %, under the target at loop fronts and exits, where the
 // dynamometer's mode puts a factor on the reading that its correction, learning/sensor_dynamics.hpp, does not fully
-// take off). Before one-sided secants were gated on a force change the noise cannot make and held to a trust region
+// take off). Over the steady held revolutions alone (straight cuts and steady arcs) the largest error is 1.2–2.3 %
+// on family-02 and 1.6–2.3 % on family-09 in all six draws, and 1.8–6.3 % on family-04 (within ±3 % in two);
+// the rest of the held revolutions are loop entries and exits, where the true peak of one plan moves by 4–9 %
+// (99th percentile) with the spindle's angle alone (FEEDPLAN_FAMILY_PHASES in that bench). Before one-sided secants were gated on a force change the noise cannot make and held to a trust region
 // it was 32 % under the target on family-04 seed 5, a loop front slowed on two readings through the resonant
 // dynamometer; before the look-ahead carried the feed per tooth and secants beyond two readings took the power law,
 // family-02 seed 1 ran a loop exit 9.9 % under the target (slowed by the larger correction of the thinner engagement
@@ -108,9 +111,10 @@ TEST_F(LearningLoop, TrochoidOnThreeMachinesOfTheFamilyConvergesWithoutDraggingT
     std::string machine;
     double third_rms_percent;  // bound on cycle 3's held RMS error
     double third_max_percent;  // bound on cycle 3's largest held error
+    double third_steady_max_percent;  // … over its steady held revolutions
   };
-  for (const Case& m : {Case{"family/family-02.yaml", 0.6, 3.5}, Case{"family/family-04.yaml", 1.0, 7.0},
-                        Case{"family/family-09.yaml", 0.8, 3.5}}) {
+  for (const Case& m : {Case{"family/family-02.yaml", 0.6, 3.5, 3.0}, Case{"family/family-04.yaml", 1.0, 7.0, 7.0},
+                        Case{"family/family-09.yaml", 0.8, 3.5, 3.0}}) {
     SCOPED_TRACE(m.machine);
     LoopRequest request = request_on_machine("trochoid.yaml", m.machine, 400.0);
     request.cycles = 3;
@@ -118,8 +122,9 @@ TEST_F(LearningLoop, TrochoidOnThreeMachinesOfTheFamilyConvergesWithoutDraggingT
     const LoopResult result = run_learning_loop(request);
     ASSERT_EQ(result.cycles.size(), 3u);
     for (const LoopCycle& c : result.cycles) {
-      std::printf("%s cycle %d: %.2f s, held RMS %.2f %%, max %.2f %%, largest over %+.2f %%\n", m.machine.c_str(),
-                  c.cycle, c.simulated_cycle_time_s, c.comparison.rms_error_percent, c.comparison.max_abs_error_percent,
+      std::printf("%s cycle %d: %.2f s, held RMS %.2f %%, max %.2f %% (steady %.2f %%), largest over %+.2f %%\n",
+                  m.machine.c_str(), c.cycle, c.simulated_cycle_time_s, c.comparison.rms_error_percent,
+                  c.comparison.max_abs_error_percent, c.comparison.steady_max_abs_error_percent,
                   c.comparison.max_overshoot_percent);
     }
     const planner::PeakComparison& third = result.cycles[2].comparison;
@@ -130,6 +135,7 @@ TEST_F(LearningLoop, TrochoidOnThreeMachinesOfTheFamilyConvergesWithoutDraggingT
     EXPECT_GT(result.cycles[0].comparison.max_overshoot_percent, 15.0);
     EXPECT_LE(third.rms_error_percent, m.third_rms_percent);
     EXPECT_LE(third.max_abs_error_percent, m.third_max_percent);
+    EXPECT_LE(third.steady_max_abs_error_percent, m.third_steady_max_percent);
     EXPECT_GT(third.held, 600) << "most revolutions in the cut are held";
     EXPECT_LE(off_by_more_than_5_percent, third.held / 100) << "at most 1 % of the held revolutions more than 5 % off";
     // Cycle 2 still overshot here, so cycle 3 may be slower; by how much is bounded.
