@@ -32,14 +32,18 @@ model::ResponseSurfaceModel flat_model() {
   return model;
 }
 
-// F̂ = 100 + 2000 t_m, N (t_m in mm).
-model::ResponseSurfaceModel linear_model() {
+// F̂ straight in t_m: `at_center_n` at t_m = `center_mm`, rising by `per_center_n` per `center_mm` of t_m (the
+// model's chip scale is its center), whatever L.
+model::ResponseSurfaceModel line_in_chip_model(double center_mm, double at_center_n, double per_center_n) {
   model::ResponseSurfaceModel model;
-  model.chip_center_mm = 0.05;
-  model.chip_scale_mm = 0.05;
-  model.beta = {200.0, 100.0, 0, 0, 0, 0};
+  model.chip_center_mm = center_mm;
+  model.chip_scale_mm = center_mm;
+  model.beta = {at_center_n, per_center_n, 0, 0, 0, 0};
   return model;
 }
+
+// F̂ = 100 + 2000 t_m, N (t_m in mm).
+model::ResponseSurfaceModel linear_model() { return line_in_chip_model(0.05, 200.0, 100.0); }
 
 ToothPeriodPeak period(long window, double s_start_mm, double s_end_mm, double s_peak_mm, double force_n,
                        double chip_mm = 0.05) {
@@ -372,13 +376,7 @@ TEST(LearnAlongPath, AimsAtAChipSoAGlobalRefitBetweenPartsDoesNotMoveTheNextFeed
 
 // F̂ = 175 + 500 t_m, N: nearly flat at t_m 0.01 mm (d ln F̂ / d ln t_m = 0.03), as a response surface
 // extrapolates below its thinnest straight cut.
-model::ResponseSurfaceModel flat_in_chip_model() {
-  model::ResponseSurfaceModel model;
-  model.chip_center_mm = 0.01;
-  model.chip_scale_mm = 0.01;
-  model.beta = {180.0, 5.0, 0, 0, 0, 0};
-  return model;
-}
+model::ResponseSurfaceModel flat_in_chip_model() { return line_in_chip_model(0.01, 180.0, 5.0); }
 
 // Near the force floor the model extrapolates nearly flat: F̂ = 175 + 500 t_m (d ln F̂ / d ln t_m = 0.03 at
 // 0.01 mm). A place read 178 N at t_m 0.010 mm under a 190 N target: the model's shape scaled would run the
