@@ -288,6 +288,16 @@ int register_all() {
       std::exit(2);
     }
   }
+  for (const std::string& machine : machines) {
+    const std::string path = machine_path(machine);
+    if (!fs::is_regular_file(path)) {
+      std::fprintf(stderr,
+                   "FEEDPLAN_FAMILY_MACHINES / FEEDPLAN_FAMILY_DIR: %s is not a file (expected family-NN.yaml for each "
+                   "machine number; scripts/generate-machine-family.sh OUT_DIR SEED writes a family)\n",
+                   path.c_str());
+      std::exit(2);
+    }
+  }
   for (std::size_t k = 0; k < samples.size(); ++k) {
     const double target_force_n = k < targets.size() ? std::atof(targets[k].c_str()) : 0.0;
     for (const std::string& machine : machines) {
