@@ -4,7 +4,8 @@
 // learning cycles from the sample model, reported as counters — cycle time over T*, and the largest and
 // RMS error of the true per-revolution peaks over the revolutions the plan holds at the target, and the
 // best plan's own largest held error (T*_held_max%; T*_steady_max% and cK_steady_max% over the steady held
-// revolutions alone: straight cuts and steady arcs, planner/peak_comparison.hpp).
+// revolutions alone: straight cuts and steady arcs, planner/peak_comparison.hpp; cK_steady_mean% their mean
+// signed error).
 //
 // The figures are quoted, never asserted (the learning tests assert the bounds on three machines).
 // Slow: a T* search is up to 20 runs of the virtual machine. Choose with the environment:
@@ -38,6 +39,9 @@
 //                             steady held revolutions (steady_…) and over held ones that are not steady — entries
 //                             and exits, where the engagement changes within a turn (entry_…): what no feed per
 //                             place can hold, as a plan cannot set the spindle's angle at a place
+//   FEEDPLAN_FAMILY_REVOLUTIONS a directory: also write, per sample and machine, every true per-revolution peak
+//                             of each learning cycle and of the best plan (cut once more; cycle "best") as
+//                             SAMPLE-family-NN.csv (the columns of `loop --revolutions`): where the errors are
 // Run: build/bench/learning_convergence_bench --benchmark_counters_tabular=true
 
 #include <benchmark/benchmark.h>
@@ -57,6 +61,8 @@
 #include "feedplan/cycles/spec_reader.hpp"
 #include "feedplan/model_db/model_exchange.hpp"
 #include "feedplan/model_db/store.hpp"
+#include "feedplan/planner/peak_comparison.hpp"
+#include "feedplan/planner/revolution_table.hpp"
 #include "feedplan/sim/machine_file.hpp"
 #include "feedplan/sim/material.hpp"
 #include "feedplan/trial/best_achievable_plan.hpp"
@@ -165,6 +171,19 @@ const planner::RevolutionComparison* revolution_at(const std::vector<planner::Re
   return s_mm <= r.revolution.s_end_mm ? &r : nullptr;
 }
 
+// The mean signed error over the steady held revolutions, % (0 without one): a bias there is the
+// dynamometer correction's or the model's, not the spindle's phase.
+double steady_mean_error_percent(const planner::PeakComparison& comparison) {
+  double sum = 0.0;
+  int count = 0;
+  for (const planner::RevolutionComparison& r : comparison.revolutions) {
+    if (!r.steady) continue;
+    sum += r.error_percent;
+    ++count;
+  }
+  return count > 0 ? sum / count : 0.0;
+}
+
 // The spread of the true peak at one place over cuts of one plan at other spindle phases (FEEDPLAN_FAMILY_PHASES),
 // as counters `<prefix>p50%`, …, `<prefix>max%` and `<prefix>places`.
 void count_spreads(benchmark::State& state, const std::string& prefix, std::vector<double> spreads) {
@@ -223,6 +242,23 @@ void BM_PeakSpreadOverSpindlePhases(benchmark::State& state, const std::string& 
   count_spreads(state, "entry_", entry);
 }
 
+// The best plan (its force correction on the machine's own physics, as the search planned it) cut once more:
+// its revolutions, which the search keeps only as figures.
+planner::PeakComparison best_plan_cut_again(const trial::LoopRequest& loop, const trial::BestPlan& best) {
+  planner::PlanSettings settings = trial::planned_with_own_physics(loop.settings, loop.machine);
+  settings.force_correction = best.force_correction;
+  const planner::PlanResult plan = planner::plan(loop.geometry, settings);
+  return trial::run_on_virtual_machine(plan.program, loop.machine, plan, settings.target_force_n).comparison;
+}
+
+void write_table(const std::string& path, const std::string& text) {
+  std::FILE* file = std::fopen(path.c_str(), "w");
+  if (!file || std::fputs(text.c_str(), file) < 0 || std::fclose(file) != 0) {
+    std::fprintf(stderr, "FEEDPLAN_FAMILY_REVOLUTIONS: cannot write %s\n", path.c_str());
+    std::exit(2);
+  }
+}
+
 void BM_LearningAgainstBestAchievable(benchmark::State& state, const std::string& sample, const std::string& machine,
                                       double target_force_n) {
   trial::LoopRequest loop = request_for(sample, machine_path(machine), target_force_n);
@@ -251,6 +287,12 @@ void BM_LearningAgainstBestAchievable(benchmark::State& state, const std::string
     learned = trial::run_learning_loop(loop);
   }
   const double t_star_s = best.best_cycle_time_s;
+  std::string table;  // FEEDPLAN_FAMILY_REVOLUTIONS: the best plan's revolutions and every cycle's
+  const char* table_dir = std::getenv("FEEDPLAN_FAMILY_REVOLUTIONS");
+  if (table_dir && *table_dir) {
+    table = planner::revolution_table_header();
+    if (!best.force_correction.empty()) table += planner::revolution_table_rows("best", best_plan_cut_again(loop, best), loop.settings.target_force_n);
+  }
   state.counters["target_N"] = loop.settings.target_force_n;
   state.counters["floor_N"] = floor_n;
   state.counters["T*_s"] = t_star_s;
@@ -272,7 +314,10 @@ void BM_LearningAgainstBestAchievable(benchmark::State& state, const std::string
     state.counters[k + "_rms%"] = c.comparison.rms_error_percent;
     state.counters[k + "_over%"] = c.comparison.max_overshoot_percent;
     state.counters[k + "_steady_max%"] = c.comparison.steady_max_abs_error_percent;
+    state.counters[k + "_steady_mean%"] = steady_mean_error_percent(c.comparison);
+    if (!table.empty()) table += planner::revolution_table_rows(std::to_string(c.cycle), c.comparison, loop.settings.target_force_n);
   }
+  if (!table.empty()) write_table(std::string(table_dir) + "/" + sample + "-family-" + machine + ".csv", table);
 }
 
 int register_all() {
@@ -287,6 +332,10 @@ int register_all() {
       std::fprintf(stderr, "FEEDPLAN_FAMILY_PHASES = \"%s\": must be a whole number in [2, 20]\n", text);
       std::exit(2);
     }
+  }
+  if (const char* dir = std::getenv("FEEDPLAN_FAMILY_REVOLUTIONS"); dir && *dir && !fs::is_directory(dir)) {
+    std::fprintf(stderr, "FEEDPLAN_FAMILY_REVOLUTIONS = \"%s\": not a directory (create it first)\n", dir);
+    std::exit(2);
   }
   for (const std::string& machine : machines) {
     const std::string path = machine_path(machine);

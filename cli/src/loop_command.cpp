@@ -22,6 +22,7 @@
 #include "feedplan/cycles/spec_reader.hpp"
 #include "feedplan/trial/learning_loop.hpp"
 #include "feedplan/planner/path_history_plot.hpp"
+#include "feedplan/planner/revolution_table.hpp"
 #include "feedplan/report/plan_page.hpp"
 #include "feedplan/sim/machine_file.hpp"
 #include "feedplan/sim/material.hpp"
@@ -64,17 +65,8 @@ namespace {
 
 // One row per simulated revolution of every cycle: where the error is, not only how large.
 std::string revolutions_csv(const trial::LoopResult& result, double target_force_n) {
-  std::string text = "cycle,s_start_mm,s_end_mm,x_mm,y_mm,peak_n,planned_force_n,target_n,error_percent,in_cut,held,steady\n";
-  for (const auto& c : result.cycles) {
-    for (const auto& r : c.comparison.revolutions) {
-      text += std::to_string(c.cycle) + "," + shortest_number_text(r.revolution.s_start_mm) + "," +
-              shortest_number_text(r.revolution.s_end_mm) + "," + shortest_number_text(r.position.x_mm) + "," +
-              shortest_number_text(r.position.y_mm) + "," + shortest_number_text(r.revolution.peak_n) + "," +
-              shortest_number_text(r.planned_force_n) + "," + shortest_number_text(target_force_n) + "," +
-              shortest_number_text(r.error_percent) + "," + (r.in_cut ? "1" : "0") + "," + (r.held ? "1" : "0") + "," +
-              (r.steady ? "1" : "0") + "\n";
-    }
-  }
+  std::string text = planner::revolution_table_header();
+  for (const auto& c : result.cycles) text += planner::revolution_table_rows(std::to_string(c.cycle), c.comparison, target_force_n);
   return text;
 }
 
