@@ -23,6 +23,8 @@
 //   FEEDPLAN_FAMILY_T_STAR_ONLY set: the T* search only (the learning counters are then absent)
 //   FEEDPLAN_FAMILY_NO_SENSOR set: peaks taken as read (default: corrected for the machine's dynamometer
 //                             mode as its tap test gives it, as `loop --sensor-hz --sensor-damping`)
+//   FEEDPLAN_FAMILY_CHIP_SHAPE set: the dynamometer's factor from the chip's shape everywhere (default: from the
+//                             sample database's mechanistic model where the engagement is steady, as `loop`)
 //   FEEDPLAN_FAMILY_CYCLES    learning cycles (default 3; the counters c1_…, c2_…, … for each)
 //   FEEDPLAN_FAMILY_SEED      the dynamometer noise's seed (default 1): a cycle's largest errors are single
 //                             revolutions, and how large they come out depends on the draw of the noise
@@ -84,21 +86,31 @@ std::vector<std::string> split(const char* text, const std::string& fallback) {
 }
 
 // The sample model (the sample database's S50C, D10 Z4), read once into a throwaway database.
-const model_db::ModelRecord& sample_model() {
-  static const model_db::ModelRecord record = [] {
+// The sample database's models of the sample tool in S50C: the response surface and the mechanistic model.
+struct SampleModels {
+  model_db::ModelRecord response_surface;
+  model::MechanisticModel mechanistic;
+};
+
+const SampleModels& sample_models() {
+  static const SampleModels models = [] {
     const fs::path dir = fs::temp_directory_path() / ("feedplan_convergence_bench_" + std::to_string(::getpid()));
     fs::create_directories(dir);
-    model_db::ModelRecord out;
+    SampleModels out;
     {
       auto store = model_db::Store::open(dir / "m.db", model_db::OpenMode::kCreate);
       model_db::import_from_file(store, fs::path(FEEDPLAN_TEST_DATA_DIR) / "cli" / "s50c_d10_model.json");
-      out = *store.active_model("SC EM D10 Z4", "S50C");
+      model_db::import_from_file(store, fs::path(FEEDPLAN_TEST_DATA_DIR) / "cli" / "s50c_d10_mechanistic.json");
+      out.response_surface = *store.active_model("SC EM D10 Z4", "S50C");
+      out.mechanistic = store.active_model("SC EM D10 Z4", "S50C", model_db::ModelKind::kMechanistic)->mechanistic->model;
     }
     fs::remove_all(dir);
     return out;
   }();
-  return record;
+  return models;
 }
+
+const model_db::ModelRecord& sample_model() { return sample_models().response_surface; }
 
 // The loop request for one sample on one machine file, as `feedplan loop SPEC --machine FILE`.
 trial::LoopRequest request_for(const std::string& sample, const std::string& machine_path, double target_force_n) {
@@ -114,7 +126,10 @@ trial::LoopRequest request_for(const std::string& sample, const std::string& mac
   const sim::MaterialLibrary materials = sim::load_materials(std::string(FEEDPLAN_DATA_DIR) + "/materials.yaml");
   const sim::MachineFile file = sim::load_machine_file(machine_path, materials);
   trial::use_machine_file(request.machine, file, spec.tool);
-  if (!std::getenv("FEEDPLAN_FAMILY_NO_SENSOR")) request.sensor = trial::dynamometer_mode(file.dynamometer);
+  if (!std::getenv("FEEDPLAN_FAMILY_NO_SENSOR")) {
+    request.sensor = trial::dynamometer_mode(file.dynamometer);
+    if (!std::getenv("FEEDPLAN_FAMILY_CHIP_SHAPE")) request.sensor_kernel = sample_models().mechanistic;
+  }
   request.machine.stock = cycle.stock;
   request.machine.machine = spec.machine;
   request.machine.spindle_rpm = spec.spindle_rpm;

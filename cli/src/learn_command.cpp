@@ -240,13 +240,20 @@ learning::ModelUpdate learn_from_logs(const LearnOptions& o, const LearnInputs& 
   planner::PlanSettings learn_settings = remade.settings;
   learn_settings.model = before.model;
   learning::ModelUpdateOptions options;
+  std::optional<model::MechanisticModel> kernel;
   if (in.sensor) {
-    options.revolutions.sensor_peak_gain = learning::sensor_peak_gains(remade.geometry.engagement, remade.geometry.tool,
-                                                                       remade.settings.spindle_rpm, *in.sensor);
+    // The dynamometer's factor at the feeds the parts were cut with (the plan the logs are aligned with).
+    kernel = sensor_kernel(store, pair.tool_name, pair.material_name);
+    std::vector<double> feeds_cut;
+    for (const planner::PlannedSample& sample : remade.plan.samples) feeds_cut.push_back(sample.feed_mm_per_min);
+    options.revolutions.sensor_peak_gain =
+        learning::sensor_peak_gains(remade.geometry.engagement, remade.geometry.tool, remade.settings.spindle_rpm,
+                                    *in.sensor, {kernel ? &*kernel : nullptr, std::move(feeds_cut)});
   }
-  const learning::ModelUpdate update = learning::update_model(remade.plan, learn_settings, in.spec.tool.flutes, in.logs,
-                                                              earlier, prior_covariance, options);
+  learning::ModelUpdate update = learning::update_model(remade.plan, learn_settings, in.spec.tool.flutes, in.logs,
+                                                        earlier, prior_covariance, options);
   throw_if_not_these_parts(update.logs, o.log_paths);
+  if (in.sensor) update.messages.push_back(describe_sensor_correction(kernel));
   return update;
 }
 

@@ -118,7 +118,8 @@ LoopInputs read_loop_inputs(const LoopOptions& o) {
 
 // The plan side (engagement, model, target, machine) and the virtual machine (the material's cutting
 // coefficients × --machine-scale).
-trial::LoopRequest loop_request(const LoopOptions& o, const LoopInputs& in, const ChosenModel& chosen) {
+trial::LoopRequest loop_request(const LoopOptions& o, const LoopInputs& in, const ChosenModel& chosen,
+                                const std::optional<model::MechanisticModel>& kernel) {
   const cycles::CycleSpec& spec = in.spec;
   const sim::MaterialLibrary materials =
       sim::load_materials(o.materials_path.empty() ? bundled_materials_path() : o.materials_path);
@@ -144,6 +145,7 @@ trial::LoopRequest loop_request(const LoopOptions& o, const LoopInputs& in, cons
   request.sigmas = o.sigmas;
   request.start_fit_covariance = chosen.record.fit.covariance;
   request.sensor = in.sensor;
+  if (in.sensor) request.sensor_kernel = kernel;
   return request;
 }
 
@@ -284,7 +286,9 @@ int run_loop_command(const LoopOptions& o) {
   const std::optional<ChosenModel> chosen = choose_model(store, in.spec, o.model_id);
   if (!chosen) return 1;
   in.cautious = planning_uncertainty(*chosen, o.cautious);
-  const trial::LoopRequest request = loop_request(o, in, *chosen);
+  const std::optional<model::MechanisticModel> kernel =
+      sensor_kernel(store, chosen->record.tool_name, chosen->record.material_name);
+  const trial::LoopRequest request = loop_request(o, in, *chosen, kernel);
   const trial::LoopResult result = run_loop_with_progress(request, o.cycles);
   OutputFiles files;
   if (!o.revolutions_path.empty()) files.add(o.revolutions_path, revolutions_csv(result, in.target_force_n));
@@ -298,6 +302,7 @@ int run_loop_command(const LoopOptions& o) {
     print_loop_json(o, in, *chosen, result);
   } else {
     print_loop_text(o, in, *chosen, result);
+    if (in.sensor) std::printf("%s\n", describe_sensor_correction(kernel).c_str());
   }
   return 0;
 }

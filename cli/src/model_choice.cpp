@@ -3,6 +3,8 @@
 #include <iostream>
 
 #include "feedplan/core/input_error.hpp"
+#include "feedplan/core/number_text.hpp"
+#include "feedplan/learning/sensor_dynamics.hpp"
 #include "feedplan/model_db/closest_model.hpp"
 
 namespace feedplan::cli {
@@ -80,6 +82,23 @@ std::optional<planner::ForceUncertainty> cautious_bound(const model_db::ModelRec
   uncertainty.sigmas = kBorrowedModelSigmas;
   uncertainty.relative = r;
   return uncertainty;
+}
+
+std::optional<model::MechanisticModel> sensor_kernel(const model_db::Store& store, const std::string& tool_name,
+                                                     const std::string& material_name) {
+  const std::optional<model_db::ModelRecord> record =
+      store.active_model(tool_name, material_name, model_db::ModelKind::kMechanistic);
+  if (!record || !record->mechanistic) return std::nullopt;
+  return record->mechanistic->model;
+}
+
+std::string describe_sensor_correction(const std::optional<model::MechanisticModel>& kernel) {
+  const std::string cap = shortest_number_text(learning::kMaxSensorPeakGain);
+  return kernel ? "dynamometer correction: where the engagement is steady, the smaller of the factors the mechanistic "
+                  "model's force and the chip's shape give; elsewhere the chip's shape's, at most " + cap
+                : "dynamometer correction: the chip's shape's factor, at most " + cap +
+                      " (no mechanistic model of this tool and material in the database; with one, fitted from its "
+                      "cutting tests by feedplan db fit --kind mechanistic, steady cuts take their whole factor)";
 }
 
 }  // namespace feedplan::cli

@@ -28,6 +28,15 @@ struct ChosenModel {
 //! printing why on stderr, when the database has no model that qualifies.
 std::optional<ChosenModel> choose_model(const model_db::Store& store, const cycles::CycleSpec& spec, std::optional<std::int64_t> model_id);
 
+//! The active mechanistic model of `tool_name` in `material_name` (its cutting tests' coefficients, size
+//! effect, runout and helix), if the database has one: the force's shape a dynamometer correction uses where
+//! the engagement is steady (learning::SensorKernel).
+std::optional<model::MechanisticModel> sensor_kernel(const model_db::Store& store, const std::string& tool_name,
+                                                     const std::string& material_name);
+
+//! One line for people on the shape a dynamometer's factor is taken from, with or without `kernel`.
+std::string describe_sensor_correction(const std::optional<model::MechanisticModel>& kernel);
+
 //! z of the cautious bound F̂ + z·σ a borrowed model is planned on.
 inline constexpr double kBorrowedModelSigmas = 2.0;
 

@@ -11,6 +11,9 @@
 #include "feedplan/core/input_error.hpp"
 #include "feedplan/core/number_text.hpp"
 #include "feedplan/geometry/chip_load.hpp"
+#include "feedplan/model/mechanistic_force.hpp"
+#include "feedplan/model/sensed_peak.hpp"
+#include "feedplan/planner/engaged_sections.hpp"
 
 namespace feedplan::learning {
 
@@ -57,15 +60,84 @@ double periodic_peak_gain(const std::vector<double>& waveform, double fundamenta
   return read_peak / peak;
 }
 
+std::vector<bool> steady_engagement(const geometry::EngagementProfile& profile, const std::vector<double>& half_window_mm) {
+  const std::vector<geometry::EngagementSample>& samples = profile.samples;
+  const std::size_t n = samples.size();
+  std::vector<bool> steady(n, false);
+  if (half_window_mm.size() != n) return steady;
+  const auto alike = [](const geometry::EngagementSample& a, const geometry::EngagementSample& b) {
+    return b.layer_count > 0 && std::abs(b.engagement_rad - a.engagement_rad) <= kSteadySensorSpreadRad &&
+           std::abs(b.axial_depth_mm - a.axial_depth_mm) <= kSteadySensorDepthSpread * a.axial_depth_mm;
+  };
+  for (std::size_t i = 1; i + 1 < n; ++i) {
+    const geometry::EngagementSample& sample = samples[i];
+    if (sample.layer_count == 0 || !(half_window_mm[i] >= 0.0)) continue;
+    // The two neighbours count however far they are: a coarse profile does not make every sample steady.
+    bool all_alike = alike(sample, samples[i - 1]) && alike(sample, samples[i + 1]);
+    for (std::size_t j = i + 1; all_alike && j < n && samples[j].s_mm <= sample.s_mm + half_window_mm[i]; ++j) {
+      all_alike = alike(sample, samples[j]);
+    }
+    for (std::size_t j = i; all_alike && j-- > 0 && samples[j].s_mm >= sample.s_mm - half_window_mm[i];) {
+      all_alike = alike(sample, samples[j]);
+    }
+    steady[i] = all_alike;
+  }
+  return steady;
+}
+
+namespace {
+
+// The kernel's factor at one steady sample: its sensed peak over its force's peak; 0 when it has none.
+double kernel_gain(const geometry::EngagementProfile& profile, const geometry::EngagementSample& sample,
+                   const geometry::Tool& tool, double spindle_rpm, const SensorDynamics& sensor,
+                   const model::MechanisticModel& kernel, double feed_per_tooth_mm) {
+  model::SensorResponse response;
+  response.modes[0] = {sensor.natural_frequency_hz, sensor.damping_ratio};
+  response.modes[1] = response.modes[0];
+  const planner::SampleSections sections(profile, sample);
+  const model::SensedPeak peak = model::predicted_sensed_peak(kernel, sections.sections(), planner::cutter_geometry(tool),
+                                                              feed_per_tooth_mm, response, spindle_rpm);
+  return peak.force_peak_n > 0.0 && std::isfinite(peak.force_n) ? peak.force_n / peak.force_peak_n : 0.0;
+}
+
+}  // namespace
+
 std::vector<double> sensor_peak_gains(const geometry::EngagementProfile& profile, const geometry::Tool& tool,
-                                      double spindle_rpm, const SensorDynamics& sensor) {
+                                      double spindle_rpm, const SensorDynamics& sensor, const SensorKernel& kernel) {
   const double tooth_hz = spindle_rpm * tool.flutes / 60.0;
+  const bool with_kernel = kernel.model && kernel.feed_mm_per_min.size() == profile.samples.size() &&
+                           sensor.damping_ratio < 1.0 && validate(*kernel.model, planner::cutter_geometry(tool)).empty();
+  std::vector<double> half_window_mm(profile.samples.size(), -1.0);
+  if (with_kernel) {
+    for (std::size_t i = 0; i < half_window_mm.size(); ++i) {
+      half_window_mm[i] = kSteadySensorToothPeriods * kernel.feed_mm_per_min[i] / (spindle_rpm * tool.flutes);
+    }
+  }
+  const std::vector<bool> steady = steady_engagement(profile, half_window_mm);
   std::vector<double> gains(profile.samples.size(), 1.0);
+  // The last kernel evaluation, reused while the engagement and the feed per tooth stay alike.
+  const geometry::EngagementSample* cached = nullptr;
+  double cached_feed_per_tooth_mm = 0.0, cached_gain = 0.0;
   for (std::size_t i = 0; i < profile.samples.size(); ++i) {
     const geometry::EngagementSample& sample = profile.samples[i];
     if (sample.layer_count == 0) continue;
-    gains[i] = std::min(periodic_peak_gain(geometry::chip_load_waveform_mm(profile, sample, tool), tooth_hz, sensor),
-                        kMaxSensorPeakGain);
+    const double chip_shape_gain = periodic_peak_gain(geometry::chip_load_waveform_mm(profile, sample, tool), tooth_hz, sensor);
+    const double feed_per_tooth_mm = with_kernel ? kernel.feed_mm_per_min[i] / (spindle_rpm * tool.flutes) : 0.0;
+    if (steady[i] && feed_per_tooth_mm > 0.0) {
+      const bool alike = cached && std::abs(cached->engagement_rad - sample.engagement_rad) <= 0.5 * kSteadySensorSpreadRad &&
+                         std::abs(cached->axial_depth_mm - sample.axial_depth_mm) <= kSteadySensorDepthSpread * sample.axial_depth_mm &&
+                         std::abs(cached_feed_per_tooth_mm - feed_per_tooth_mm) <= kKernelFeedSpread * feed_per_tooth_mm;
+      if (!alike) {
+        cached = &sample;
+        cached_feed_per_tooth_mm = feed_per_tooth_mm;
+        cached_gain = kernel_gain(profile, sample, tool, spindle_rpm, sensor, *kernel.model, feed_per_tooth_mm);
+      }
+      if (cached_gain > 0.0) {  // the smaller of two estimates: the one that errs to the safe side
+        gains[i] = std::min(cached_gain, chip_shape_gain);
+        continue;
+      }
+    }
+    gains[i] = std::min(chip_shape_gain, kMaxSensorPeakGain);
   }
   return gains;
 }

@@ -643,6 +643,22 @@ TEST_F(LoopCliTest, CutsOnAMachineFile) {
   EXPECT_EQ(out["machine"].get<std::string>(), machine);
   EXPECT_FALSE(out.contains("machine_scale"));
   ASSERT_EQ(out["cycles"].size(), 1u) << r.output;
+  // Said in words: which shape the dynamometer's factor comes from, and how to get the better one.
+  const RunResult text = run_feedplan("loop " + kSamples + "/corner.yaml --cycles 1 --db " + db_ + " --machine " +
+                                      machine + " --sensor-hz 1500 --sensor-damping 0.6");
+  ASSERT_EQ(text.exit_code, 0) << text.output;
+  EXPECT_NE(text.output.find("dynamometer correction: the chip's shape's factor, at most 1.05 (no mechanistic model"),
+            std::string::npos) << text.output;
+  EXPECT_NE(text.output.find("feedplan db fit --kind mechanistic"), std::string::npos) << text.output;
+  // With the tool's mechanistic model in the database, the steady cut takes the kernel's factor too.
+  ASSERT_EQ(run_feedplan("db import " + std::string(FEEDPLAN_TEST_DATA_DIR) + "/cli/s50c_d10_mechanistic.json --db " + db_)
+                .exit_code,
+            0);
+  const RunResult kernel = run_feedplan("loop " + kSamples + "/corner.yaml --cycles 1 --db " + db_ + " --machine " +
+                                        machine + " --sensor-hz 1500 --sensor-damping 0.6");
+  ASSERT_EQ(kernel.exit_code, 0) << kernel.output;
+  EXPECT_NE(kernel.output.find("dynamometer correction: where the engagement is steady, the smaller of the factors"),
+            std::string::npos) << kernel.output;
 }
 
 }  // namespace

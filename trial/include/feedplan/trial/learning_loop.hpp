@@ -36,6 +36,10 @@ struct LoopRequest {
   //! The force sensor's first mode as its owner knows it (a tap test): peaks are corrected for it before
   //! anything learns from them (learning/sensor_dynamics.hpp). None: taken as read.
   std::optional<learning::SensorDynamics> sensor;
+  //! The tool's mechanistic model (the database's, from cutting tests): with a sensor, the shape of the
+  //! force where the engagement is steady, for the sensor's factor there (learning::SensorKernel). None: the
+  //! chip's shape everywhere.
+  std::optional<model::MechanisticModel> sensor_kernel;
   //! Called after each cycle with its number (1-based); may be empty.
   std::function<void(int)> on_cycle_done;
   //! Called with the fraction of the whole loop done (0..1) while the virtual machine cuts and after
