@@ -266,6 +266,19 @@ TEST_F(LearnCliTest, StoresVersionTwoWithItsLearningEntryAndReplans) {
   EXPECT_GT(measured, 100);
 }
 
+// With the dynamometer's mode given and the tool's mechanistic model in the database, learning says that
+// the steady cut's factor comes from the kernel's force too — and learns as it does without.
+TEST_F(LearnCliTest, TheDynamometersModeIsTakenOffWithTheMechanisticModelsShape) {
+  ASSERT_EQ(run_feedplan("db import " + std::string(FEEDPLAN_TEST_DATA_DIR) + "/cli/s50c_d10_mechanistic.json --db " + db_)
+                .exit_code,
+            0);
+  const RunResult r = run_feedplan(learn_args(log_) + " --sensor-hz 3600 --sensor-damping 0.7 --json");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("dynamometer correction: where the engagement is steady, the smaller of the factors"),
+            std::string::npos) << r.output;
+  EXPECT_GT(json_of(r.output)["samples"].get<int>(), 100);
+}
+
 TEST_F(LearnCliTest, TheNextPartLearnsOnFromThePathLearningOfTheFirst) {
   // Part 1 → learn → part 2 cut with the re-planned program → learn from part 2's report: the state
   // along the path read back, updated where part 2 measured, and carried on to part 3.
