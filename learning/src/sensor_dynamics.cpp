@@ -87,17 +87,35 @@ std::vector<bool> steady_engagement(const geometry::EngagementProfile& profile, 
 
 namespace {
 
-// The kernel's factor at one steady sample: its sensed peak over its force's peak; 0 when it has none.
+// The kernel's factor at one steady sample: its sensed peak over its force's peak, the smallest over the
+// model as given and the variants of it the machine may be (kKernelHelixDoubtDeg, kKernelEdgeDoubt); 0 when it
+// has none.
 double kernel_gain(const geometry::EngagementProfile& profile, const geometry::EngagementSample& sample,
                    const geometry::Tool& tool, double spindle_rpm, const SensorDynamics& sensor,
                    const model::MechanisticModel& kernel, double feed_per_tooth_mm) {
   model::SensorResponse response;
   response.modes[0] = {sensor.natural_frequency_hz, sensor.damping_ratio};
   response.modes[1] = response.modes[0];
+  const model::CutterGeometry cutter = planner::cutter_geometry(tool);
   const planner::SampleSections sections(profile, sample);
-  const model::SensedPeak peak = model::predicted_sensed_peak(kernel, sections.sections(), planner::cutter_geometry(tool),
-                                                              feed_per_tooth_mm, response, spindle_rpm);
-  return peak.force_peak_n > 0.0 && std::isfinite(peak.force_n) ? peak.force_n / peak.force_peak_n : 0.0;
+  const double helix_deg = kernel.helix_deg.value_or(cutter.helix_deg);
+  std::vector<model::MechanisticModel> variants(5, kernel);
+  variants[1].helix_deg = helix_deg - kKernelHelixDoubtDeg;
+  variants[2].helix_deg = helix_deg + kKernelHelixDoubtDeg;
+  for (const double scale : {1.0 / kKernelEdgeDoubt, kKernelEdgeDoubt}) {
+    model::MechanisticModel& edge = variants[scale < 1.0 ? 3 : 4];
+    edge.kte_n_per_mm *= scale;
+    edge.kre_n_per_mm *= scale;
+  }
+  double smallest = 0.0;
+  for (const model::MechanisticModel& variant : variants) {
+    const model::SensedPeak peak =
+        model::predicted_sensed_peak(variant, sections.sections(), cutter, feed_per_tooth_mm, response, spindle_rpm);
+    if (!(peak.force_peak_n > 0.0 && std::isfinite(peak.force_n))) return 0.0;
+    const double gain = peak.force_n / peak.force_peak_n;
+    smallest = smallest > 0.0 ? std::min(smallest, gain) : gain;
+  }
+  return smallest;
 }
 
 }  // namespace
@@ -132,8 +150,8 @@ std::vector<double> sensor_peak_gains(const geometry::EngagementProfile& profile
         cached_feed_per_tooth_mm = feed_per_tooth_mm;
         cached_gain = kernel_gain(profile, sample, tool, spindle_rpm, sensor, *kernel.model, feed_per_tooth_mm);
       }
-      if (cached_gain > 0.0) {  // the smaller of two estimates: the one that errs to the safe side
-        gains[i] = std::min(cached_gain, chip_shape_gain);
+      if (cached_gain > 0.0) {  // more than the cap only where the kernel, whatever the machine, agrees
+        gains[i] = std::min(chip_shape_gain, std::max(cached_gain, kMaxSensorPeakGain));
         continue;
       }
     }

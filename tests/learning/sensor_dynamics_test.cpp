@@ -51,11 +51,11 @@ struct Cut {
 };
 
 // A straight cut a_e deep into the side of a block with the sample tool (down milling, a_p 10 mm).
-Cut straight_cut(double radial_depth_mm) {
+Cut straight_cut(double radial_depth_mm, double helix_deg = 35.0) {
   Cut c;
   c.tool.diameter_mm = 10.0;
   c.tool.flutes = 4;
-  c.tool.helix_deg = 35.0;
+  c.tool.helix_deg = helix_deg;
   geometry::Stock stock;
   stock.z_bottom_mm = -30;
   stock.regions.push_back({geometry::Contour::rectangle({0, -60}, {100, radial_depth_mm - 5.0}), {}});
@@ -130,46 +130,50 @@ double simulated_peak_factor(const Cut& cut, double radial_depth_mm, double band
   return ratios[ratios.size() / 2];
 }
 
-// A dynamometer of 400 Hz bandwidth, ζ 0.3 (its mode at 275 Hz), under a tooth frequency of 187 Hz, on a cut
-// 1 mm deep (37° of engagement): the steady cut's factor (1.12) is far above the cap; the kernel's is within
-// 1 % of it (1.120 against 1.120), the chip's shape's 2.2 % over it (1.145), which would run the cut over the target.
-TEST(SensorDynamics, InTheSteadyCutTheKernelsFactorIsWhatASoftDynamometerReads) {
-  const Cut cut = straight_cut(1.0);
+// A dynamometer of 400 Hz bandwidth, ζ 0.3 (its mode at 275 Hz), under a tooth frequency of 187 Hz, on cuts
+// 1 and 1.5 mm deep (37° and 46° of engagement) with a 30° helix: the steady cut's true factor is far above
+// the cap (1.24, 1.16), and the chip's shape overestimates it (1.29, 1.21), which would run the cut over the
+// target. With the kernel the steady cut takes off more than the capped chip's shape, and less than the truth
+// (1.12, 1.08: the smallest over the kernel's variants).
+TEST(SensorDynamics, InTheSteadyCutTheKernelTakesOffMoreThanTheCapOnlyWhereItIsSure) {
   const double rpm = 2800.0, feed_mm_per_min = 336.0;  // f_z 0.03 mm
   const double bandwidth_hz = 400.0, zeta = 0.3;
   const double shape = 1.0 - 2.0 * zeta * zeta;
   const SensorDynamics sensor{bandwidth_hz / std::sqrt(shape + std::sqrt(shape * shape + 1.0)), zeta};
-  const double truth = simulated_peak_factor(cut, 1.0, bandwidth_hz, zeta, rpm, feed_mm_per_min);
-  ASSERT_GT(truth, 1.08);
-
   const sim::CuttingCoefficients k = sim::load_materials(FEEDPLAN_SAMPLES_DIR "/../data/materials.yaml").get("S50C").coefficients;
   model::MechanisticModel kernel;
   kernel.ktc_n_per_mm2 = k.ktc_n_per_mm2;
   kernel.krc_n_per_mm2 = k.krc_n_per_mm2;
   kernel.kte_n_per_mm = k.kte_n_per_mm;
   kernel.kre_n_per_mm = k.kre_n_per_mm;
-  const std::vector<double> feeds(cut.profile.samples.size(), feed_mm_per_min);
-  const std::vector<double> with_kernel = sensor_peak_gains(cut.profile, cut.tool, rpm, sensor, {&kernel, feeds});
-  const std::vector<double> without = sensor_peak_gains(cut.profile, cut.tool, rpm, sensor);
-  std::vector<double> half_window_mm(cut.profile.samples.size(), kSteadySensorToothPeriods * 0.03);
-  const std::vector<bool> steady = steady_engagement(cut.profile, half_window_mm);
-  int steady_samples = 0;
-  for (std::size_t i = 0; i < cut.profile.samples.size(); ++i) {
-    const auto& sample = cut.profile.samples[i];
-    if (sample.layer_count == 0) continue;
-    const double chip_shape = periodic_peak_gain(geometry::chip_load_waveform_mm(cut.profile, sample, cut.tool),
-                                                 rpm * 4 / 60, sensor);
-    EXPECT_DOUBLE_EQ(without[i], std::min(chip_shape, kMaxSensorPeakGain)) << "s " << sample.s_mm;
-    if (!steady[i]) {
-      EXPECT_DOUBLE_EQ(with_kernel[i], without[i]) << "s " << sample.s_mm;
-      continue;
+  for (const double radial_depth_mm : {1.0, 1.5}) {
+    const Cut cut = straight_cut(radial_depth_mm, 30.0);
+    const double truth = simulated_peak_factor(cut, radial_depth_mm, bandwidth_hz, zeta, rpm, feed_mm_per_min);
+    ASSERT_GT(truth, 1.1) << "a_e " << radial_depth_mm;
+    const std::vector<double> feeds(cut.profile.samples.size(), feed_mm_per_min);
+    const std::vector<double> with_kernel = sensor_peak_gains(cut.profile, cut.tool, rpm, sensor, {&kernel, feeds});
+    const std::vector<double> without = sensor_peak_gains(cut.profile, cut.tool, rpm, sensor);
+    const std::vector<bool> steady =
+        steady_engagement(cut.profile, std::vector<double>(cut.profile.samples.size(), kSteadySensorToothPeriods * 0.03));
+    int steady_samples = 0;
+    for (std::size_t i = 0; i < cut.profile.samples.size(); ++i) {
+      const auto& sample = cut.profile.samples[i];
+      if (sample.layer_count == 0) continue;
+      const double chip_shape = periodic_peak_gain(geometry::chip_load_waveform_mm(cut.profile, sample, cut.tool),
+                                                   rpm * 4 / 60, sensor);
+      EXPECT_DOUBLE_EQ(without[i], std::min(chip_shape, kMaxSensorPeakGain)) << "s " << sample.s_mm;
+      if (!steady[i]) {
+        EXPECT_DOUBLE_EQ(with_kernel[i], without[i]) << "s " << sample.s_mm;
+        continue;
+      }
+      ++steady_samples;
+      EXPECT_GT(chip_shape, truth) << "a_e " << radial_depth_mm << " s " << sample.s_mm;
+      EXPECT_GE(with_kernel[i], without[i]) << "a_e " << radial_depth_mm << " s " << sample.s_mm;
+      EXPECT_LE(with_kernel[i], truth) << "a_e " << radial_depth_mm << " s " << sample.s_mm;
+      EXPECT_GT(with_kernel[i], kMaxSensorPeakGain + 0.02) << "a_e " << radial_depth_mm << " s " << sample.s_mm;
     }
-    ++steady_samples;
-    EXPECT_NEAR(with_kernel[i], truth, 0.01 * truth) << "s " << sample.s_mm;
-    EXPECT_LE(with_kernel[i], chip_shape) << "s " << sample.s_mm;
-    EXPECT_GT(std::abs(chip_shape - truth), 0.015 * truth) << "s " << sample.s_mm;
+    EXPECT_GT(steady_samples, 60) << "a_e " << radial_depth_mm;
   }
-  EXPECT_GT(steady_samples, 60);
 }
 
 // Steady: the engagement alike over the window and at both neighbours — not at the entry, and not anywhere
