@@ -94,11 +94,14 @@ std::optional<model::MechanisticModel> sensor_kernel(const model_db::Store& stor
 
 std::string describe_sensor_correction(const std::optional<model::MechanisticModel>& kernel) {
   const std::string cap = shortest_number_text(learning::kMaxSensorPeakGain);
-  return kernel ? "dynamometer correction: where the engagement is steady, the smaller of the factors the mechanistic "
-                  "model's force and the chip's shape give; elsewhere the chip's shape's, at most " + cap
+  return kernel ? "dynamometer correction: the chip's shape's factor, at most " + cap +
+                      " — more where the engagement is steady and the mechanistic model's force gives more on every "
+                      "machine it may be (helix ±" + shortest_number_text(learning::kKernelHelixDoubtDeg) +
+                      "°, edge forces halved or doubled)"
                 : "dynamometer correction: the chip's shape's factor, at most " + cap +
                       " (no mechanistic model of this tool and material in the database; with one, fitted from its "
-                      "cutting tests by feedplan db fit --kind mechanistic, steady cuts take their whole factor)";
+                      "cutting tests by feedplan db fit --kind mechanistic, a steady cut read through a soft "
+                      "dynamometer can take off more)";
 }
 
 }  // namespace feedplan::cli

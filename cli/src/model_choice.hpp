@@ -29,8 +29,8 @@ struct ChosenModel {
 std::optional<ChosenModel> choose_model(const model_db::Store& store, const cycles::CycleSpec& spec, std::optional<std::int64_t> model_id);
 
 //! The active mechanistic model of `tool_name` in `material_name` (its cutting tests' coefficients, size
-//! effect, runout and helix), if the database has one: the force's shape a dynamometer correction uses where
-//! the engagement is steady (learning::SensorKernel).
+//! effect, runout and helix), if the database has one: the force's shape a dynamometer correction may use
+//! where the engagement is steady (learning::SensorKernel).
 std::optional<model::MechanisticModel> sensor_kernel(const model_db::Store& store, const std::string& tool_name,
                                                      const std::string& material_name);
 

@@ -274,7 +274,7 @@ TEST_F(LearnCliTest, TheDynamometersModeIsTakenOffWithTheMechanisticModelsShape)
             0);
   const RunResult r = run_feedplan(learn_args(log_) + " --sensor-hz 3600 --sensor-damping 0.7 --json");
   ASSERT_EQ(r.exit_code, 0) << r.output;
-  EXPECT_NE(r.output.find("dynamometer correction: where the engagement is steady, the smaller of the factors"),
+  EXPECT_NE(r.output.find("more where the engagement is steady and the mechanistic model's force gives more on every machine"),
             std::string::npos) << r.output;
   EXPECT_GT(json_of(r.output)["samples"].get<int>(), 100);
 }
@@ -670,7 +670,7 @@ TEST_F(LoopCliTest, CutsOnAMachineFile) {
   const RunResult kernel = run_feedplan("loop " + kSamples + "/corner.yaml --cycles 1 --db " + db_ + " --machine " +
                                         machine + " --sensor-hz 1500 --sensor-damping 0.6");
   ASSERT_EQ(kernel.exit_code, 0) << kernel.output;
-  EXPECT_NE(kernel.output.find("dynamometer correction: where the engagement is steady, the smaller of the factors"),
+  EXPECT_NE(kernel.output.find("more where the engagement is steady and the mechanistic model's force gives more on every machine"),
             std::string::npos) << kernel.output;
 }
 

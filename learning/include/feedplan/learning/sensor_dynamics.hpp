@@ -141,7 +141,7 @@ double periodic_peak_gain(const std::vector<double>& waveform, double fundamenta
 //! two neighbours; false where it has no engaged layer, at the profile's ends and for a window of another size.
 std::vector<bool> steady_engagement(const geometry::EngagementProfile& profile, const std::vector<double>& half_window_mm);
 
-//! The force model whose shape gives the factor where the engagement is steady (see the top of this file).
+//! The force model whose variants may raise the factor where the engagement is steady (see the top of this file).
 struct SensorKernel {
   const model::MechanisticModel* model = nullptr;  //!< the tool's mechanistic model; null: the chip's shape everywhere
   std::vector<double> feed_mm_per_min;             //!< per sample of the profile, the feed cut there (≤ 0: the chip's shape)
@@ -155,10 +155,11 @@ inline constexpr double kKernelEdgeDoubt = 2.0;  //!< see kKernelHelixDoubtDeg
 //! Kernel evaluations are reused while the feed per tooth stays within this share of the one evaluated at.
 inline constexpr double kKernelFeedSpread = 0.05;
 
-//! Per sample of `profile`: the factor `sensor` puts on the force's peak there at `spindle_rpm` with `tool`.
-//! With a kernel (its model usable for the tool, a sensor with ζ < 1, a feed per sample), where the engagement
-//! is steady: the kernel's sensed peak over its force's peak at the feed cut there (model/sensed_peak.hpp),
-//! whole. Elsewhere the chip's shape, at most kMaxSensorPeakGain. 1 where the sample has no engaged layer.
+//! Per sample of `profile`: the factor `sensor` puts on the force's peak there at `spindle_rpm` with `tool`:
+//! the chip's shape's, at most kMaxSensorPeakGain. With a kernel (its model usable for the tool, a sensor with
+//! ζ < 1, a feed per sample), where the engagement is steady: min(chip shape, max(kMaxSensorPeakGain, the
+//! smallest factor of the kernel's variants at the feed cut there)) (see the top of this file). 1 where the
+//! sample has no engaged layer.
 std::vector<double> sensor_peak_gains(const geometry::EngagementProfile& profile, const geometry::Tool& tool,
                                       double spindle_rpm, const SensorDynamics& sensor, const SensorKernel& kernel = {});
 
