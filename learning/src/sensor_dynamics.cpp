@@ -88,8 +88,8 @@ std::vector<bool> steady_engagement(const geometry::EngagementProfile& profile, 
 namespace {
 
 // The kernel's factor at one steady sample: its sensed peak over its force's peak, the smallest over the
-// model as given and the variants of it the machine may be (kKernelHelixDoubtDeg, kKernelEdgeDoubt); 0 when it
-// has none.
+// model as given and the variants of it the machine may be (kKernelHelixDoubtDeg, kKernelEdgeDoubt), or the
+// first at or under the cap; 0 when it has none.
 double kernel_gain(const geometry::EngagementProfile& profile, const geometry::EngagementSample& sample,
                    const geometry::Tool& tool, double spindle_rpm, const SensorDynamics& sensor,
                    const model::MechanisticModel& kernel, double feed_per_tooth_mm) {
@@ -114,6 +114,7 @@ double kernel_gain(const geometry::EngagementProfile& profile, const geometry::E
     if (!(peak.force_peak_n > 0.0 && std::isfinite(peak.force_n))) return 0.0;
     const double gain = peak.force_n / peak.force_peak_n;
     smallest = smallest > 0.0 ? std::min(smallest, gain) : gain;
+    if (smallest <= kMaxSensorPeakGain) break;  // the cap it is: the other variants cannot raise it
   }
   return smallest;
 }
@@ -141,8 +142,9 @@ std::vector<double> sensor_peak_gains(const geometry::EngagementProfile& profile
     if (sample.layer_count == 0) continue;
     const double chip_shape_gain = periodic_peak_gain(geometry::chip_load_waveform_mm(profile, sample, tool), tooth_hz, sensor);
     const double feed_per_tooth_mm = with_kernel ? kernel.feed_mm_per_min[i] / (spindle_rpm * tool.flutes) : 0.0;
-    if (steady[i] && feed_per_tooth_mm > 0.0) {
-      const bool alike = cached && std::abs(cached->engagement_rad - sample.engagement_rad) <= 0.5 * kSteadySensorSpreadRad &&
+    // Where the chip's shape is within the cap, the kernel cannot change the factor (min(chip, max(cap, …))).
+    if (steady[i] && feed_per_tooth_mm > 0.0 && chip_shape_gain > kMaxSensorPeakGain) {
+      const bool alike = cached && std::abs(cached->engagement_rad - sample.engagement_rad) <= kSteadySensorSpreadRad &&
                          std::abs(cached->axial_depth_mm - sample.axial_depth_mm) <= kSteadySensorDepthSpread * sample.axial_depth_mm &&
                          std::abs(cached_feed_per_tooth_mm - feed_per_tooth_mm) <= kKernelFeedSpread * feed_per_tooth_mm;
       if (!alike) {

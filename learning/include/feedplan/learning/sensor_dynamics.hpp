@@ -41,13 +41,17 @@
 // coefficients × or ÷ kKernelEdgeDoubt), and more than the cap is taken off only as far as the smallest of
 // them allows, and never more than the chip's shape: min(chip shape, max(cap, smallest variant)). On the soft
 // machine's walls the variants give 1.080 (helix +5°) to 1.165, so 1.08 is taken; on the resonant one's
-// 1.056 to 1.138, so 1.056 — the truth. Measured (`FEEDPLAN_FAMILY_DIR` holding the five steel machines of
+// 1.056 to 1.138, so 1.056: the truth. Measured (`FEEDPLAN_FAMILY_DIR` holding the five steel machines of
 // data/machines, trochoid at 400 N and corner at 350 N, four cycles, noise draw 1): the soft machine's
-// trochoid 47.9 → 45.4 s in cycle 3 and 52.2 → 48.1 s in cycle 4 (its steady mean −9.8 → −6.9 %), its corner
-// 92.8 → 86.2 s and 96.9 → 87.5 s; the resonant one's largest revolution over the target +2.0 and +1.4 %
+// trochoid 47.9 → 44.3 s in cycle 3 and 52.2 → 47.4 s in cycle 4 (its steady mean −9.8 → −6.1 %), its corner
+// 92.8 → 86.5 s and 96.9 → 87.3 s; the resonant one's largest revolution over the target +2.5 and +1.6 %
 // (+2.3 and +1.4 % with the cap alone); the other three and both draws of the family unchanged (their factors
-// under the cap, or a variant under it). What would take the rest: the helix and the edge forces read from
-// the log's steady cut, so that the variants need not span the whole doubt.
+// under the cap, or a variant under it). The kernel is evaluated only where the chip's shape exceeds the cap
+// (elsewhere it cannot change the factor), once per 0.5° of engagement and 25 % of feed per tooth (the factor
+// moves 0.4 % over chips of 0.01–0.06 mm): about 300 evaluations of up to five variants per cycle of the
+// trochoid on the soft machine, 4–5 s; none on the family's machines. The time still grows from cycle 3 to 4
+// there without an overshoot: 1.08 is taken off where 1.16 is true. What would take the rest: the helix and
+// the edge forces read from the log's steady cut, so that the variants need not span the whole doubt.
 //
 // How far the chip's shape is from the force's, measured: the trochoid's first plan cut on family-04
 // (f_n 435 Hz, ζ 0.38) with its dynamometer and with one of 20 kHz, the ratio of the peaks the two read
@@ -153,7 +157,7 @@ inline constexpr double kKernelHelixDoubtDeg = 5.0;
 inline constexpr double kKernelEdgeDoubt = 2.0;  //!< see kKernelHelixDoubtDeg
 
 //! Kernel evaluations are reused while the feed per tooth stays within this share of the one evaluated at.
-inline constexpr double kKernelFeedSpread = 0.05;
+inline constexpr double kKernelFeedSpread = 0.25;
 
 //! Per sample of `profile`: the factor `sensor` puts on the force's peak there at `spindle_rpm` with `tool`:
 //! the chip's shape's, at most kMaxSensorPeakGain. With a kernel (its model usable for the tool, a sensor with
