@@ -5,12 +5,15 @@
 
 #include <benchmark/benchmark.h>
 
+#include <algorithm>
 #include <string>
+#include <vector>
 
 #include "feedplan/cycles/cycle.hpp"
 #include "feedplan/cycles/spec_reader.hpp"
 #include "feedplan/learning/model_update.hpp"
 #include "feedplan/learning/path_correction.hpp"
+#include "feedplan/learning/sensor_dynamics.hpp"
 #include "feedplan/trial/virtual_machine_run.hpp"
 #include "feedplan/planner/feed_plan.hpp"
 #include "feedplan/sim/material.hpp"
@@ -109,6 +112,37 @@ void BM_ReplanTrochoid(benchmark::State& state) {
   }
 }
 BENCHMARK(BM_ReplanTrochoid)->Unit(benchmark::kMillisecond);
+
+// The dynamometer's factor per sample of the trochoid's plan (learning/sensor_dynamics.hpp), what `loop` and
+// `learn` add when given a dynamometer's mode: the chip's shape alone, and with the sample tool's mechanistic
+// model in S50C, for a dynamometer like the family's (1500 Hz, ζ 0.6: no factor over the cap, no kernel
+// evaluated) and a soft one (275 Hz, ζ 0.3: the kernel's variants evaluated in the steady cut).
+void BM_SensorFactorsTrochoid(benchmark::State& state, double natural_frequency_hz, double damping_ratio,
+                              bool with_kernel) {
+  const Setup& s = setup();
+  model::MechanisticModel kernel;  // the sample database's: the library's S50C as its cutting tests gave it
+  kernel.ktc_n_per_mm2 = 1998.5;
+  kernel.krc_n_per_mm2 = 598.3;
+  kernel.kte_n_per_mm = 19.94;
+  kernel.kre_n_per_mm = 19.99;
+  std::vector<double> feeds;
+  for (const planner::PlannedSample& sample : s.plan.samples) feeds.push_back(sample.feed_mm_per_min);
+  const learning::SensorKernel shape{with_kernel ? &kernel : nullptr, feeds};
+  double above_cap = 0.0;
+  for (auto _ : state) {
+    const std::vector<double> gains = learning::sensor_peak_gains(s.geometry.engagement, s.geometry.tool,
+                                                                  s.settings.spindle_rpm,
+                                                                  {natural_frequency_hz, damping_ratio}, shape);
+    above_cap = static_cast<double>(
+        std::count_if(gains.begin(), gains.end(), [](double g) { return g > learning::kMaxSensorPeakGain; }));
+    benchmark::DoNotOptimize(gains);
+  }
+  state.counters["samples_over_cap"] = above_cap;
+}
+BENCHMARK_CAPTURE(BM_SensorFactorsTrochoid, stiff_chip_shape, 1500.0, 0.6, false)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_SensorFactorsTrochoid, stiff_with_kernel, 1500.0, 0.6, true)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_SensorFactorsTrochoid, soft_chip_shape, 275.2, 0.3, false)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_SensorFactorsTrochoid, soft_with_kernel, 275.2, 0.3, true)->Unit(benchmark::kMillisecond);
 
 }  // namespace
 
