@@ -125,9 +125,7 @@ void BM_SensorFactorsTrochoid(benchmark::State& state, double natural_frequency_
   kernel.krc_n_per_mm2 = 598.3;
   kernel.kte_n_per_mm = 19.94;
   kernel.kre_n_per_mm = 19.99;
-  std::vector<double> feeds;
-  for (const planner::PlannedSample& sample : s.plan.samples) feeds.push_back(sample.feed_mm_per_min);
-  const learning::SensorKernel shape{with_kernel ? &kernel : nullptr, feeds};
+  const learning::SensorKernel shape{with_kernel ? &kernel : nullptr, planner::sample_feeds_mm_per_min(s.plan)};
   double above_cap = 0.0;
   for (auto _ : state) {
     const std::vector<double> gains = learning::sensor_peak_gains(s.geometry.engagement, s.geometry.tool,

@@ -244,11 +244,9 @@ learning::ModelUpdate learn_from_logs(const LearnOptions& o, const LearnInputs& 
   if (in.sensor) {
     // The dynamometer's factor at the feeds the parts were cut with (the plan the logs are aligned with).
     kernel = sensor_kernel(store, pair.tool_name, pair.material_name);
-    std::vector<double> feeds_cut;
-    for (const planner::PlannedSample& sample : remade.plan.samples) feeds_cut.push_back(sample.feed_mm_per_min);
     options.revolutions.sensor_peak_gain =
         learning::sensor_peak_gains(remade.geometry.engagement, remade.geometry.tool, remade.settings.spindle_rpm,
-                                    *in.sensor, {kernel ? &*kernel : nullptr, std::move(feeds_cut)});
+                                    *in.sensor, {kernel ? &*kernel : nullptr, planner::sample_feeds_mm_per_min(remade.plan)});
   }
   learning::ModelUpdate update = learning::update_model(remade.plan, learn_settings, in.spec.tool.flutes, in.logs,
                                                         earlier, prior_covariance, options);

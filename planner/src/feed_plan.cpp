@@ -828,4 +828,11 @@ PlanResult plan(const PlanGeometry& geometry, const PlanSettings& settings) {
   return result;
 }
 
+std::vector<double> sample_feeds_mm_per_min(const PlanResult& result) {
+  std::vector<double> feeds;
+  feeds.reserve(result.samples.size());
+  for (const PlannedSample& sample : result.samples) feeds.push_back(sample.feed_mm_per_min);
+  return feeds;
+}
+
 }  // namespace feedplan::planner

@@ -12,14 +12,6 @@ namespace {
 // planning and learning pass over it once each.
 constexpr double kCutShareOfCycle = 0.85;
 
-// The feed the plan runs at each of its samples, mm/min.
-std::vector<double> feeds_cut(const planner::PlanResult& plan) {
-  std::vector<double> feeds;
-  feeds.reserve(plan.samples.size());
-  for (const planner::PlannedSample& sample : plan.samples) feeds.push_back(sample.feed_mm_per_min);
-  return feeds;
-}
-
 }  // namespace
 
 LoopResult run_learning_loop(const LoopRequest& request) {
@@ -60,7 +52,7 @@ LoopResult run_learning_loop(const LoopRequest& request) {
     if (request.sensor && request.sensor_kernel) {  // the kernel's factor at the feeds this cycle cut
       update_options.revolutions.sensor_peak_gain =
           learning::sensor_peak_gains(request.geometry.engagement, request.geometry.tool, settings.spindle_rpm,
-                                      *request.sensor, {&*request.sensor_kernel, feeds_cut(plan)});
+                                      *request.sensor, {&*request.sensor_kernel, planner::sample_feeds_mm_per_min(plan)});
     }
 
     LoopCycle out;

@@ -272,4 +272,7 @@ struct PlanResult {
 //! in the number of samples.
 PlanResult plan(const PlanGeometry& geometry, const PlanSettings& settings);
 
+//! The predicted speed the machine runs at each sample of `result` (PlannedSample::feed_mm_per_min), mm/min.
+std::vector<double> sample_feeds_mm_per_min(const PlanResult& result);
+
 }  // namespace feedplan::planner
