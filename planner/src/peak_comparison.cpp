@@ -65,6 +65,7 @@ PeakComparison compare_peaks(const PlanResult& result, double target_force_n,
     c.error_percent = 100.0 * (revolution.peak_n - target_force_n) / target_force_n;
     bool all_force_limited = true;
     double closest_to_limit = 0.0;  // the largest speed / force limit over the span's engaged samples
+    double farthest_from_limit = INFINITY;  // … and the smallest
     double engagement_min = 1e300;
     double engagement_max = -1e300;
     for (std::size_t i = first_at_or_after(revolution.s_start_mm); i < samples.size() && samples[i].s_mm <= revolution.s_end_mm; ++i) {
@@ -74,12 +75,15 @@ PeakComparison compare_peaks(const PlanResult& result, double target_force_n,
                           samples[i].within_model_range;
       c.planned_force_n = std::max(c.planned_force_n, samples[i].predicted_force_n);
       if (samples[i].feed_limit_mm_per_min > 0.0) {
-        closest_to_limit = std::max(closest_to_limit, samples[i].feed_mm_per_min / samples[i].feed_limit_mm_per_min);
+        const double share_of_limit = samples[i].feed_mm_per_min / samples[i].feed_limit_mm_per_min;
+        closest_to_limit = std::max(closest_to_limit, share_of_limit);
+        farthest_from_limit = std::min(farthest_from_limit, share_of_limit);
       }
       engagement_min = std::min(engagement_min, samples[i].engagement_rad);
       engagement_max = std::max(engagement_max, samples[i].engagement_rad);
     }
-    c.held = c.in_cut && all_force_limited && closest_to_limit >= 1.0 - kHeldFeedShortfall;
+    c.force_limited = c.in_cut && all_force_limited && closest_to_limit >= 1.0 - kHeldFeedShortfall;
+    c.held = c.force_limited && farthest_from_limit >= 1.0 - kHeldFeedShortfall;
     c.steady = c.held && engagement_max - engagement_min <= kSteadyEngagementSpreadRad;
     const std::size_t middle = std::min(first_at_or_after(0.5 * (revolution.s_start_mm + revolution.s_end_mm)),
                                         samples.empty() ? 0 : samples.size() - 1);
@@ -115,7 +119,7 @@ std::string describe(const PeakComparison& c, double target_force_n) {
   char line[512];
   std::string text = largest_peak_line(c, target_force_n);
   std::snprintf(line, sizeof line,
-                "revolutions: %zu, in cut %d, held at the target (force-limited, inside the model's range, run at the limit) %d, "
+                "revolutions: %zu, in cut %d, held at the target (force-limited, inside the model's range, run at the limit throughout) %d, "
                 "of them steady (constant engagement) %d\n",
                 c.revolutions.size(), c.in_cut, c.held, c.steady);
   text += line;

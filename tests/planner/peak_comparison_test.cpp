@@ -81,20 +81,29 @@ TEST(PeakComparison, ARevolutionAcrossAChangingEngagementIsHeldButNotSteady) {
 }
 
 // Where the axes cannot bring the speed up to the force limit in time, the plan itself predicts less than
-// the target: the revolution is in cut, its overshoot counts, but it is not held. Within the F words'
-// merge tolerance (a block's F at the smallest limit it spans) it is.
+// the target: the revolution is in cut, its overshoot counts, but it is neither force-limited nor held. One
+// that reaches the limit at one sample (within the F words' merge tolerance: a block's F at the smallest
+// limit it spans) is force-limited — a faster plan would run it faster — but held only when every engaged
+// sample runs at its limit: otherwise its peak depends on where the teeth pass.
 TEST(PeakComparison, ARevolutionTheMachineRunsBelowItsForceLimitIsNotHeld) {
   PlanResult plan = hand_made_plan();
   for (auto& s : plan.samples) {
     if (s.s_mm >= 11 && s.s_mm <= 14) s.feed_mm_per_min = 0.95 * s.feed_limit_mm_per_min;  // accelerating
-    if (s.s_mm >= 15 && s.s_mm <= 18) s.feed_mm_per_min = (s.s_mm == 16 ? 0.98 : 0.9) * s.feed_limit_mm_per_min;
+    if (s.s_mm >= 15 && s.s_mm <= 17) s.feed_mm_per_min = (s.s_mm == 16 ? 0.98 : 0.9) * s.feed_limit_mm_per_min;
+    if (s.s_mm >= 18 && s.s_mm <= 20) s.feed_mm_per_min = (s.s_mm == 19 ? 0.98 : 0.976) * s.feed_limit_mm_per_min;
   }
-  const PeakComparison c = compare_peaks(plan, 100.0, {{11.0, 14.0, 93.0}, {15.0, 18.0, 99.0}});
-  EXPECT_EQ(c.in_cut, 2);
+  const PeakComparison c =
+      compare_peaks(plan, 100.0, {{11.0, 14.0, 93.0}, {15.0, 17.0, 95.0}, {18.0, 20.0, 99.0}});
+  EXPECT_EQ(c.in_cut, 3);
+  EXPECT_FALSE(c.revolutions[0].force_limited);
   EXPECT_FALSE(c.revolutions[0].held);
-  EXPECT_TRUE(c.revolutions[1].held) << "one sample at 98 % of its limit: within the merge tolerance";
+  EXPECT_TRUE(c.revolutions[1].force_limited) << "one sample at 98 % of its limit: within the merge tolerance";
+  EXPECT_FALSE(c.revolutions[1].held) << "two at 90 %";
+  EXPECT_TRUE(c.revolutions[2].force_limited);
+  EXPECT_TRUE(c.revolutions[2].held) << "every sample within 2.5 % of its limit";
   EXPECT_EQ(c.held, 1);
   EXPECT_NEAR(c.max_abs_error_percent, 1.0, 1e-12);
+  EXPECT_NEAR(c.max_overshoot_percent, -1.0, 1e-12);
 }
 
 }  // namespace

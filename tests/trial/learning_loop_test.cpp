@@ -69,6 +69,26 @@ class LearningLoop : public ::testing::Test {
     return request;
   }
 
+  static void print_cycles(const std::string& machine, const LoopResult& result) {
+    for (const LoopCycle& c : result.cycles) {
+      std::printf("%s cycle %d: %.2f s, held RMS %.2f %%, max %.2f %% (steady %.2f %%), largest over %+.2f %%\n",
+                  machine.c_str(), c.cycle, c.simulated_cycle_time_s, c.comparison.rms_error_percent,
+                  c.comparison.max_abs_error_percent, c.comparison.steady_max_abs_error_percent,
+                  c.comparison.max_overshoot_percent);
+    }
+  }
+
+  //! Cycle 3 within 5 % of the best achievable plan's time (item 3's goal), and not faster than 0.95 T*.
+  static void expect_within_five_percent_of_t_star(const std::string& machine, const LoopResult& result,
+                                                   const BestPlan& best) {
+    const BestPlanIteration& oracle = best.iterations[static_cast<std::size_t>(best.best_iteration)];
+    std::printf("%s: T* %.2f s (held RMS %.2f %%, max %.2f %%), cycle 3 at %.3f × T*\n", machine.c_str(),
+                best.best_cycle_time_s, oracle.held_rms_error_percent, oracle.held_max_abs_error_percent,
+                result.cycles[2].simulated_cycle_time_s / best.best_cycle_time_s);
+    EXPECT_LE(result.cycles[2].simulated_cycle_time_s, 1.05 * best.best_cycle_time_s);
+    EXPECT_GE(result.cycles[2].simulated_cycle_time_s, 0.95 * best.best_cycle_time_s);
+  }
+
   //! The search for T* on the loop's cycle, machine and settings.
   static BestPlanRequest search_for(const LoopRequest& loop) {
     BestPlanRequest search;
@@ -83,78 +103,74 @@ class LearningLoop : public ::testing::Test {
 };
 
 // Three machines of the family whose physics differ from the sample model in shape (family-02: 4 µm of
-// runout, size effect 0.29, a 1743 Hz dynamometer; family-04: 7 µm of runout, a 605 Hz dynamometer with
-// little damping; family-09: 5–6 µm of runout, helix 5° off, edge force K_re 37 N/mm, 558 Hz), the trochoid at
-// 400 N for three cycles. The first overshoots by 17–30 % (mostly the runout, which the model does not have).
+// runout, size effect 0.29, a 1743 Hz dynamometer; family-09: 5–6 µm of runout, helix 5° off, edge force K_re
+// 37 N/mm, 558 Hz; family-11: 5.4 µm of runout, size effect 0.11, helix 3.6° off, 1221 Hz), the trochoid at 400 N
+// for three cycles. The first overshoots by 15–29 % (mostly the runout, which the model does not have).
 // Learning along the path searches the feed per place (learning/path_correction.hpp) on peaks less the
 // noise's excess (learning/peak_noise_bias.hpp) and corrected for the dynamometer's mode as its tap test
 // gives it (learning/sensor_dynamics.hpp); the program keeps its model. Held revolutions are those the plan
-// brings to the target (planner/peak_comparison.hpp).
+// runs at the target throughout (planner/peak_comparison.hpp).
 //
 // What cycle 3 reaches depends on the sensor's noise at a few places, so the bounds hold over six noise seeds
 // (SensorOptions::seed 1–6, true peaks; build/bench/learning_convergence_bench with FEEDPLAN_FAMILY_SEED): held RMS
-// 0.35–0.41 % (family-02), 0.62–0.77 % (-04), 0.49–0.57 % (-09); the largest revolution over the target
-// +1.0 … +6.5 %; cycle time 26.3–26.5, 35.9–36.1 and 36.0–36.4 s (0.988–0.993, 1.000–1.007 and 0.991–1.002 ×
-// T*). The largest held error, one revolution, is within ±3 % on family-02 in five of the six draws (2.0–3.3 %), on family-09 in all
-// six (1.5–2.8 %), and on family-04 in none (4.2–7.0 %, under the target at loop fronts and exits, where the
-// dynamometer's mode puts a factor on the reading that its correction, learning/sensor_dynamics.hpp, does not fully
-// take off). Over the steady held revolutions alone (straight cuts and steady arcs) the largest error is 1.2–2.3 %
-// on family-02 and 1.6–2.3 % on family-09 in all six draws, and 1.8–6.3 % on family-04 (within ±3 % in two);
-// the rest of the held revolutions are loop entries and exits, where the true peak of one plan moves by 4–9 %
-// (99th percentile) with the spindle's angle alone (FEEDPLAN_FAMILY_PHASES in that bench). Before one-sided secants were gated on a force change the noise cannot make and held to a trust region
-// it was 32 % under the target on family-04 seed 5, a loop front slowed on two readings through the resonant
-// dynamometer; before the look-ahead carried the feed per tooth and secants beyond two readings took the power law,
-// family-02 seed 1 ran a loop exit 9.9 % under the target (slowed by the larger correction of the thinner engagement
-// ahead) and family-09 was within ±3 % in three draws.
+// 0.32–0.36 % (family-02), 0.47–0.55 % (-09), 1.11–1.32 % (-11); the largest held error 1.3–2.3, 1.6–2.3 and
+// 2.2–3.0 %, every held revolution within ±3 % in all six draws on the three; the largest revolution over the
+// target +0.7 … +6.5 % (entries, which the plan does not hold); cycle time 26.3–26.5, 36.0–36.4 and 24.8–24.9 s
+// (0.99, 0.99–1.00 and 1.03 × T*). Cycle 2 overshot on all three (+3.4 … +10.7 %), so cycle 3 may be slower.
+// Before held asked the plan to run the whole revolution at its limit (it asked one sample), loop exits the
+// feed cannot follow counted too, and the largest held error was 2.0–3.3, 1.5–2.8 and 2.3–5.3 %.
 TEST_F(LearningLoop, TrochoidOnThreeMachinesOfTheFamilyConvergesWithoutDraggingTheCycle) {
   struct Case {
     std::string machine;
     double third_rms_percent;  // bound on cycle 3's held RMS error
-    double third_max_percent;  // bound on cycle 3's largest held error
-    double third_steady_max_percent;  // … over its steady held revolutions
   };
-  for (const Case& m : {Case{"family/family-02.yaml", 0.6, 3.5, 3.0}, Case{"family/family-04.yaml", 1.0, 7.0, 7.0},
-                        Case{"family/family-09.yaml", 0.8, 3.5, 3.0}}) {
+  for (const Case& m : {Case{"family/family-02.yaml", 0.6}, Case{"family/family-09.yaml", 0.8},
+                        Case{"family/family-11.yaml", 1.6}}) {
     SCOPED_TRACE(m.machine);
     LoopRequest request = request_on_machine("trochoid.yaml", m.machine, 400.0);
     request.cycles = 3;
     request.sensor = dynamometer_mode(request.machine.sensors.dynamometer);  // its tap test
     const LoopResult result = run_learning_loop(request);
     ASSERT_EQ(result.cycles.size(), 3u);
-    for (const LoopCycle& c : result.cycles) {
-      std::printf("%s cycle %d: %.2f s, held RMS %.2f %%, max %.2f %% (steady %.2f %%), largest over %+.2f %%\n",
-                  m.machine.c_str(), c.cycle, c.simulated_cycle_time_s, c.comparison.rms_error_percent,
-                  c.comparison.max_abs_error_percent, c.comparison.steady_max_abs_error_percent,
-                  c.comparison.max_overshoot_percent);
-    }
+    print_cycles(m.machine, result);
     const planner::PeakComparison& third = result.cycles[2].comparison;
-    int off_by_more_than_5_percent = 0;
-    for (const planner::RevolutionComparison& r : third.revolutions) {
-      if (r.held && std::abs(r.error_percent) > 5.0) ++off_by_more_than_5_percent;
-    }
-    EXPECT_GT(result.cycles[0].comparison.max_overshoot_percent, 15.0);
+    EXPECT_GT(result.cycles[0].comparison.max_overshoot_percent, 10.0);
     EXPECT_LE(third.rms_error_percent, m.third_rms_percent);
-    EXPECT_LE(third.max_abs_error_percent, m.third_max_percent);
-    EXPECT_LE(third.steady_max_abs_error_percent, m.third_steady_max_percent);
+    EXPECT_LE(third.max_abs_error_percent, 3.0);  // every held revolution within ±3 %
     EXPECT_GT(third.held, 600) << "most revolutions in the cut are held";
-    EXPECT_LE(off_by_more_than_5_percent, third.held / 100) << "at most 1 % of the held revolutions more than 5 % off";
     // Cycle 2 still overshot here, so cycle 3 may be slower; by how much is bounded.
+    EXPECT_GT(result.cycles[1].comparison.max_overshoot_percent, 0.0);
     EXPECT_LE(result.cycles[2].simulated_cycle_time_s, 1.45 * result.cycles[1].simulated_cycle_time_s);
     EXPECT_LE(third.max_overshoot_percent, 8.0);
     // Against the best achievable plan on the same machine (planned with its own physics, the feeds then
-    // searched on its true peaks within ±0.5 % of the target): cycle 3 at 0.993, 1.013 and 0.996 × T* (T* 26.64,
-    // 35.86 and 36.30 s; the goal: within 5 %). That plan's own largest held error is 2.8, 4.3 and 1.4 % (held RMS
-    // 0.4 %: blocks merged and F rounded down, and revolution windows that shift as the feeds change), learning's
-    // 2.0, 4.4 and 2.0 %.
+    // searched on its true peaks within ±0.5 % of the target): T* 26.64, 36.30 and 24.11 s.
     const BestPlan best = best_achievable_plan(search_for(request));
     ASSERT_GE(best.best_iteration, 0);
-    const BestPlanIteration& oracle = best.iterations[static_cast<std::size_t>(best.best_iteration)];
-    std::printf("%s: T* %.2f s (held RMS %.2f %%, max %.2f %%), cycle 3 at %.3f × T*\n", m.machine.c_str(),
-                best.best_cycle_time_s, oracle.held_rms_error_percent, oracle.held_max_abs_error_percent,
-                result.cycles[2].simulated_cycle_time_s / best.best_cycle_time_s);
-    EXPECT_LE(result.cycles[2].simulated_cycle_time_s, 1.05 * best.best_cycle_time_s);
-    EXPECT_GE(result.cycles[2].simulated_cycle_time_s, 0.95 * best.best_cycle_time_s);
+    expect_within_five_percent_of_t_star(m.machine, result, best);
   }
+}
+
+// Family-04 (7 µm of runout, a 605 Hz dynamometer at ζ 0.38) is where learning does not yet hold every
+// revolution within ±3 % by cycle 3: over the six noise seeds its largest held error is 2.6–6.3 % (within ±3 % in
+// two), each time a steady revolution just behind a loop front, run under the target after the dynamometer read
+// the front through its mode and noise (through an ideal dynamometer 1.4 %, without the noise 2.8 %). Held RMS
+// 0.54–0.66 %, cycle time 35.9–36.1 s (1.00–1.01 × T* 35.86 s, whose own largest held error is 0.8 %).
+TEST_F(LearningLoop, TrochoidOnAResonantDynamometerConvergesInTimeAndWithinSevenPercent) {
+  LoopRequest request = request_on_machine("trochoid.yaml", "family/family-04.yaml", 400.0);
+  request.cycles = 3;
+  request.sensor = dynamometer_mode(request.machine.sensors.dynamometer);
+  const LoopResult result = run_learning_loop(request);
+  ASSERT_EQ(result.cycles.size(), 3u);
+  print_cycles("family-04", result);
+  const planner::PeakComparison& third = result.cycles[2].comparison;
+  EXPECT_GT(result.cycles[0].comparison.max_overshoot_percent, 15.0);
+  EXPECT_LE(third.rms_error_percent, 1.0);
+  EXPECT_LE(third.max_abs_error_percent, 7.0);
+  EXPECT_GT(third.held, 600);
+  EXPECT_LE(third.max_overshoot_percent, 8.0);
+  const BestPlan best = best_achievable_plan(search_for(request));
+  ASSERT_GE(best.best_iteration, 0);
+  expect_within_five_percent_of_t_star("family-04", result, best);
 }
 
 // The learning history (planner/path_history.hpp) holds, per cycle, the plan's time and its predictions, and

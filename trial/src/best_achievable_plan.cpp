@@ -12,10 +12,10 @@ namespace feedplan::trial {
 namespace {
 
 //! Per sample, the largest true peak over the target among the in-cut revolutions whose span holds it (0:
-//! none), and whether every such revolution was held.
+//! none), and whether every such revolution was force-limited (a faster plan could run it faster).
 struct SampleEvidence {
   double ratio = 0.0;
-  bool held = true;
+  bool force_limited = true;
 };
 
 std::vector<SampleEvidence> evidence(const planner::PlanResult& plan, const planner::PeakComparison& comparison,
@@ -36,7 +36,7 @@ std::vector<SampleEvidence> evidence(const planner::PlanResult& plan, const plan
       SampleEvidence& e = out[static_cast<std::size_t>(it - samples.begin())];
       const bool own = it->s_mm >= r.revolution.s_start_mm;
       e.ratio = std::max(e.ratio, own ? ratio : std::max(ratio, 1.0));
-      if (own) e.held = e.held && r.held;
+      if (own) e.force_limited = e.force_limited && r.force_limited;
     }
   }
   return out;
@@ -116,7 +116,7 @@ BestPlan best_achievable_plan(const BestPlanRequest& request) {
         all_met = false;
         lo[i] = std::max(lo[i], c[i]);
         c[i] = inside(next_force_correction(c[i], r, previous[i]), lo[i], hi[i]);
-      } else if (r < 1.0 - request.tolerance && seen[i].held) {
+      } else if (r < 1.0 - request.tolerance && seen[i].force_limited) {
         all_met = false;
         hi[i] = std::min(hi[i], c[i]);
         c[i] = inside(next_force_correction(c[i], r, previous[i]), lo[i], hi[i]);

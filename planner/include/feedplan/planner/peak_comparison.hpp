@@ -4,15 +4,22 @@
 //
 // Each revolution is placed on the path by the path length it spans. A revolution counts as
 //   - in cut when some planned sample inside its span is engaged;
-//   - held when every engaged planned sample inside its span is force-limited (FeedLimitReason::kForce)
-//     and inside the model's fitted range at the feed run (PlannedSample::within_model_range), and the
-//     machine's predicted speed reaches that limit somewhere in the span within kHeldFeedShortfall: there
-//     the plan promises the target on the model's own ground, so |peak − target| / target is the error.
-//     Elsewhere — the machine's maximum feed, an arc's centripetal limit or the axes' acceleration (the
-//     feed cannot rise to the limit in time, so the plan itself predicts less) binds, or the tool enters or
-//     leaves the material, where the engagement leaves the straight-cut data the model was fitted on —
-//     the comparison reports the overshoot (peak above the target), which says how far the model is off
-//     there;
+//   - force-limited when every engaged planned sample inside its span is force-limited
+//     (FeedLimitReason::kForce) and inside the model's fitted range at the feed run
+//     (PlannedSample::within_model_range), and the machine's predicted speed reaches that limit somewhere
+//     in the span within kHeldFeedShortfall: a faster plan could run the place faster;
+//   - held when it is force-limited and the speed is within kHeldFeedShortfall of the limit at every engaged
+//     sample of the span: there the plan promises the target over the whole revolution, on the model's own
+//     ground, so |peak − target| / target is the error. A revolution's largest force comes from whichever
+//     tooth pass (with runout: whichever pass of its largest tooth) lands where the force is highest, and
+//     where the plan runs part of the span under its limit that is a matter of the spindle's angle: at a
+//     loop's exit, where the feed cannot rise as fast as the engagement falls, the same plan reads up to 6 %
+//     under the target from one revolution to the next. Elsewhere — the machine's maximum feed, an arc's
+//     centripetal limit or the axes' acceleration (the feed cannot rise to the limit in time, so the plan
+//     itself predicts less) binds, or the tool enters or leaves the material, where the engagement leaves
+//     the straight-cut data the model was fitted on — the comparison reports the overshoot (peak above the
+//     target), which says how far the model is off there, and the time lost under the target shows in the
+//     cycle time;
 //   - steady when it is held and the engagement angle varies by at most kSteadyEngagementSpreadRad over
 //     its span: a straight cut or a steady arc, the geometry of the cutting tests a model is fitted on.
 //     Entering and leaving the material (where the engaged arc does not end at the exit side, so t_m and
@@ -44,7 +51,8 @@ struct MeasuredRevolution {
 struct RevolutionComparison {
   MeasuredRevolution revolution;      //!< as given
   bool in_cut = false;                //!< some engaged planned sample inside
-  bool held = false;                  //!< every engaged planned sample inside is force-limited and in range
+  bool force_limited = false;         //!< every engaged sample inside force-limited, in range, at the limit somewhere
+  bool held = false;                  //!< force-limited and run at the limit at every engaged sample inside
   bool steady = false;                //!< held, with a constant engagement angle (straight cut, steady arc)
   double planned_force_n = 0.0;       //!< largest predicted force inside, N
   double error_percent = 0.0;         //!< (peak − target) / target × 100

@@ -9,13 +9,14 @@
 // c · F̂ at the target) is the unknown. A plan is cut, and every in-cut revolution's true peak over the
 // target, r, is given to each engaged sample of its span (the largest where spans meet). Per sample, a
 // bracket on c: a revolution over the target by more than the tolerance puts c's lower end at the c it ran
-// with (c must grow: the plan must slow down there), one held under it by more than the tolerance puts the
+// with (c must grow: the plan must slow down there), one force-limited (PeakComparison: at its limit
+// somewhere in the span, so a faster plan runs it faster) and under it by more than the tolerance puts the
 // upper end there (it may speed up). The next c is c · r — the force taken as proportional to c's effect —
 // or, where the sample's last two plans show the force hardly falling with the feed (near the machine's force
 // floor, where c · r crawls), the secant through them in (ln c, ln r) (correction_step.hpp); either kept strictly inside the bracket
 // (its geometric middle when it leaves it). Samples planned at the
 // machine's minimum feed and still over the target are where the target is not feasible: they are counted
-// and left out of the verdict. Revolutions not held at the force limit (maximum feed, an arc's centripetal
+// and left out of the verdict. Revolutions not force-limited (maximum feed, an arc's centripetal
 // limit, entries the plan does not hold) only ever raise c.
 //
 // Tolerance. T* is the fastest plan whose feasible in-cut revolutions are none more than the tolerance over
@@ -50,13 +51,14 @@
 // The chips stay within the response surface's fitted range (PlanOptions::max_chip_thickness_mm), as the
 // plans learning is judged with do.
 //
-// What a plan with perfect physics holds. The first plan, before any search, keeps every held revolution
-// of the trochoid at 400 N within 0.9 % of the target on family-04 and 1.3 % on family-09, and within 2.8 %
-// on family-02, held RMS 0.4 %; what remains is the plan's own: a revolution is held when one of its samples
-// runs within kHeldFeedShortfall of its limit, and family-02's worst (s = 155.8–156.0 mm, −2.8 %) runs
-// 2–8 % under its limits elsewhere in the window (a block's F under the limits it spans). The search's later
-// plans, stepping places by revolutions whose windows shift as the feeds change, can raise the largest held
-// error while they bring the overshoots into the band (family-04's T* plan, the fourth: 4.3 %).
+// What a plan with perfect physics holds. The first plan, before any search, kept every revolution of the
+// trochoid at 400 N within 0.9 % of the target on family-04 and 1.3 % on family-09 and within 2.8 % on
+// family-02 when a revolution counted as held where one of its samples ran within kHeldFeedShortfall of its
+// limit; family-02's worst (s = 155.8–156.0 mm, −2.8 %) runs 2–8 % under its limits elsewhere in the window
+// (a block's F under the limits it spans), and family-04's T* plan (the fourth: the search's later plans step
+// places by revolutions whose windows shift as the feeds change) had 4.3 %. Held now asks every sample of the
+// window to run at its limit, and the T* plans hold every held revolution within 0.9 % (family-02), 0.8 %
+// (-04), 1.4 % (-09) and 0.8 % (-11), held RMS 0.3–0.4 % (tests/trial/learning_loop_test.cpp).
 
 #include <vector>
 
@@ -101,7 +103,7 @@ struct BestPlan {
   //! over the target, else the settled plan's when it is within kMaxSettledOvershoot, s; 0 when neither.
   double best_cycle_time_s = 0.0;
   int best_iteration = -1;              //!< its index in `iterations` (−1: none)
-  bool converged = false;               //!< the last plan met the target within the tolerance on every held revolution
+  bool converged = false;               //!< the last plan met the target within the tolerance on every force-limited revolution
   int infeasible_samples = 0;           //!< samples at the minimum feed still over the target (last plan)
   std::vector<double> force_correction;  //!< c per sample of the best plan (the last one when none is best)
 };
